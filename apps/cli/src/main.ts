@@ -1,0 +1,30 @@
+import { Command, CommanderError } from 'commander';
+import { registerDecode } from './commands/decode.ts';
+import { registerIk } from './commands/ik.ts';
+
+/** Each command module adds itself to the program. */
+const COMMANDS: ((program: Command) => void)[] = [registerDecode, registerIk];
+
+export function buildProgram(): Command {
+  const program = new Command('armtwin')
+    .description('armtwin: a browser digital twin and control panel for servo-driven robot arms')
+    .version('0.1.0')
+    .showHelpAfterError('(run with --help for usage)')
+    .configureOutput({ outputError: (text, write) => write(text) });
+  for (const add of COMMANDS) add(program);
+  return program;
+}
+
+export async function main(argv: string[]): Promise<void> {
+  const program = buildProgram().exitOverride();
+  try {
+    await program.parseAsync(argv);
+  } catch (error) {
+    if (error instanceof CommanderError) {
+      process.exitCode = error.exitCode;
+      return;
+    }
+    process.stderr.write(`armtwin: ${error instanceof Error ? error.message : String(error)}\n`);
+    process.exitCode = 1;
+  }
+}

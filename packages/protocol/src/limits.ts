@@ -1,0 +1,19 @@
+/** Field ranges of the wire contract, declared once. */
+export const PWM_MIN = 500;
+export const PWM_MAX = 2500;
+export const PWM_CENTRE = 1500;
+/** Degrees a servo turns over PWM_MIN…PWM_MAX. */
+export const SERVO_RANGE_DEG = 270;
+export const SERVO_ID_MAX = 254;
+/** `#255…` addresses every servo. */
+export const SERVO_ID_ALL = 255;
+export const MOVE_MS_MAX = 9999;
+export const PING_SEQ_MAX = 4_294_967_295;
+/** A frame longer than this (including its `!`) is dropped. */
+export const MAX_FRAME_LENGTH = 64;
+/** Largest |x|, |y|, |z| accepted in a `$KMS` frame, mm. */
+export const KMS_COORD_MAX = 99_999;
+/** Largest IK status code the reader accepts in `$KMS:c!` (room for codes beyond §4). */
+export const KMS_CODE_MAX = 99;
+export const TEMP_MAX = 999;
+export const MV_MAX = 9999;
