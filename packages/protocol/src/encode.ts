@@ -61,6 +61,7 @@ export const encodeTime = (ms: number) => `$TIM:${checkInt('time', ms, 0, Number
 
 /** `$ERR:text!`, with `!`, frame starts and control characters removed so the frame stays one frame. */
 export function encodeControllerError(text: string): string {
+  // eslint-disable-next-line no-control-regex -- control characters are exactly what is removed
   const clean = text.replace(/[!#${}\x00-\x1f\x7f-\uffff]/g, ' ').trim();
   return `$ERR:${clean.slice(0, MAX_FRAME_LENGTH - 6)}!`;
 }

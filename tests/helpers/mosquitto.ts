@@ -1,0 +1,124 @@
+/**
+ * A throwaway Mosquitto 2.0 broker: an MQTT listener and a WebSockets listener on free ports
+ * of 127.0.0.1, anonymous access, persistence in its temp dir (so `restart()` keeps
+ * persistent sessions and queued QoS 1 messages), log in `<dir>/mosquitto.log`.
+ * Never uses port 1883, so a system Mosquitto does not matter.
+ */
+import fs from 'node:fs';
+import path from 'node:path';
+import { LOOPBACK } from './ports.ts';
+import { startService, type ServiceProcess } from './process.ts';
+
+export interface MosquittoOptions {
+  /** Extra mosquitto.conf lines, appended after the generated ones. */
+  extraConfig?: string[];
+  /** Milliseconds to wait for both listeners to accept connections. */
+  startTimeoutMs?: number;
+}
+
+export const DEFAULT_MOSQUITTO_OPTIONS: Required<MosquittoOptions> = {
+  extraConfig: [],
+  startTimeoutMs: 15_000,
+};
+
+export interface MosquittoService {
+  host: string;
+  /** MQTT (TCP) port. */
+  port: number;
+  /** `mqtt://127.0.0.1:<port>` */
+  url: string;
+  /** WebSockets port. */
+  wsPort: number;
+  /** `ws://127.0.0.1:<wsPort>` */
+  wsUrl: string;
+  /** The temp dir: config, persistence file, log. */
+  dir: string;
+  confFile: string;
+  logFile: string;
+  readonly running: boolean;
+  /** Starts the broker again (same dir, same ports) after stop() or kill(). */
+  start(): Promise<void>;
+  /** Clean shutdown (SIGTERM): persistence is saved. The temp dir stays. */
+  stop(): Promise<void>;
+  /** stop() then start(): persistent sessions and their queued messages survive. */
+  restart(): Promise<void>;
+  /** SIGKILL: a crash. The temp dir stays. */
+  kill(): Promise<void>;
+  /** Final teardown: kill if running, keep logs if asked (returns where), remove the temp dir. */
+  dispose(opts?: { keepLogs?: boolean }): Promise<string | undefined>;
+}
+
+/** Resolves the mosquitto binary: PATH first, then /usr/sbin (not on a normal user's PATH). */
+export function mosquittoBinary(): string {
+  const dirs = [...(process.env.PATH ?? '').split(path.delimiter), '/usr/sbin', '/usr/local/sbin'];
+  for (const dir of dirs) {
+    const candidate = path.join(dir, 'mosquitto');
+    if (dir && fs.existsSync(candidate)) return candidate;
+  }
+  throw new Error('mosquitto not found; run scripts/install-deps.sh');
+}
+
+function mosquittoConf(dir: string, port: number, wsPort: number, extra: string[]): string {
+  return [
+    '# written by tests/helpers/mosquitto.ts',
+    // Run as root, Mosquitto 2 switches to user "mosquitto", which cannot write our temp dir.
+    ...(process.getuid?.() === 0 ? ['user root'] : []),
+    'per_listener_settings false',
+    'allow_anonymous true',
+    `listener ${port} ${LOOPBACK}`,
+    'protocol mqtt',
+    `listener ${wsPort} ${LOOPBACK}`,
+    'protocol websockets',
+    'persistence true',
+    `persistence_location ${dir}/`,
+    'log_dest stderr',
+    'log_type all',
+    'log_timestamp true',
+    'log_timestamp_format %Y-%m-%dT%H:%M:%S',
+    'connection_messages true',
+    ...extra,
+    '',
+  ].join('\n');
+}
+
+/** Starts a throwaway Mosquitto and waits until both listeners accept connections. */
+export async function startMosquitto(opts: MosquittoOptions = {}): Promise<MosquittoService> {
+  const o = { ...DEFAULT_MOSQUITTO_OPTIONS, ...opts };
+  const command = mosquittoBinary();
+  const proc: ServiceProcess = await startService('mosquitto', 2, (dir, ports) => {
+    const [port = 0, wsPort = 0] = ports;
+    const confFile = path.join(dir, 'mosquitto.conf');
+    fs.writeFileSync(confFile, mosquittoConf(dir, port, wsPort, o.extraConfig));
+    return {
+      name: 'mosquitto',
+      command,
+      args: ['-c', confFile],
+      dir,
+      host: LOOPBACK,
+      ports: [port, wsPort],
+      startTimeoutMs: o.startTimeoutMs,
+    };
+  });
+  const [port = 0, wsPort = 0] = proc.spec.ports;
+  return {
+    host: LOOPBACK,
+    port,
+    url: `mqtt://${LOOPBACK}:${port}`,
+    wsPort,
+    wsUrl: `ws://${LOOPBACK}:${wsPort}`,
+    dir: proc.spec.dir,
+    confFile: path.join(proc.spec.dir, 'mosquitto.conf'),
+    logFile: proc.logFile,
+    get running() {
+      return proc.running;
+    },
+    start: () => proc.start(),
+    stop: () => proc.stop(),
+    restart: async () => {
+      await proc.stop();
+      await proc.start();
+    },
+    kill: () => proc.kill(),
+    dispose: (d) => proc.dispose(d),
+  };
+}
