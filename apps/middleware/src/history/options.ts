@@ -1,0 +1,45 @@
+/**
+ * The history API's limits, declared once. `createHistoryHandler` merges what it is given
+ * over `DEFAULT_HISTORY_OPTIONS`; the README quotes these values.
+ */
+
+export interface HistoryOptions {
+  /** Most points per series that `/history/series` and `/history/pose` return. */
+  maxPoints: number;
+  /** Longest time range any endpoint accepts, ms (31 days). */
+  maxSpanMs: number;
+  /**
+   * `/history/alarms`: most raw rows read per (servo, field) series after the in-Flux
+   * reduction (threshold crossings and in-alarm samples only). Beyond it the answer says
+   * `truncated: true`.
+   */
+  maxAlarmRows: number;
+  /**
+   * `/history/tracking`: most actual samples compared per joint. Denser data is thinned in
+   * Flux to the first sample of each window (see README).
+   */
+  maxTrackingSamples: number;
+  /** `/history/tracking`: how far before `start` to look for the command then in force, ms. */
+  commandLookbackMs: number;
+  /** Most commands read per joint by `/history/tracking`. */
+  maxCommands: number;
+}
+
+export const DEFAULT_HISTORY_OPTIONS: HistoryOptions = {
+  maxPoints: 2000,
+  maxSpanMs: 31 * 24 * 3600_000,
+  maxAlarmRows: 50_000,
+  maxTrackingSamples: 10_000,
+  commandLookbackMs: 24 * 3600_000,
+  maxCommands: 50_000,
+};
+
+/** §5 of PROTOCOL.md. */
+export const THRESHOLDS = {
+  tempWarning: 60,
+  tempCritical: 75,
+  undervoltage: 6.5,
+} as const;
+
+/** Longest move a command can ask for (`tttt` ≤ 9999 ms, PROTOCOL.md §1). */
+export const MAX_MOVE_MS = 9999;
