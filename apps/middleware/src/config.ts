@@ -1,0 +1,176 @@
+/**
+ * The middleware's settings, read from the environment here and nowhere else.
+ * `DEFAULT_MIDDLEWARE_CONFIG` is the one copy of the defaults; the README quotes it.
+ */
+import { z } from 'zod';
+
+/** Every setting, with the environment variable it comes from. */
+export interface MiddlewareConfig {
+  /** MQTT_URL: broker URL (mqtt://, mqtts://, ws://, wss://). */
+  mqttUrl: string;
+  /** MQTT_USERNAME / MQTT_PASSWORD: broker credentials (empty = anonymous). */
+  mqttUsername: string;
+  mqttPassword: string;
+  /** MQTT_CLIENT_ID: fixed, so the broker keeps this instance's persistent session. */
+  mqttClientId: string;
+  /** MQTT_QOS: subscription QoS, 0 or 1 (1 = nothing lost across a restart). */
+  mqttQos: 0 | 1;
+  /** MQTT_KEEPALIVE_S: keep-alive interval, seconds. */
+  mqttKeepaliveS: number;
+  /** MQTT_RECONNECT_MS: reconnect period, ms. */
+  mqttReconnectMs: number;
+  /** MQTT_SHARE_GROUP: '' = plain subscription; else `$share/<group>/arm/+/…`. */
+  mqttShareGroup: string;
+  /** INFLUX_URL: '' = run without storage. */
+  influxUrl: string;
+  /** INFLUX_TOKEN: 2.x API token, or `user:password` on 1.8 ('' = no auth). */
+  influxToken: string;
+  /** INFLUX_ORG: 2.x organisation ('' on 1.8). */
+  influxOrg: string;
+  /** INFLUX_BUCKET: 2.x bucket, or `db/rp` on 1.8. */
+  influxBucket: string;
+  /** INFLUX_CREATE_BUCKET: create the database/bucket when missing. */
+  influxCreateBucket: boolean;
+  /** BATCH_SIZE: points per write. */
+  batchSize: number;
+  /** FLUSH_INTERVAL_MS: the longest a point waits before it is written. */
+  flushIntervalMs: number;
+  /** MAX_RETRY_DELAY_MS: cap of the exponential retry back-off. */
+  maxRetryDelayMs: number;
+  /** MIN_RETRY_DELAY_MS: first retry delay. */
+  minRetryDelayMs: number;
+  /** WRITE_MODE: `batch` (default) or `sync` (one write per frame: the seed's baseline). */
+  writeMode: 'batch' | 'sync';
+  /** SPOOL_DIR: where unwritten batches are kept on disk. */
+  spoolDir: string;
+  /** SPOOL_MAX_BYTES: bound of the spool; at the bound MQTT intake pauses (loudly). */
+  spoolMaxBytes: number;
+  /** PORT: HTTP port of /healthz and /metrics (0 = any free port). */
+  port: number;
+  /** HOST: HTTP bind address. */
+  host: string;
+  /** LOG_LEVEL: pino level. */
+  logLevel: 'fatal' | 'error' | 'warn' | 'info' | 'debug' | 'trace' | 'silent';
+}
+
+export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
+  mqttUrl: 'mqtt://127.0.0.1:1883',
+  mqttUsername: '',
+  mqttPassword: '',
+  mqttClientId: 'armtwin-middleware',
+  mqttQos: 1,
+  mqttKeepaliveS: 60,
+  mqttReconnectMs: 1000,
+  mqttShareGroup: '',
+  influxUrl: '',
+  influxToken: '',
+  influxOrg: '',
+  influxBucket: 'armtwin/autogen',
+  influxCreateBucket: true,
+  batchSize: 1000,
+  flushIntervalMs: 5000,
+  maxRetryDelayMs: 15000,
+  minRetryDelayMs: 500,
+  writeMode: 'batch',
+  spoolDir: '.data/middleware-spool',
+  spoolMaxBytes: 256 * 1024 * 1024,
+  port: 8090,
+  host: '127.0.0.1',
+  logLevel: 'info',
+};
+
+/** Config key → environment variable. */
+export const CONFIG_ENV: Record<keyof MiddlewareConfig, string> = {
+  mqttUrl: 'MQTT_URL',
+  mqttUsername: 'MQTT_USERNAME',
+  mqttPassword: 'MQTT_PASSWORD',
+  mqttClientId: 'MQTT_CLIENT_ID',
+  mqttQos: 'MQTT_QOS',
+  mqttKeepaliveS: 'MQTT_KEEPALIVE_S',
+  mqttReconnectMs: 'MQTT_RECONNECT_MS',
+  mqttShareGroup: 'MQTT_SHARE_GROUP',
+  influxUrl: 'INFLUX_URL',
+  influxToken: 'INFLUX_TOKEN',
+  influxOrg: 'INFLUX_ORG',
+  influxBucket: 'INFLUX_BUCKET',
+  influxCreateBucket: 'INFLUX_CREATE_BUCKET',
+  batchSize: 'BATCH_SIZE',
+  flushIntervalMs: 'FLUSH_INTERVAL_MS',
+  maxRetryDelayMs: 'MAX_RETRY_DELAY_MS',
+  minRetryDelayMs: 'MIN_RETRY_DELAY_MS',
+  writeMode: 'WRITE_MODE',
+  spoolDir: 'SPOOL_DIR',
+  spoolMaxBytes: 'SPOOL_MAX_BYTES',
+  port: 'PORT',
+  host: 'HOST',
+  logLevel: 'LOG_LEVEL',
+};
+
+const int = (min: number, max: number) => z.coerce.number().int().min(min).max(max);
+const url = (protocols: RegExp) =>
+  z.string().refine(
+    (s) => {
+      try {
+        return protocols.test(new URL(s).protocol);
+      } catch {
+        return false;
+      }
+    },
+    `expected a URL (${protocols.source.replace(/[\^$()]/g, '').replace(/\\/g, '')})`,
+  );
+
+const SCHEMA = z.object({
+  mqttUrl: url(/^(mqtts?|wss?|tcp|ssl):$/),
+  mqttUsername: z.string(),
+  mqttPassword: z.string(),
+  mqttClientId: z.string().min(1).max(128),
+  mqttQos: z.enum(['0', '1']).transform((q) => Number(q) as 0 | 1),
+  mqttKeepaliveS: int(0, 65535),
+  mqttReconnectMs: int(10, 3_600_000),
+  mqttShareGroup: z.string().regex(/^[^/+#]*$/, 'must not contain "/", "+" or "#"'),
+  influxUrl: z.union([z.literal(''), url(/^https?:$/)]),
+  influxToken: z.string(),
+  influxOrg: z.string(),
+  influxBucket: z.string().min(1),
+  influxCreateBucket: z
+    .enum(['true', 'false', '1', '0'])
+    .transform((b) => b === 'true' || b === '1'),
+  batchSize: int(1, 1_000_000),
+  flushIntervalMs: int(1, 3_600_000),
+  maxRetryDelayMs: int(1, 3_600_000),
+  minRetryDelayMs: int(1, 3_600_000),
+  writeMode: z.enum(['batch', 'sync']),
+  spoolDir: z.string().min(1),
+  spoolMaxBytes: int(1024, Number.MAX_SAFE_INTEGER),
+  port: int(0, 65535),
+  host: z.string().min(1),
+  logLevel: z.enum(['fatal', 'error', 'warn', 'info', 'debug', 'trace', 'silent']),
+});
+
+/** Thrown by loadConfig; the message names every bad variable. */
+export class ConfigError extends Error {
+  override name = 'ConfigError';
+}
+
+/**
+ * Builds the config from an environment (`process.env` by default). An unset or empty
+ * variable takes its default; an invalid one throws a ConfigError naming the variable.
+ */
+export function loadConfig(
+  env: Record<string, string | undefined> = process.env,
+): MiddlewareConfig {
+  const raw: Record<string, string> = {};
+  for (const [key, name] of Object.entries(CONFIG_ENV) as [keyof MiddlewareConfig, string][]) {
+    const value = env[name]?.trim();
+    raw[key] = value ? value : String(DEFAULT_MIDDLEWARE_CONFIG[key]);
+  }
+  const parsed = SCHEMA.safeParse(raw);
+  if (!parsed.success) {
+    const lines = parsed.error.issues.map((issue) => {
+      const key = issue.path[0] as keyof MiddlewareConfig;
+      return `${CONFIG_ENV[key]}=${JSON.stringify(raw[key])}: ${issue.message}`;
+    });
+    throw new ConfigError(`invalid configuration:\n  ${lines.join('\n  ')}`);
+  }
+  return parsed.data;
+}

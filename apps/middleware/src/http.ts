@@ -1,0 +1,70 @@
+/**
+ * `/healthz` (JSON, 200 or 503) and `/metrics` (Prometheus text). Works at the root of its
+ * own port and mounted under `/api` on another server (the `npm start` orchestrator).
+ * `/history/…` is the history API (./history), present when storage is configured.
+ */
+import type { IncomingMessage, ServerResponse } from 'node:http';
+import type { HistoryHandler } from './history/index.ts';
+import { renderMetrics, type Metrics } from './metrics.ts';
+
+export interface HealthReport {
+  ok: boolean;
+  mqtt: { connected: boolean; url: string };
+  influx: { reachable: boolean; url: string };
+  storage: boolean;
+  writeMode: 'batch' | 'sync';
+  spool: { files: number; points: number; bytes: number; full: boolean; openPoints: number };
+  pointsWritten: number;
+  pointsDropped: number;
+}
+
+/** What the handler needs from a running middleware. */
+export interface HttpSource {
+  metrics: Metrics;
+  health(): HealthReport;
+  /** The history API, or null when there is no storage to read from. */
+  history?: HistoryHandler | null;
+}
+
+export type HttpHandler = (req: IncomingMessage, res: ServerResponse) => boolean;
+
+/** Serves the request if it is one of ours (returns true), else leaves it (returns false). */
+export function createHttpHandler(mw: HttpSource): HttpHandler {
+  return (req, res) => {
+    const path = (req.url ?? '/').split('?')[0]!.replace(/^\/api(?=\/)/, '');
+    if (path === '/history' || path.startsWith('/history/')) {
+      if (!mw.history) {
+        res.writeHead(503, { 'content-type': 'application/json' });
+        res.end(JSON.stringify({ error: 'history needs storage: set INFLUX_URL' }));
+        return true;
+      }
+      req.url = req.url!.replace(/^\/api(?=\/)/, '');
+      mw.history(req, res).then(
+        (mine) => mine || res.writeHead(404, { 'content-type': 'application/json' }).end('{"error":"not found"}'),
+        () => res.headersSent || res.writeHead(500).end(),
+      );
+      return true;
+    }
+    if (req.method !== 'GET' && req.method !== 'HEAD') {
+      if (path !== '/healthz' && path !== '/metrics') return false;
+      res.writeHead(405, { allow: 'GET, HEAD' }).end();
+      return true;
+    }
+    if (path === '/healthz') {
+      const report = mw.health();
+      res.writeHead(report.ok ? 200 : 503, {
+        'content-type': 'application/json',
+        'cache-control': 'no-store',
+      });
+      res.end(JSON.stringify(report));
+      return true;
+    }
+    if (path === '/metrics') {
+      mw.health(); // refreshes the gauges
+      res.writeHead(200, { 'content-type': 'text/plain; version=0.0.4; charset=utf-8' });
+      res.end(renderMetrics(mw.metrics));
+      return true;
+    }
+    return false;
+  };
+}

@@ -1,0 +1,233 @@
+/**
+ * `startMiddleware(config, deps?)`: MQTT → cleaner → durable spool → InfluxDB, plus the HTTP
+ * endpoints. The orchestrator (`npm start`) and the tests call this; `main.ts` is the CLI.
+ */
+import http from 'node:http';
+import type { MqttClient } from 'mqtt';
+import type { MiddlewareConfig } from './config.ts';
+import { InfluxDB } from '@influxdata/influxdb-client';
+import { createHistoryHandler } from './history/index.ts';
+import { createHttpHandler, type HealthReport, type HttpHandler } from './http.ts';
+import { createInfluxWriter, type InfluxWriter } from './influx.ts';
+import { Ingest } from './ingest.ts';
+import { createLogger, LogOnce, type Logger } from './log.ts';
+import { Metrics } from './metrics.ts';
+import { startMqtt, type ConnectFn } from './mqtt.ts';
+import { SYSTEM_CLOCK, type Clock } from './shipper.ts';
+import { Storage } from './storage.ts';
+
+export {
+  loadConfig,
+  DEFAULT_MIDDLEWARE_CONFIG,
+  CONFIG_ENV,
+  ConfigError,
+  type MiddlewareConfig,
+} from './config.ts';
+export { createHttpHandler, type HealthReport, type HttpHandler } from './http.ts';
+export { renderMetrics, Metrics } from './metrics.ts';
+export { startLocalInflux, type LocalInflux } from './local-influx.ts';
+
+export interface MiddlewareDeps {
+  logger?: Logger;
+  /** The InfluxDB edge (a fake in unit tests); default: built from the config. */
+  writer?: InfluxWriter;
+  /** mqtt.js `connect` (a fake in unit tests). */
+  connect?: ConnectFn;
+  clock?: Clock;
+  /** Wall clock, epoch ms: the time of frames that carry no `$TIM`. */
+  now?: () => number;
+  /** Open the HTTP port (default true). The orchestrator mounts `handler` instead. */
+  listen?: boolean;
+}
+
+export interface Middleware {
+  readonly config: MiddlewareConfig;
+  readonly metrics: Metrics;
+  /** Bound HTTP port, or null when not listening. */
+  readonly httpPort: number | null;
+  readonly handler: HttpHandler;
+  health(): HealthReport;
+  /** Seals the open batch and waits until the spool is empty or `timeoutMs` passes. */
+  flush(timeoutMs?: number): Promise<boolean>;
+  /** Stops intake, seals and writes what it can within `timeoutMs`; the rest stays spooled. */
+  stop(timeoutMs?: number): Promise<void>;
+}
+
+export async function startMiddleware(
+  config: MiddlewareConfig,
+  deps: MiddlewareDeps = {},
+): Promise<Middleware> {
+  const log = deps.logger ?? createLogger(config.logLevel);
+  const once = new LogOnce(log);
+  const clock = deps.clock ?? SYSTEM_CLOCK;
+  const now = deps.now ?? Date.now;
+  const metrics = new Metrics();
+  const ingest = new Ingest(metrics, once);
+  let stopped = false;
+
+  let storage: Storage | null = null;
+  let writer: InfluxWriter | null = null;
+  if (deps.writer ?? config.influxUrl) {
+    writer =
+      deps.writer ??
+      createInfluxWriter({
+        url: config.influxUrl,
+        token: config.influxToken,
+        org: config.influxOrg,
+        bucket: config.influxBucket,
+        timeoutMs: 10_000,
+      });
+    storage = new Storage(config, writer, metrics, log, once, clock);
+    log.info(
+      {
+        url: config.influxUrl,
+        bucket: config.influxBucket,
+        mode: config.writeMode,
+        batchSize: config.batchSize,
+        flushIntervalMs: config.flushIntervalMs,
+      },
+      'storage: InfluxDB',
+    );
+    storage.start();
+  } else {
+    log.warn(
+      'storage: none (INFLUX_URL is not set): frames are cleaned and counted but NOT stored',
+    );
+  }
+  metrics.storageEnabled = storage !== null;
+
+  const client: MqttClient = startMqtt(
+    {
+      url: config.mqttUrl,
+      username: config.mqttUsername,
+      password: config.mqttPassword,
+      clientId: config.mqttClientId,
+      qos: config.mqttQos,
+      keepaliveS: config.mqttKeepaliveS,
+      reconnectMs: config.mqttReconnectMs,
+      shareGroup: config.mqttShareGroup,
+    },
+    {
+      onMessage: (topic, payload) => {
+        const lines = ingest.handle(topic, payload, now());
+        storage?.add(lines);
+      },
+      onConnect: () => {
+        metrics.mqttConnected = true;
+        metrics.mqttConnects++;
+        once.reset('mqtt-error');
+        log.info(
+          {
+            url: config.mqttUrl,
+            clientId: config.mqttClientId,
+            qos: config.mqttQos,
+            shareGroup: config.mqttShareGroup || undefined,
+          },
+          'MQTT connected',
+        );
+      },
+      onClose: () => {
+        if (metrics.mqttConnected && !stopped) log.warn('MQTT connection closed; reconnecting');
+        metrics.mqttConnected = false;
+      },
+      onError: (err) => once.warn('mqtt-error', { err: err.message }, 'MQTT error'),
+      gate: () => storage?.gate() ?? null,
+    },
+    deps.connect,
+  );
+
+  const pingTimer = writer
+    ? setInterval(() => {
+        writer.ping().then(
+          (ok) => (metrics.influxReachable = ok),
+          () => (metrics.influxReachable = false),
+        );
+      }, 5000)
+    : null;
+  pingTimer?.unref();
+
+  const health = (): HealthReport => {
+    const spool = storage?.spool;
+    metrics.spoolFiles = spool?.queue.length ?? 0;
+    metrics.spoolPoints = spool?.sealedPoints ?? 0;
+    metrics.spoolBytes = spool?.bytes ?? 0;
+    const influxOk = !storage || metrics.influxReachable;
+    return {
+      ok: metrics.mqttConnected && influxOk && !metrics.spoolFull,
+      mqtt: { connected: metrics.mqttConnected, url: config.mqttUrl },
+      influx: { reachable: storage !== null && metrics.influxReachable, url: config.influxUrl },
+      storage: storage !== null,
+      writeMode: config.writeMode,
+      spool: {
+        files: metrics.spoolFiles,
+        points: metrics.spoolPoints,
+        bytes: metrics.spoolBytes,
+        full: metrics.spoolFull,
+        openPoints: spool?.pendingPoints ?? 0,
+      },
+      pointsWritten: metrics.pointsWritten,
+      pointsDropped: metrics.pointsDropped,
+    };
+  };
+
+  const history = config.influxUrl
+    ? createHistoryHandler({
+        queryApi: new InfluxDB({
+          url: config.influxUrl,
+          token: config.influxToken || undefined,
+          timeout: 30_000,
+        }).getQueryApi(config.influxOrg),
+        bucket: config.influxBucket,
+        onError: (err) =>
+          once.warn('history-query-failed', { err: (err as Error).message }, 'history query failed'),
+      })
+    : null;
+  const handler = createHttpHandler({ metrics, health, history });
+  let server: http.Server | null = null;
+  let httpPort: number | null = null;
+  if (deps.listen !== false) {
+    const srv = http.createServer((req, res) => {
+      if (!handler(req, res))
+        res.writeHead(404, { 'content-type': 'text/plain' }).end('not found\n');
+    });
+    await new Promise<void>((resolve, reject) => {
+      srv.once('error', reject);
+      srv.listen(config.port, config.host, () => resolve());
+    });
+    const addr = srv.address();
+    httpPort = typeof addr === 'object' && addr ? addr.port : null;
+    server = srv;
+    log.info({ url: `http://${config.host}:${httpPort}` }, 'HTTP: /healthz and /metrics');
+  }
+
+  return {
+    config,
+    metrics,
+    get httpPort() {
+      return httpPort;
+    },
+    handler,
+    health,
+    flush: async (timeoutMs = 10_000) => (storage ? storage.flush(timeoutMs) : true),
+    async stop(timeoutMs = 5000) {
+      if (stopped) return;
+      stopped = true;
+      if (pingTimer) clearInterval(pingTimer);
+      await new Promise<void>((resolve) => {
+        const t = setTimeout(resolve, 2000);
+        client.end(storage?.gate() != null, {}, () => (clearTimeout(t), resolve()));
+      });
+      metrics.mqttConnected = false;
+      await storage?.stop(timeoutMs);
+      const closing = new Promise<void>((resolve) =>
+        server ? server.close(() => resolve()) : resolve(),
+      );
+      server?.closeAllConnections();
+      await closing;
+      log.info(
+        { pointsWritten: metrics.pointsWritten, pointsDropped: metrics.pointsDropped },
+        'middleware stopped',
+      );
+    },
+  };
+}

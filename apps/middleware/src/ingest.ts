@@ -1,0 +1,170 @@
+/**
+ * MQTT message → line-protocol lines. One protocol reader per (arm, topic), because a frame
+ * may continue in the next message of the same topic; the `$TIM` stamp is cleared before
+ * each message, so an unstamped payload's frames get its arrival time.
+ *
+ * `$KMS` pairing: a `$KMS:x,y,z[,a],t!` on `arm/{id}/control` is held as the arm's pending
+ * request; the next `$KMS:c!` on `arm/{id}/status` writes ONE `ik` point at the result's
+ * time with `code` and the request's x, y, z, a. A request superseded before any result is
+ * written alone (no `code`) at its own time; a result with no request seen writes `code`
+ * only. Control frames of a group that had an invalid frame are not stored (the controller
+ * executes such a group not at all) and are counted as `group-not-executed`.
+ */
+import {
+  createReader,
+  parseTopic,
+  type Frame,
+  type KmsFrame,
+  type Reader,
+} from '@armtwin/protocol';
+import type { Metrics } from './metrics.ts';
+import type { LogOnce } from './log.ts';
+import {
+  commandLine,
+  commandSeries,
+  healthLine,
+  ikLine,
+  ikSeries,
+  positionLine,
+  servoSeries,
+  SeriesClock,
+} from './points.ts';
+
+const STATUS_KINDS = new Set([
+  'position',
+  'health',
+  'kmsResult',
+  'ping',
+  'time',
+  'controllerError',
+]);
+const CONTROL_KINDS = new Set([
+  'move',
+  'kms',
+  'readPosition',
+  'readHealth',
+  'stop',
+  'ping',
+  'time',
+]);
+
+export class Ingest {
+  private readonly readers = new Map<string, Reader>();
+  private readonly pendingKms = new Map<string, KmsFrame & { at: number }>();
+  readonly clock = new SeriesClock();
+  // The message being handled (the readers' callbacks write here).
+  private arm = '';
+  private onControl = false;
+  private arrival = 0;
+  private out: string[] = [];
+
+  constructor(
+    private readonly metrics: Metrics,
+    private readonly once?: LogOnce,
+  ) {}
+
+  /** Lines for one message (possibly none); `arrivalMs` is the fallback time. */
+  handle(topic: string, payload: Uint8Array | string, arrivalMs: number): string[] {
+    const parsed = parseTopic(topic);
+    const kind =
+      parsed && (parsed.kind === 'status' || parsed.kind === 'control') ? parsed.kind : null;
+    this.metrics.count(this.metrics.messages, kind ?? 'other');
+    if (!parsed || !kind) {
+      this.reject('bad-topic', topic);
+      return [];
+    }
+    this.arm = parsed.armId;
+    this.onControl = kind === 'control';
+    this.arrival = arrivalMs;
+    this.out = [];
+    const reader = this.reader(`${kind}/${parsed.armId}`);
+    reader.clearStamp();
+    reader.feed(payload);
+    const lines = this.out;
+    this.out = [];
+    this.metrics.pointsProduced += lines.length;
+    this.metrics.timestampsBumped = this.clock.bumped;
+    return lines;
+  }
+
+  private reader(key: string): Reader {
+    let r = this.readers.get(key);
+    if (!r) {
+      r = createReader({
+        onFrame: (f) => this.frame(f, true),
+        onGroup: (g) => {
+          const executed = g.invalid === 0;
+          for (const f of g.frames) this.frame(f, executed);
+        },
+        onError: (e) => this.reject(e.kind, e.text, e.message),
+      });
+      this.readers.set(key, r);
+    }
+    return r;
+  }
+
+  private reject(reason: string, text: string, message = reason): void {
+    this.metrics.count(this.metrics.rejected, reason);
+    this.once?.warn(
+      `rejected:${reason}`,
+      { text: text.slice(0, 80), arm: this.arm },
+      `dropped input: ${message}`,
+    );
+  }
+
+  private frame(f: Frame, executed: boolean): void {
+    this.metrics.count(this.metrics.frames, f.type);
+    const allowed = this.onControl ? CONTROL_KINDS : STATUS_KINDS;
+    if (!allowed.has(f.type)) {
+      this.reject(
+        'wrong-direction',
+        f.type,
+        `${f.type} frame on a ${this.onControl ? 'control' : 'status'} topic`,
+      );
+      return;
+    }
+    const ms = f.time ?? this.arrival;
+    const arm = this.arm;
+    switch (f.type) {
+      case 'position': {
+        const s = servoSeries(arm, f.id);
+        this.out.push(positionLine(s, f, this.clock.next(s, ms * 1000)));
+        return;
+      }
+      case 'health': {
+        const s = servoSeries(arm, f.id);
+        this.out.push(healthLine(s, f, this.clock.next(s, ms * 1000)));
+        return;
+      }
+      case 'move': {
+        if (!executed) return void this.metrics.count(this.metrics.rejected, 'group-not-executed');
+        const s = commandSeries(arm, f.id);
+        this.out.push(commandLine(s, f, this.clock.next(s, ms * 1000)));
+        return;
+      }
+      case 'kms': {
+        this.flushPendingKms(arm);
+        this.pendingKms.set(arm, { ...f, at: ms });
+        return;
+      }
+      case 'kmsResult': {
+        const req = this.pendingKms.get(arm);
+        this.pendingKms.delete(arm);
+        const s = ikSeries(arm);
+        this.out.push(ikLine(s, f.code, req, this.clock.next(s, ms * 1000)));
+        return;
+      }
+      default:
+        return; // counted only: ping, time, controllerError, read/stop requests
+    }
+  }
+
+  /** Writes an unanswered request alone (no code). */
+  private flushPendingKms(arm: string): void {
+    const req = this.pendingKms.get(arm);
+    if (!req) return;
+    this.pendingKms.delete(arm);
+    const s = ikSeries(arm);
+    this.out.push(ikLine(s, undefined, req, this.clock.next(s, req.at * 1000)));
+  }
+}

@@ -1,0 +1,91 @@
+/**
+ * Frames → InfluxDB line protocol, as ../../shared/PROTOCOL.md §6 specifies. Pure: no I/O,
+ * no clock. Timestamps are written in microseconds (`precision=us`).
+ *
+ *   servo,arm=<arm>,id=<III> pwm=<int>i,angle=<deg>          from a position frame
+ *   servo,arm=<arm>,id=<III> temp=<°C>,volt=<V>              from a health frame
+ *   command,arm=<arm>,id=<III> pwm=<int>i,angle=<deg>,ms=<int>i   from a move on …/control
+ *   ik,arm=<arm> code=<int>i,x=…,y=…,z=…[,a=…]               a $KMS request and its result
+ *
+ * Arm ids match `[a-z0-9-]{1,32}` and servo ids are three digits, so tag values never need
+ * escaping.
+ */
+import {
+  angleFromPwm,
+  type HealthFrame,
+  type KmsFrame,
+  type MoveFrame,
+  type PositionFrame,
+} from '@armtwin/protocol';
+
+/** Microseconds since the epoch, the unit of every point's time. */
+export type Micros = number;
+
+export const servoId = (id: number): string => (id < 10 ? '00' : id < 100 ? '0' : '') + id;
+
+/** Shortest exact float text; integral floats stay floats in InfluxDB (no `i`). */
+const float = (v: number): string => String(v);
+
+export const servoSeries = (arm: string, id: number): string =>
+  `servo,arm=${arm},id=${servoId(id)}`;
+export const commandSeries = (arm: string, id: number): string =>
+  `command,arm=${arm},id=${servoId(id)}`;
+export const ikSeries = (arm: string): string => `ik,arm=${arm}`;
+
+export function positionLine(series: string, f: PositionFrame, t: Micros): string {
+  return `${series} pwm=${f.pwm}i,angle=${float(angleFromPwm(f.pwm))} ${t}`;
+}
+
+export function healthLine(series: string, f: HealthFrame, t: Micros): string {
+  return `${series} temp=${float(f.temp)},volt=${float(f.mv / 1000)} ${t}`;
+}
+
+export function commandLine(series: string, f: MoveFrame, t: Micros): string {
+  return `${series} pwm=${f.pwm}i,angle=${float(angleFromPwm(f.pwm))},ms=${f.ms}i ${t}`;
+}
+
+/**
+ * One `ik` point: the result code (absent when the request never got one) and the request's
+ * target (absent when the result came without a request this instance saw).
+ */
+export function ikLine(
+  series: string,
+  code: number | undefined,
+  req: KmsFrame | undefined,
+  t: Micros,
+): string {
+  const fields: string[] = [];
+  if (code !== undefined) fields.push(`code=${code}i`);
+  if (req) {
+    fields.push(`x=${float(req.x)}`, `y=${float(req.y)}`, `z=${float(req.z)}`);
+    if (req.alpha !== undefined) fields.push(`a=${float(req.alpha)}`);
+  }
+  return `${series} ${fields.join(',')} ${t}`;
+}
+
+/**
+ * Keeps every series' timestamps strictly increasing, so InfluxDB never overwrites a point:
+ * a time ≤ the series' last time becomes last + 1 µs. A 1 kHz stream whose `$TIM` stamps
+ * collide (two payloads in one ms, or a stamp repeated) keeps every point; the bump is at
+ * most a few µs and never crosses into the next real stamp unless > 1000 points per ms.
+ * Memory: one number per series (arm × servo × measurement).
+ */
+export class SeriesClock {
+  private readonly last = new Map<string, Micros>();
+  /** Times moved forward because they collided. */
+  bumped = 0;
+
+  next(series: string, t: Micros): Micros {
+    const prev = this.last.get(series);
+    if (prev !== undefined && t <= prev) {
+      t = prev + 1;
+      this.bumped++;
+    }
+    this.last.set(series, t);
+    return t;
+  }
+
+  get size(): number {
+    return this.last.size;
+  }
+}
