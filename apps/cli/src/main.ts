@@ -1,9 +1,20 @@
 import { Command, CommanderError } from 'commander';
 import { registerDecode } from './commands/decode.ts';
 import { registerIk } from './commands/ik.ts';
+import { registerSim } from './commands/sim.ts';
+import { registerGateway } from './commands/gateway.ts';
+import { registerBroker } from './commands/broker.ts';
+import { registerUp } from './commands/up.ts';
 
 /** Each command module adds itself to the program. */
-const COMMANDS: ((program: Command) => void)[] = [registerDecode, registerIk];
+const COMMANDS: ((program: Command) => void)[] = [
+  registerDecode,
+  registerIk,
+  registerSim,
+  registerGateway,
+  registerBroker,
+  registerUp,
+];
 
 export function buildProgram(): Command {
   const program = new Command('armtwin')

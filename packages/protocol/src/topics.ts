@@ -11,6 +11,7 @@ export const TOPIC_KINDS = [
   'profile',
   'request',
   'feedback',
+  'sim',
 ] as const;
 export type TopicKind = (typeof TOPIC_KINDS)[number];
 

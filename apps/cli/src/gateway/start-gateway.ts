@@ -1,0 +1,104 @@
+/**
+ * Wires the gateway: a `SerialLink` (reopens with back-off) and an mqtt.js client (reconnects
+ * every `reconnectMs`, last will `0` retained on `arm/{id}/online`), both kept up on their own.
+ */
+import mqtt, { type MqttClient } from 'mqtt';
+import { armTopics } from '@armtwin/protocol';
+import { SYSTEM_CLOCK } from '../sim/clock.ts';
+import { GatewayCore } from './gateway.ts';
+import { SerialLink, type SerialLinkOptions } from './serial-link.ts';
+
+export interface GatewayOptions {
+  serialPath: string;
+  baudRate: number;
+  mqttUrl: string;
+  armId: string;
+  username?: string;
+  password?: string;
+  /** MQTT reconnect period, ms. */
+  reconnectMs: number;
+  /** MQTT keep-alive, s. */
+  keepaliveS: number;
+  serial: Partial<Omit<SerialLinkOptions, 'path' | 'baudRate'>>;
+  onFirst: (kind: string, message: string) => void;
+  /** Told when the serial line opens or closes. */
+  onSerial: (open: boolean, reason?: string) => void;
+}
+
+export const DEFAULT_GATEWAY_OPTIONS = {
+  baudRate: 115200,
+  reconnectMs: 1000,
+  keepaliveS: 60,
+  serial: {},
+  onFirst: () => {},
+  onSerial: () => {},
+} satisfies Partial<GatewayOptions>;
+
+export interface Gateway {
+  core: GatewayCore;
+  client: MqttClient;
+  link: SerialLink;
+  stop(): Promise<void>;
+}
+
+export function startGateway(
+  options: Partial<GatewayOptions> & Pick<GatewayOptions, 'serialPath' | 'mqttUrl' | 'armId'>,
+): Gateway {
+  const o: GatewayOptions = { ...DEFAULT_GATEWAY_OPTIONS, ...options };
+  const topics = armTopics(o.armId);
+  const client = mqtt.connect(o.mqttUrl, {
+    clientId: `armtwin-gateway-${o.armId}-${process.pid}`,
+    ...(o.username ? { username: o.username, password: o.password ?? '' } : {}),
+    will: { topic: topics.online, payload: Buffer.from('0'), qos: 1, retain: true },
+    keepalive: o.keepaliveS,
+    reconnectPeriod: o.reconnectMs,
+    queueQoSZero: false,
+  });
+  const link: SerialLink = new SerialLink(
+    { ...o.serial, path: o.serialPath, baudRate: o.baudRate },
+    {
+      onOpen: () => {
+        core.serialOpened();
+        o.onSerial(true);
+      },
+      onClose: (reason) => {
+        core.serialClosed();
+        o.onSerial(false, reason);
+      },
+      onData: (chunk) => core.fromSerial(chunk),
+    },
+  );
+  const core = new GatewayCore(o.armId, {
+    publish: (topic, payload, opts) => {
+      if (client.connected) client.publish(topic, payload, opts); // presence is re-sent on connect
+    },
+    write: (data) => link.write(data),
+    now: SYSTEM_CLOCK.now,
+    onFirst: o.onFirst,
+  });
+  client.on('connect', () => {
+    core.brokerConnected(true);
+    client.subscribe(
+      topics.control,
+      { qos: 1 },
+      (err) => err && o.onFirst('subscribe', err.message),
+    );
+  });
+  client.on('close', () => core.brokerConnected(false));
+  client.on('error', (err) => o.onFirst(`mqtt:${err.message}`, `mqtt: ${err.message}`));
+  client.on('message', (topic, payload) => {
+    if (topic === topics.control) core.fromControl(payload);
+  });
+  link.start();
+  return {
+    core,
+    client,
+    link,
+    async stop() {
+      if (client.connected)
+        await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
+      await client.endAsync().catch(() => {});
+      await link.stop();
+    },
+  };
+}

@@ -1,0 +1,121 @@
+/**
+ * The optional parts of `armtwin up`, each found only if it exists in this checkout: the
+ * HUD's build and the middleware (with a local influxd). Imports are guarded, so `up` works
+ * whatever has been built so far, and says plainly what it runs without.
+ */
+import { spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import type http from 'node:http';
+import path from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+export const REPO_ROOT = path.resolve(
+  path.dirname(fileURLToPath(import.meta.url)),
+  '..',
+  '..',
+  '..',
+  '..',
+);
+export const WEB_DIR = path.join(REPO_ROOT, 'apps', 'web');
+export const WEB_DIST = path.join(WEB_DIR, 'dist');
+export const MIDDLEWARE_INDEX = path.join(REPO_ROOT, 'apps', 'middleware', 'src', 'index.ts');
+export const LOCAL_INFLUX_DATA = path.join(REPO_ROOT, '.armtwin', 'influx');
+export const MIDDLEWARE_SPOOL = path.join(REPO_ROOT, '.armtwin', 'middleware-spool');
+
+type Say = (msg: string) => void;
+
+/** Builds the HUD when it has sources but no build; returns whether dist/index.html exists. */
+export function ensureWebBuild(say: Say): boolean {
+  if (fs.existsSync(path.join(WEB_DIST, 'index.html'))) return true;
+  const pkg = path.join(WEB_DIR, 'package.json');
+  if (!fs.existsSync(pkg) || !fs.existsSync(path.join(WEB_DIR, 'index.html'))) {
+    say('HUD: not in this checkout yet (apps/web); the page says so');
+    return false;
+  }
+  say('HUD: apps/web/dist is missing; building it (npm run build -w @armtwin/web)…');
+  const r = spawnSync('npm', ['run', 'build', '-w', '@armtwin/web'], {
+    cwd: REPO_ROOT,
+    stdio: ['ignore', 2, 2],
+  });
+  const ok = r.status === 0 && fs.existsSync(path.join(WEB_DIST, 'index.html'));
+  if (!ok) say('HUD: the build failed (see above); serving without it');
+  return ok;
+}
+
+/** What `up` uses of a running middleware. */
+export interface RunningMiddleware {
+  handler: (req: http.IncomingMessage, res: http.ServerResponse) => boolean;
+  stop(timeoutMs?: number): Promise<void>;
+}
+
+interface LocalInflux {
+  url: string;
+  bucket: string;
+  stop(): Promise<void>;
+}
+
+interface MiddlewareModule {
+  loadConfig(env: Record<string, string | undefined>): Record<string, unknown>;
+  startMiddleware(
+    config: Record<string, unknown>,
+    deps: { listen: boolean },
+  ): Promise<RunningMiddleware>;
+  startLocalInflux?(o: { dataDir: string; log: Say }): Promise<LocalInflux | null>;
+}
+
+export interface StartedMiddleware {
+  middleware: RunningMiddleware;
+  influx: LocalInflux | null;
+  /** Where points go, in words. */
+  storage: string;
+}
+
+/**
+ * Starts the middleware on `mqttUrl` if it exists: storage is INFLUX_URL if given, else a local
+ * influxd under .armtwin/influx if one can be started, else none. Null when there is no
+ * middleware in this checkout; throws when it exists but fails to start.
+ */
+export async function startMiddlewarePart(
+  mqttUrl: string,
+  influxUrl: string,
+  env: Record<string, string | undefined>,
+  say: Say,
+): Promise<StartedMiddleware | null> {
+  if (!fs.existsSync(MIDDLEWARE_INDEX)) {
+    say('middleware: not in this checkout yet (apps/middleware): nothing is stored');
+    return null;
+  }
+  const mod = (await import(pathToFileURL(MIDDLEWARE_INDEX).href)) as MiddlewareModule;
+  let influx: LocalInflux | null = null;
+  const overrides: Record<string, unknown> = {
+    mqttUrl,
+    spoolDir: env.SPOOL_DIR || MIDDLEWARE_SPOOL,
+  };
+  if (influxUrl) {
+    overrides.influxUrl = influxUrl;
+  } else if (mod.startLocalInflux) {
+    fs.mkdirSync(LOCAL_INFLUX_DATA, { recursive: true });
+    influx = await mod.startLocalInflux({
+      dataDir: LOCAL_INFLUX_DATA,
+      log: (m) => say(`influxd: ${m}`),
+    });
+    if (influx)
+      Object.assign(overrides, {
+        influxUrl: influx.url,
+        influxBucket: influx.bucket,
+        influxToken: '',
+        influxOrg: '',
+      });
+  }
+  const config = { ...mod.loadConfig(env), ...overrides };
+  try {
+    const middleware = await mod.startMiddleware(config, { listen: false });
+    const storage = config.influxUrl
+      ? `InfluxDB at ${String(config.influxUrl)}${influx ? ` (local influxd, data in ${path.relative(REPO_ROOT, LOCAL_INFLUX_DATA)})` : ''}`
+      : 'NONE: no INFLUX_URL and no local influxd could be started, so nothing is stored';
+    return { middleware, influx, storage };
+  } catch (err) {
+    await influx?.stop();
+    throw err;
+  }
+}

@@ -1,0 +1,156 @@
+/**
+ * `armtwin gateway` end to end over a pseudo-terminal pair from socat, with the simulated
+ * controller (`armtwin sim --serial`) on the far side, through a real Mosquitto: frames both
+ * ways, the port disappearing and coming back, the broker restarting.
+ */
+import { spawn, type ChildProcess } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+import { useMosquitto } from '../helpers/use-services.ts';
+import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
+
+const ARM = 'gwtest';
+const broker = useMosquitto();
+const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-pty-'));
+const HOST_SIDE = path.join(dir, 'gateway');
+const ARM_SIDE = path.join(dir, 'arm');
+
+let socat: ChildProcess | undefined;
+let controller: Child | undefined;
+let gateway: Child;
+let w: StatusWatcher;
+let seq = 0;
+
+async function startLine(): Promise<void> {
+  socat = spawn(
+    'socat',
+    ['-d', '-d', `pty,raw,echo=0,link=${HOST_SIDE}`, `pty,raw,echo=0,link=${ARM_SIDE}`],
+    {
+      stdio: 'ignore',
+    },
+  );
+  const deadline = Date.now() + 5000;
+  while (!(fs.existsSync(HOST_SIDE) && fs.existsSync(ARM_SIDE))) {
+    if (Date.now() > deadline) throw new Error('socat made no pty pair');
+    await new Promise((r) => setTimeout(r, 50));
+  }
+  const c = (controller = armtwin(['sim', '--serial', ARM_SIDE, '--rate', '20']));
+  while (!c.output().includes('simulated controller on the serial line')) {
+    if (Date.now() > deadline + 15_000)
+      throw new Error(`fake controller did not start:\n${c.output()}`);
+    await new Promise((r) => setTimeout(r, 50));
+  }
+}
+
+async function stopLine(): Promise<void> {
+  const s = socat;
+  socat = undefined;
+  if (s && s.exitCode === null) {
+    const gone = new Promise((r) => s.once('exit', r));
+    s.kill('SIGTERM');
+    await gone;
+  }
+  await controller?.stop('SIGKILL');
+  controller = undefined;
+}
+
+const online = (value: string) => () =>
+  w.retained.get(`arm/${ARM}/online`) === value ? true : undefined;
+
+/** A ping through gateway and line; resent every 2 s (a line just reopened may lose one). */
+async function ping(timeoutMs = 10_000) {
+  const deadline = Date.now() + timeoutMs;
+  for (;;) {
+    const n = ++seq;
+    const from = w.items.length;
+    await w.send(`$PNG:${n}!`);
+    try {
+      return await w.frame(
+        (f) => f.type === 'ping' && f.seq === n,
+        from,
+        Math.min(2000, deadline - Date.now()),
+      );
+    } catch (err) {
+      if (Date.now() >= deadline) throw err;
+    }
+  }
+}
+
+beforeAll(async () => {
+  await startLine();
+  w = await StatusWatcher.connect(broker().url, ARM);
+  gateway = armtwin([
+    'gateway',
+    '--serial',
+    HOST_SIDE,
+    '--baud',
+    '115200',
+    '--mqtt',
+    broker().url,
+    '--arm',
+    ARM,
+  ]);
+  await w.until(online('1'), 20_000, 'online 1');
+});
+
+afterAll(async () => {
+  await gateway?.stop('SIGKILL');
+  await stopLine();
+  await w?.close();
+  fs.rmSync(dir, { recursive: true, force: true });
+});
+
+describe('armtwin gateway over a pty pair', () => {
+  test('carries control to the line and stamped status (groups kept) back', async () => {
+    const echo = await ping();
+    expect(echo.time).toBeGreaterThan(1.7e12);
+    const from = w.items.length;
+    await w.send('#000P1600T0200!{#001PRAD!#002PRAD!}');
+    await w.until(
+      () => w.positions(0, from).find(([, p]) => p === 1600),
+      5000,
+      'servo 000 at 1600',
+    );
+    const reads = await w.until(() => {
+      for (const it of w.items.slice(from)) {
+        if ('group' in it && it.group.frames.length === 2) return it;
+      }
+      return undefined;
+    });
+    expect(reads.group.frames).toEqual([
+      { type: 'position', id: 1, pwm: 1500, time: reads.time },
+      { type: 'position', id: 2, pwm: 1500, time: reads.time },
+    ]);
+    await w.until(() => w.health(0), 5000, 'a health group');
+    const stamps = w.positions(0, from).map(([t]) => t);
+    expect(stamps.every((t) => t > 1.7e12)).toBe(true);
+  });
+
+  test('survives the port disappearing and coming back', async () => {
+    await stopLine();
+    await w.until(online('0'), 10_000, 'online 0 while the line is gone');
+    const from = w.items.length;
+    await w.send('$PNG:1!');
+    const refused = await w.frame((f) => f.type === 'controllerError', from);
+    expect(refused.frame).toMatchObject({ text: 'gateway: serial line down' });
+    await startLine();
+    await w.until(online('1'), 15_000, 'online 1 again');
+    await ping();
+  });
+
+  test('survives the broker restarting', async () => {
+    await broker().restart();
+    await w.until(() => (w.client.connected ? true : undefined), 15_000, 'watcher reconnected');
+    await w.client.subscribeAsync([`arm/${ARM}/status`, `arm/${ARM}/online`], { qos: 1 });
+    await w.until(online('1'), 15_000, 'online 1 after the restart');
+    await ping(15_000);
+  });
+
+  test('on SIGTERM it publishes online 0 and exits 0', async () => {
+    w.retained.delete(`arm/${ARM}/online`);
+    expect(await gateway.stop('SIGTERM')).toBe(0);
+    await w.until(online('0'), 5000, 'online 0');
+  });
+});
