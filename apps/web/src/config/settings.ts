@@ -1,0 +1,111 @@
+/**
+ * Connection and HUD settings, declared once. Defaults work with `npm start` (the HUD and the
+ * broker's MQTT-over-WebSockets on one origin, at /mqtt). The URL query overrides them, e.g.
+ * `?broker=ws://127.0.0.1:9001&arm=arm1&alpha=1.5`; the Connection panel saves the rest in
+ * localStorage (never the password). Pure apart from `loadSettings`/`saveSettings`.
+ */
+import { DEMO_ARM_ID, isValidArmId } from '@armtwin/protocol';
+
+export interface HudSettings {
+  /** Broker WebSocket URL (`ws://…/mqtt` or `wss://…/mqtt`). */
+  brokerUrl: string;
+  /** Which arm: `arm/{armId}/…`. */
+  armId: string;
+  username: string;
+  password: string;
+  /** The seed's interpolation factor α (t = clamp01((now − start)·α / duration)). */
+  interpolationAlpha: number;
+  /** `tttt` of a jog move, ms. */
+  jogMoveMs: number;
+  /** Shortest time between two jog moves of one servo, ms (50 → at most 20/s). */
+  jogIntervalMs: number;
+  /** `t` of a Cartesian `$KMS` move, ms. */
+  kmsMoveMs: number;
+  /** How often to send `$PNG`, ms. */
+  pingIntervalMs: number;
+}
+
+/** Same-origin broker URL: ws(s)://<host>/mqtt. */
+export function sameOriginBrokerUrl(loc: { protocol: string; host: string }): string {
+  return `${loc.protocol === 'https:' ? 'wss' : 'ws'}://${loc.host}/mqtt`;
+}
+
+export function defaultSettings(loc: { protocol: string; host: string }): HudSettings {
+  return {
+    brokerUrl: sameOriginBrokerUrl(loc),
+    armId: DEMO_ARM_ID,
+    username: '',
+    password: '',
+    interpolationAlpha: 1,
+    jogMoveMs: 100,
+    jogIntervalMs: 50,
+    kmsMoveMs: 1500,
+    pingIntervalMs: 1000,
+  };
+}
+
+const NUMBER_KEYS = {
+  alpha: 'interpolationAlpha',
+  jogms: 'jogMoveMs',
+  kmsms: 'kmsMoveMs',
+} as const;
+
+/** Applies query parameters (broker, arm, user, password, alpha, jogms, kmsms) over `base`. */
+export function applyQuery(base: HudSettings, search: string): HudSettings {
+  const q = new URLSearchParams(search);
+  const out = { ...base };
+  const broker = q.get('broker');
+  if (broker && /^wss?:\/\//.test(broker)) out.brokerUrl = broker;
+  const arm = q.get('arm');
+  if (arm && isValidArmId(arm)) out.armId = arm;
+  const user = q.get('user');
+  if (user !== null) out.username = user;
+  const password = q.get('password');
+  if (password !== null) out.password = password;
+  for (const [key, field] of Object.entries(NUMBER_KEYS)) {
+    const v = Number(q.get(key));
+    if (q.has(key) && Number.isFinite(v) && v > 0) out[field] = v;
+  }
+  return out;
+}
+
+/** Checks what a user typed; returns an error message or null. */
+export function validateSettings(s: HudSettings): string | null {
+  if (!/^wss?:\/\/[^\s]+$/.test(s.brokerUrl)) return 'Broker URL must start with ws:// or wss://';
+  if (!isValidArmId(s.armId)) return 'Arm id must be 1–32 of a–z, 0–9 and -';
+  return null;
+}
+
+const STORAGE_KEY = 'armtwin.hud.settings';
+type Saved = Pick<HudSettings, 'brokerUrl' | 'armId' | 'username'>;
+
+/** Defaults, then what the Connection panel saved, then the URL query. */
+export function loadSettings(): HudSettings {
+  let settings = defaultSettings(window.location);
+  try {
+    const saved = JSON.parse(
+      window.localStorage.getItem(STORAGE_KEY) ?? 'null',
+    ) as Partial<Saved> | null;
+    if (saved) settings = { ...settings, ...pick(saved) };
+  } catch {
+    // unreadable storage: defaults
+  }
+  return applyQuery(settings, window.location.search);
+}
+
+export function saveSettings(s: HudSettings): void {
+  try {
+    const saved: Saved = { brokerUrl: s.brokerUrl, armId: s.armId, username: s.username };
+    window.localStorage.setItem(STORAGE_KEY, JSON.stringify(saved));
+  } catch {
+    // private mode: not saved
+  }
+}
+
+function pick(s: Partial<Saved>): Partial<Saved> {
+  const out: Partial<Saved> = {};
+  if (typeof s.brokerUrl === 'string') out.brokerUrl = s.brokerUrl;
+  if (typeof s.armId === 'string' && isValidArmId(s.armId)) out.armId = s.armId;
+  if (typeof s.username === 'string') out.username = s.username;
+  return out;
+}

@@ -1,0 +1,26 @@
+/** The HUD's layout: panels as semi-transparent layers over the full-window 3D view. */
+import { JogPanel } from '../panels/Jog/JogPanel.tsx';
+import { EmergencyStopButton } from '../panels/EmergencyStop/EmergencyStopButton.tsx';
+import { StatusPanel } from '../panels/Status/StatusPanel.tsx';
+import { ConnectionPanel } from '../panels/Connection/ConnectionPanel.tsx';
+import { HealthPanel } from '../panels/Health/HealthPanel.tsx';
+import { CartesianPanel } from '../panels/Cartesian/CartesianPanel.tsx';
+import { GhostPanel } from '../panels/Ghost/GhostPanel.tsx';
+
+export function App() {
+  return (
+    <div className="hud">
+      <div className="column left">
+        <JogPanel />
+        <CartesianPanel />
+        <GhostPanel />
+      </div>
+      <div className="column right">
+        <EmergencyStopButton />
+        <StatusPanel />
+        <HealthPanel />
+        <ConnectionPanel />
+      </div>
+    </div>
+  );
+}

@@ -1,0 +1,23 @@
+/** The plain objects every panel reads: created once in main.tsx, handed down by context. */
+import { createContext, useContext } from 'react';
+import type { ArmStore } from '../store/ArmStore.ts';
+import type { TargetPreview } from '../store/TargetPreview.ts';
+import type { ArmLink } from '../mqtt/ArmLink.ts';
+import type { HudSettings } from '../config/settings.ts';
+
+export interface Hud {
+  store: ArmStore;
+  target: TargetPreview;
+  /** The current MQTT link (replaced when the Connection panel reconnects). */
+  link: ArmLink;
+  settings: HudSettings;
+  reconnect(settings: HudSettings): void;
+}
+
+export const HudContext = createContext<Hud | null>(null);
+
+export function useHud(): Hud {
+  const hud = useContext(HudContext);
+  if (!hud) throw new Error('useHud outside <HudContext>');
+  return hud;
+}

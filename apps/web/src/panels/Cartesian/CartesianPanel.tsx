@@ -1,0 +1,159 @@
+/**
+ * Cartesian target: X, Y, Z (mm) and an optional Pitch (degrees; blank = the controller picks,
+ * as §4's search does). Every edit runs the local IK (@armtwin/ik): the ghost shows the
+ * solution, or the status code is shown in words, before anything is sent. "Move" publishes
+ * `$KMS:…!` only for a target the local IK accepts, and shows the arm's reply code.
+ * A click on the floor in the 3D view places the target there (X, Y; Z kept).
+ */
+import { useEffect, useState } from 'react';
+import { ikCodeMessage, solveIk } from '@armtwin/ik';
+import { useHud } from '../../hud/HudContext.ts';
+import { useSampled } from '../../hud/useSampled.ts';
+import { parseTarget, type TargetFields } from './parseTarget.ts';
+
+const INITIAL: TargetFields = { x: '200', y: '0', z: '150', pitch: '' };
+
+export function CartesianPanel() {
+  const { store, link, target } = useHud();
+  const [fields, setFields] = useState(INITIAL);
+  const [touched, setTouched] = useState(false);
+  const [sent, setSent] = useState<{ text: string; replies: number } | null>(null);
+  const [refusal, setRefusal] = useState('');
+
+  const parsed = parseTarget(fields);
+  const result = parsed.ok ? solveIk(parsed.x, parsed.y, parsed.z, parsed.pitch) : null;
+
+  // Mirror the preview into the plain store the 3D view reads (marker and ghost).
+  useEffect(() => {
+    if (!touched || !parsed.ok || !result) {
+      target.clear();
+      return;
+    }
+    target.set(parsed.x, parsed.y, parsed.z, result.code, result.servoAngles);
+  });
+  useEffect(() => () => target.clear(), [target]);
+
+  // A click on the floor sets X and Y.
+  useEffect(
+    () =>
+      target.onPlace((x, y) => {
+        setFields((f) => ({ ...f, x: String(x), y: String(y) }));
+        setTouched(true);
+        setRefusal('');
+      }),
+    [target],
+  );
+
+  const live = useSampled(() => ({
+    enabled: store.connection === 'connected' && !store.isStale(performance.now()),
+    replies: store.kmsReplies,
+    reply: store.kmsReply,
+  }));
+
+  const edit = (key: keyof TargetFields) => (e: React.ChangeEvent<HTMLInputElement>) => {
+    setFields({ ...fields, [key]: e.currentTarget.value });
+    setTouched(true);
+    setRefusal('');
+  };
+
+  const move = () => {
+    if (!parsed.ok) return setRefusal(`Not sent: ${parsed.error}`);
+    if (!result || result.code !== 0) {
+      return setRefusal(
+        `Not sent: ${ikCodeMessage(result?.code ?? 2)} (code ${result?.code ?? 2}).`,
+      );
+    }
+    setRefusal('');
+    link.moveTo(parsed.x, parsed.y, parsed.z, parsed.pitch, result.pwm);
+    setSent({ text: `(${parsed.x}, ${parsed.y}, ${parsed.z})`, replies: live.replies });
+  };
+
+  const replied = sent !== null && live.replies > sent.replies && live.reply !== null;
+  const preview = !touched
+    ? 'Enter a target, or click the floor to place one.'
+    : !parsed.ok
+      ? parsed.error
+      : result!.code === 0
+        ? `Reachable at pitch ${result!.alpha.toFixed(0)}° — the ghost shows the pose.`
+        : `Unreachable: ${ikCodeMessage(result!.code)} (code ${result!.code}).`;
+
+  return (
+    <section className="panel cartesian" aria-labelledby="cartesian-title">
+      <h2 id="cartesian-title">Cartesian target</h2>
+      <form
+        className="xyz"
+        onSubmit={(e) => {
+          e.preventDefault();
+          move();
+        }}
+      >
+        <label className="field small">
+          <span>X</span>
+          <input
+            type="number"
+            step="any"
+            value={fields.x}
+            onChange={edit('x')}
+            aria-describedby="cart-units"
+          />
+        </label>
+        <label className="field small">
+          <span>Y</span>
+          <input
+            type="number"
+            step="any"
+            value={fields.y}
+            onChange={edit('y')}
+            aria-describedby="cart-units"
+          />
+        </label>
+        <label className="field small">
+          <span>Z</span>
+          <input
+            type="number"
+            step="any"
+            value={fields.z}
+            onChange={edit('z')}
+            aria-describedby="cart-units"
+          />
+        </label>
+        <label className="field small">
+          <span>Pitch</span>
+          <input
+            type="number"
+            step="any"
+            value={fields.pitch}
+            placeholder="auto"
+            onChange={edit('pitch')}
+          />
+        </label>
+        <button type="submit" disabled={!live.enabled}>
+          Move
+        </button>
+      </form>
+      <p id="cart-units" className="dim small-print">
+        mm, z up from the floor; pitch in degrees (−90 = pointing down), blank = auto. Click the
+        floor to place X, Y.
+      </p>
+      <p
+        className={`note ${!touched ? 'dim' : !parsed.ok || result!.code !== 0 ? 'bad' : 'ok'}`}
+        role="status"
+        data-testid="ik-preview"
+      >
+        {preview}
+      </p>
+      {refusal && (
+        <p className="note bad" role="alert" data-testid="kms-refusal">
+          {refusal}
+        </p>
+      )}
+      {sent && (
+        <p className="note" role="status" data-testid="kms-reply">
+          {replied
+            ? `Arm replied to ${sent.text}: code ${live.reply} — ${ikCodeMessage(live.reply!)}.`
+            : `Sent ${sent.text}; waiting for the arm's reply…`}
+        </p>
+      )}
+    </section>
+  );
+}

@@ -1,0 +1,38 @@
+/**
+ * Ghost: a translucent second arm showing the previewed target pose or the pose this HUD
+ * commanded, beside the live arm. A switch hides it; the legend says what it shows now.
+ */
+import { useState } from 'react';
+import { useHud } from '../../hud/HudContext.ts';
+import { useSampled } from '../../hud/useSampled.ts';
+
+const WORDS = {
+  preview: 'showing the previewed target pose',
+  commanded: 'showing the commanded pose (the arm is not there yet)',
+  nothing: 'hidden: nothing to show apart from the live arm',
+} as const;
+
+export function GhostPanel() {
+  const { target } = useHud();
+  const [enabled, setEnabled] = useState(target.ghostEnabled);
+  const shows = useSampled(() => target.ghostShows);
+  return (
+    <section className="panel ghost" aria-labelledby="ghost-title">
+      <h2 id="ghost-title">Ghost</h2>
+      <label className="check">
+        <input
+          type="checkbox"
+          checked={enabled}
+          onChange={(e) => {
+            target.setGhostEnabled(e.currentTarget.checked);
+            setEnabled(e.currentTarget.checked);
+          }}
+        />
+        Show ghost arm
+      </label>
+      <p className="dim" data-testid="ghost-shows">
+        <span className="ghost-swatch" aria-hidden="true" /> {enabled ? WORDS[shows] : 'off'}
+      </p>
+    </section>
+  );
+}

@@ -1,0 +1,89 @@
+/**
+ * Status: broker connection, arm online/offline (retained `arm/{id}/online`), message rate,
+ * live `$PNG` round trip, frames the reader dropped, history storage, and a stale-data warning
+ * when no state report has come for more than 1 s.
+ */
+import { useHud } from '../../hud/HudContext.ts';
+import { useSampled } from '../../hud/useSampled.ts';
+import { useStorageStatus } from './useStorageStatus.ts';
+import { CONNECTION_WORDS, armWords, formatRate } from './words.ts';
+
+export function StatusPanel() {
+  const { store, settings } = useHud();
+  const storage = useStorageStatus();
+  const s = useSampled(() => {
+    const now = performance.now();
+    const rtt = store.ping.rttMs;
+    const pingFresh = now - store.ping.lastEchoAt < 3000;
+    return {
+      connection: store.connection,
+      error: store.connectionError,
+      online: store.armOnline,
+      stale: store.isStale(now),
+      staleFor: Number.isNaN(store.lastStateAt)
+        ? NaN
+        : Math.round((now - store.lastStateAt) / 100) / 10,
+      messages: formatRate(store.messageRatePerS(now)),
+      states: formatRate(store.stateRatePerS(now)),
+      rtt: pingFresh && !Number.isNaN(rtt) ? `${rtt.toFixed(rtt < 10 ? 1 : 0)} ms` : '—',
+      dropped: store.counters.dropped,
+      droppedKinds: Object.entries(store.counters.droppedByKind)
+        .filter(([, n]) => n > 0)
+        .map(([k, n]) => `${k} ${n}`)
+        .join(', '),
+      published: store.counters.published,
+      controllerError: store.lastControllerError,
+    };
+  });
+
+  return (
+    <section className="panel status" aria-labelledby="status-title">
+      <h2 id="status-title">
+        Status <span className="dim">· arm/{settings.armId}</span>
+      </h2>
+      <dl className="kv">
+        <dt>Broker</dt>
+        <dd data-testid="broker-state" className={s.connection === 'connected' ? 'ok' : 'bad'}>
+          {CONNECTION_WORDS[s.connection]}
+          {s.error && s.connection !== 'connected' ? ` (${s.error})` : ''}
+        </dd>
+        <dt>Arm</dt>
+        <dd
+          data-testid="arm-online"
+          className={s.online === true ? 'ok' : s.online === false ? 'bad' : ''}
+        >
+          {armWords(s.online)}
+        </dd>
+        <dt>Messages</dt>
+        <dd>
+          {s.messages}/s <span className="dim">(state {s.states}/s)</span>
+        </dd>
+        <dt>Ping</dt>
+        <dd data-testid="ping-rtt">{s.rtt}</dd>
+        <dt>Dropped</dt>
+        <dd data-testid="dropped" title={s.droppedKinds}>
+          {s.dropped} frame{s.dropped === 1 ? '' : 's'}
+          {s.droppedKinds && <span className="dim"> ({s.droppedKinds})</span>}
+        </dd>
+        <dt>Sent</dt>
+        <dd>{s.published} commands</dd>
+        <dt>History</dt>
+        <dd data-testid="storage" className={storage === 'on' ? 'ok' : 'warn'}>
+          {storage === 'on'
+            ? 'history storage on'
+            : storage === 'off'
+              ? 'history storage off'
+              : 'checking…'}
+        </dd>
+      </dl>
+      {s.controllerError && <p className="note warn">Controller error: {s.controllerError}</p>}
+      <p className={`note ${s.stale ? 'stale' : 'fresh'}`} role="status" data-testid="freshness">
+        {s.stale
+          ? Number.isNaN(s.staleFor)
+            ? 'No data from the arm yet: data is stale.'
+            : `Data is stale: no status for ${s.staleFor.toFixed(1)} s. Jogging is disabled.`
+          : 'Data is live.'}
+      </p>
+    </section>
+  );
+}

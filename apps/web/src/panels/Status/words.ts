@@ -1,0 +1,16 @@
+import type { ConnectionState } from '../../store/ArmStore.ts';
+
+export const CONNECTION_WORDS: Record<ConnectionState, string> = {
+  idle: 'not connected',
+  connecting: 'connecting…',
+  connected: 'connected',
+  reconnecting: 'reconnecting…',
+  offline: 'disconnected',
+  error: 'connection error',
+};
+
+export const armWords = (online: boolean | null): string =>
+  online === true ? 'online' : online === false ? 'offline' : 'unknown (no online message)';
+
+export const formatRate = (perS: number): string =>
+  perS >= 100 ? perS.toFixed(0) : perS.toFixed(1);

@@ -1,0 +1,275 @@
+/**
+ * The HUD's plain store: everything the status stream says, held as mutable typed arrays and
+ * counters. The MQTT module feeds it (`ingest`), the three.js loop and the charts read it every
+ * frame (`sample`), and React panels poll `snapshot()` a few times a second. No message causes
+ * a React render, and nothing here allocates per frame. Every method takes `now` (a monotonic
+ * ms clock, performance.now() in the page) so tests drive time themselves.
+ */
+import {
+  angleFromPwm,
+  createReader,
+  READER_ERROR_KINDS,
+  type Frame,
+  type Group,
+  type Reader,
+  type ReaderErrorKind,
+} from '@armtwin/protocol';
+import { DEMO_ARM, type ArmProfile } from '@armtwin/ik';
+import { HealthHistory } from './HealthHistory.ts';
+import { IntervalEstimator, JointTween } from './interpolation.ts';
+import { RateMeter } from './RateMeter.ts';
+import { PingTracker } from './PingTracker.ts';
+
+export interface ArmStoreOptions {
+  /** The arm's profile: servo count, names, polarity. */
+  arm: ArmProfile;
+  /** The seed's α: > 1 reaches each reported pose sooner, < 1 later (smoother, laggier). */
+  interpolationAlpha: number;
+  /** Health rows kept for the strip charts (at 2 Hz, 240 = two minutes). */
+  historyLength: number;
+  /** No state report for longer than this, ms, and the data is stale. */
+  staleAfterMs: number;
+}
+
+export const DEFAULT_ARM_STORE_OPTIONS: ArmStoreOptions = {
+  arm: DEMO_ARM,
+  interpolationAlpha: 1,
+  historyLength: 240,
+  staleAfterMs: 1000,
+};
+
+export type ConnectionState =
+  'idle' | 'connecting' | 'connected' | 'reconnecting' | 'offline' | 'error';
+
+export interface StoreCounters {
+  /** MQTT messages on the status topic. */
+  messages: number;
+  /** Frames decoded (group members included). */
+  frames: number;
+  /** Pieces of input the reader dropped, in all and by kind. */
+  dropped: number;
+  droppedByKind: Record<ReaderErrorKind, number>;
+  /** `$ERR` frames from the controller. */
+  controllerErrors: number;
+  /** Messages this HUD published on the control topic. */
+  published: number;
+}
+
+export class ArmStore {
+  readonly opts: ArmStoreOptions;
+  readonly servoCount: number;
+  /** Latest reported pulse per servo, NaN until reported. */
+  readonly pwm: Float64Array;
+  /** Servo angles drawn this frame, degrees (written by `sample`). Read by the debug hook. */
+  readonly rendered: Float64Array;
+  /** Last pulse this HUD commanded per servo (jog or IK), NaN = none / follow the arm. */
+  readonly commandedPwm: Float64Array;
+  /** Latest temperature (°C) and supply voltage (mV) per servo, NaN until reported. */
+  readonly temp: Float64Array;
+  readonly mv: Float64Array;
+  readonly history: HealthHistory;
+  readonly counters: StoreCounters;
+  readonly ping = new PingTracker();
+  connection: ConnectionState = 'idle';
+  connectionError = '';
+  /** Retained `arm/{id}/online`: true, false, or null before it is known. */
+  armOnline: boolean | null = null;
+  /** When the last state report arrived (ms), NaN = never. */
+  lastStateAt = NaN;
+  /** Last `$KMS:c!` reply and how many replies have come (so a panel sees a new one). */
+  kmsReply: number | null = null;
+  kmsReplies = 0;
+  lastControllerError = '';
+  /** First message per reader error kind, for the Status panel. */
+  readonly firstError: Partial<Record<ReaderErrorKind, string>> = {};
+
+  private readonly tweens: JointTween[];
+  private readonly interval = new IntervalEstimator();
+  private readonly messageRate = new RateMeter();
+  private readonly stateRate = new RateMeter();
+  private readonly reader: Reader;
+  private readonly rowTemp: Float64Array;
+  private readonly rowVolt: Float64Array;
+  private now = 0;
+
+  constructor(opts: Partial<ArmStoreOptions> = {}) {
+    this.opts = { ...DEFAULT_ARM_STORE_OPTIONS, ...opts };
+    const n = (this.servoCount = this.opts.arm.servos.length);
+    this.pwm = new Float64Array(n).fill(NaN);
+    this.rendered = new Float64Array(n).fill(NaN);
+    this.commandedPwm = new Float64Array(n).fill(NaN);
+    this.temp = new Float64Array(n).fill(NaN);
+    this.mv = new Float64Array(n).fill(NaN);
+    this.rowTemp = new Float64Array(n);
+    this.rowVolt = new Float64Array(n);
+    this.tweens = Array.from({ length: n }, () => new JointTween());
+    this.history = new HealthHistory(n, this.opts.historyLength);
+    this.counters = {
+      messages: 0,
+      frames: 0,
+      dropped: 0,
+      droppedByKind: Object.fromEntries(READER_ERROR_KINDS.map((k) => [k, 0])) as Record<
+        ReaderErrorKind,
+        number
+      >,
+      controllerErrors: 0,
+      published: 0,
+    };
+    this.reader = createReader({
+      onFrame: (f) => this.onFrame(f),
+      onGroup: (g) => this.onGroup(g),
+      onError: (e) => {
+        this.counters.dropped++;
+        this.counters.droppedByKind[e.kind]++;
+        this.firstError[e.kind] ??= `${e.message}: ${JSON.stringify(e.text)}`;
+      },
+    });
+  }
+
+  /** One MQTT message from `arm/{id}/status`, received at `now`. */
+  ingest(payload: string | Uint8Array, now: number): void {
+    this.now = now;
+    this.counters.messages++;
+    this.messageRate.add(now);
+    this.reader.feed(payload);
+    // A `$TIM` stamps only the frames of its own payload.
+    this.reader.clearStamp();
+  }
+
+  private onGroup(g: Group): void {
+    let positions = 0;
+    let health = 0;
+    this.rowTemp.fill(NaN);
+    this.rowVolt.fill(NaN);
+    this.counters.frames += g.frames.length;
+    for (const f of g.frames) {
+      if (f.type === 'position') {
+        if (positions++ === 0) this.stateArrived();
+        this.setPosition(f.id, f.pwm);
+      } else if (f.type === 'health') {
+        health++;
+        this.setHealth(f.id, f.temp, f.mv);
+      } else {
+        this.handle(f);
+      }
+    }
+    if (health > 0) this.pushHealthRow(g.time);
+  }
+
+  private onFrame(f: Frame): void {
+    this.counters.frames++;
+    this.handle(f);
+  }
+
+  private handle(f: Frame): void {
+    switch (f.type) {
+      case 'position':
+        this.stateArrived();
+        this.setPosition(f.id, f.pwm);
+        break;
+      case 'health':
+        this.rowTemp.fill(NaN);
+        this.rowVolt.fill(NaN);
+        this.setHealth(f.id, f.temp, f.mv);
+        this.pushHealthRow(f.time);
+        break;
+      case 'kmsResult':
+        this.kmsReply = f.code;
+        this.kmsReplies++;
+        break;
+      case 'ping':
+        this.ping.echo(f.seq, this.now);
+        break;
+      case 'controllerError':
+        this.counters.controllerErrors++;
+        this.lastControllerError = f.text;
+        break;
+      default:
+        break; // `$TIM`, and host → arm frames someone else published
+    }
+  }
+
+  private stateArrived(): void {
+    this.lastStateAt = this.now;
+    this.stateRate.add(this.now);
+    this.interval.arrive(this.now);
+  }
+
+  private setPosition(id: number, pwm: number): void {
+    if (id >= this.servoCount) return;
+    this.pwm[id] = pwm;
+    const deg = angleFromPwm(pwm, this.opts.arm.servos[id]!.polarity);
+    this.tweens[id]!.retarget(
+      deg,
+      this.now,
+      this.interval.intervalMs,
+      this.opts.interpolationAlpha,
+    );
+  }
+
+  private setHealth(id: number, temp: number, mv: number): void {
+    if (id >= this.servoCount) return;
+    this.temp[id] = temp;
+    this.mv[id] = mv;
+    this.rowTemp[id] = temp;
+    this.rowVolt[id] = mv / 1000;
+  }
+
+  private pushHealthRow(stamp: number | undefined): void {
+    this.history.push((stamp ?? Date.now()) / 1000, this.rowTemp, this.rowVolt);
+  }
+
+  /** Fills `rendered` with the interpolated servo angles at `now`; true if any changed. */
+  sample(now: number): boolean {
+    let changed = false;
+    const alpha = this.opts.interpolationAlpha;
+    for (let i = 0; i < this.servoCount; i++) {
+      const v = this.tweens[i]!.valueAt(now, alpha);
+      if (v !== this.rendered[i] && !(Number.isNaN(v) && Number.isNaN(this.rendered[i]!))) {
+        this.rendered[i] = v;
+        changed = true;
+      }
+    }
+    return changed;
+  }
+
+  /** No state report for longer than `staleAfterMs` (or none yet). */
+  isStale(now: number): boolean {
+    return !(now - this.lastStateAt <= this.opts.staleAfterMs);
+  }
+
+  /** Messages and state reports per second over the last second. */
+  messageRatePerS(now: number): number {
+    return this.messageRate.rate(now);
+  }
+  stateRatePerS(now: number): number {
+    return this.stateRate.rate(now);
+  }
+
+  get expectedStateIntervalMs(): number {
+    return this.interval.intervalMs;
+  }
+
+  setInterpolationAlpha(alpha: number): void {
+    if (alpha > 0 && Number.isFinite(alpha)) this.opts.interpolationAlpha = alpha;
+  }
+
+  /** Forgets the arm: a new arm id or broker. Counters are kept (they are per page). */
+  resetArm(): void {
+    this.reader.reset();
+    this.pwm.fill(NaN);
+    this.rendered.fill(NaN);
+    this.commandedPwm.fill(NaN);
+    this.temp.fill(NaN);
+    this.mv.fill(NaN);
+    for (const t of this.tweens) t.reset();
+    this.interval.reset();
+    this.messageRate.reset();
+    this.stateRate.reset();
+    this.history.clear();
+    this.ping.reset();
+    this.armOnline = null;
+    this.lastStateAt = NaN;
+    this.kmsReply = null;
+  }
+}

@@ -1,0 +1,51 @@
+/**
+ * The Cartesian target and its local IK preview, shared by the Cartesian panel (which writes
+ * it on user input), the 3D view (target marker, ghost, floor clicks) and the Ghost panel.
+ * Plain mutable state plus one listener list for targets placed by a click in the 3D view.
+ */
+export class TargetPreview {
+  /** Whether a target has been entered (the marker and preview ghost are drawn). */
+  active = false;
+  /** Target tip position, mm. */
+  x = 0;
+  y = 0;
+  z = 0;
+  /** Local IK status code of §4 for the target (0 = reachable). */
+  code = 0;
+  /** Servo angles of 000–003 of the previewed solution, degrees (NaN when there is none). */
+  readonly angles = new Float64Array(4).fill(NaN);
+  /** Whether the ghost is drawn at all (the Ghost panel's switch). */
+  ghostEnabled = true;
+  /** What the ghost shows this frame; written by the 3D view, read by the Ghost panel. */
+  ghostShows: 'nothing' | 'preview' | 'commanded' = 'nothing';
+
+  private readonly placeListeners = new Set<(x: number, y: number) => void>();
+
+  set(x: number, y: number, z: number, code: number, angles: ArrayLike<number>): void {
+    this.active = true;
+    this.x = x;
+    this.y = y;
+    this.z = z;
+    this.code = code;
+    for (let i = 0; i < 4; i++) this.angles[i] = angles[i] ?? NaN;
+  }
+
+  setGhostEnabled(on: boolean): void {
+    this.ghostEnabled = on;
+  }
+
+  clear(): void {
+    this.active = false;
+    this.angles.fill(NaN);
+  }
+
+  /** A click on the floor at (x, y) mm. */
+  place(x: number, y: number): void {
+    for (const fn of this.placeListeners) fn(x, y);
+  }
+
+  onPlace(fn: (x: number, y: number) => void): () => void {
+    this.placeListeners.add(fn);
+    return () => this.placeListeners.delete(fn);
+  }
+}

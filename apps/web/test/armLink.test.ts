@@ -1,0 +1,134 @@
+import { afterEach, beforeEach, describe, expect, it, vi } from 'vitest';
+import { encodeGroup, encodePosition, pwmFromAngle } from '@armtwin/protocol';
+import { ArmStore } from '../src/store/ArmStore.ts';
+import { ArmLink, type ConnectOptions, type MqttLike } from '../src/mqtt/ArmLink.ts';
+import { defaultSettings } from '../src/config/settings.ts';
+
+/** A stand-in for mqtt.js's client: records publishes, lets the test emit events. */
+class FakeClient implements MqttLike {
+  handlers = new Map<string, ((...args: never[]) => void)[]>();
+  published: { topic: string; payload: string; qos: number }[] = [];
+  subscribed: string[] = [];
+  ended = false;
+  on(event: string, cb: (...args: never[]) => void) {
+    this.handlers.set(event, [...(this.handlers.get(event) ?? []), cb]);
+    return this;
+  }
+  emit(event: string, ...args: unknown[]) {
+    for (const cb of this.handlers.get(event) ?? []) (cb as (...a: unknown[]) => void)(...args);
+  }
+  subscribe(topics: string[]) {
+    this.subscribed.push(...topics);
+    return this;
+  }
+  publish(topic: string, payload: string, opts: { qos: 0 | 1 }) {
+    this.published.push({ topic, payload, qos: opts.qos });
+    return this;
+  }
+  end() {
+    this.ended = true;
+    return this;
+  }
+}
+
+function setup() {
+  const store = new ArmStore();
+  const client = new FakeClient();
+  let opts: ConnectOptions | undefined;
+  const settings = {
+    ...defaultSettings({ protocol: 'http:', host: 'h' }),
+    username: 'op',
+    password: 'pw',
+  };
+  const link = new ArmLink(store, settings, (url, o) => {
+    expect(url).toBe('ws://h/mqtt');
+    opts = o;
+    return client;
+  });
+  link.start();
+  client.emit('connect');
+  const commands = () =>
+    client.published.filter((p) => !p.payload.startsWith('$PNG')).map((p) => p.payload);
+  return { store, client, link, opts: () => opts!, commands };
+}
+
+describe('ArmLink', () => {
+  beforeEach(() => vi.useFakeTimers());
+  afterEach(() => vi.useRealTimers());
+
+  it('connects with the credentials, keep-alive 60 s and reconnect 1 s, and subscribes status and online', () => {
+    const { store, client, opts, link } = setup();
+    expect(opts()).toMatchObject({
+      username: 'op',
+      password: 'pw',
+      keepalive: 60,
+      reconnectPeriod: 1000,
+    });
+    expect(store.connection).toBe('connected');
+    expect(client.subscribed).toEqual(['arm/arm1/status', 'arm/arm1/online']);
+    link.stop();
+    expect(client.ended).toBe(true);
+  });
+
+  it('feeds status messages into the store and reads the retained online flag', () => {
+    const { store, client, link } = setup();
+    client.emit(
+      'message',
+      'arm/arm1/status',
+      new TextEncoder().encode(encodeGroup([encodePosition(0, 1600)])),
+    );
+    expect(store.pwm[0]).toBe(1600);
+    client.emit('message', 'arm/arm1/online', new TextEncoder().encode('0'));
+    expect(store.armOnline).toBe(false);
+    client.emit('message', 'arm/arm1/online', new TextEncoder().encode('1'));
+    expect(store.armOnline).toBe(true);
+    link.stop();
+  });
+
+  it('publishes coalesced jog moves at QoS 1 and never an out-of-limit pulse', () => {
+    const { client, link, commands } = setup();
+    link.jog(2, 1600);
+    link.jog(2, 1610);
+    link.jog(2, 1620);
+    expect(commands()).toEqual(['#002P1600T0100!']);
+    vi.advanceTimersByTime(60);
+    expect(commands()).toEqual(['#002P1600T0100!', '#002P1620T0100!']);
+    link.jog(5, pwmFromAngle(-10, 1)); // gripper below 0° (closed): outside its limits
+    link.jog(1, 2500); // shoulder beyond +90°
+    vi.advanceTimersByTime(200);
+    expect(commands()).toHaveLength(2);
+    expect(client.published.every((p) => p.topic === 'arm/arm1/control' && p.qos === 1)).toBe(true);
+    link.stop();
+  });
+
+  it('emergency stop publishes #255PDST! at QoS 1 and drops pending jogs', () => {
+    const { client, link, commands, store } = setup();
+    link.jog(0, 1600);
+    link.jog(0, 1700); // pending
+    expect(link.emergencyStop()).toBe(true);
+    vi.advanceTimersByTime(500);
+    expect(commands()).toEqual(['#000P1600T0100!', '#255PDST!']);
+    expect(client.published.find((p) => p.payload === '#255PDST!')?.qos).toBe(1);
+    expect(store.commandedPwm[0]).toBeNaN();
+    link.stop();
+  });
+
+  it('pings every second while connected and measures the round trip', () => {
+    const { client, store, link } = setup();
+    vi.advanceTimersByTime(1000);
+    const ping = client.published.find((p) => p.payload.startsWith('$PNG:'));
+    expect(ping).toBeDefined();
+    client.emit('message', 'arm/arm1/status', new TextEncoder().encode(ping!.payload));
+    expect(store.ping.echoed).toBe(1);
+    expect(store.ping.rttMs).toBeGreaterThanOrEqual(0);
+    link.stop();
+  });
+
+  it('sends $KMS with the commanded pose', () => {
+    const { link, commands, store } = setup();
+    link.moveTo(180, 100, 80, undefined, [1700, 1300, 1200, 900]);
+    expect(commands()).toEqual(['$KMS:180,100,80,1500!']);
+    expect(Array.from(store.commandedPwm.slice(0, 4))).toEqual([1700, 1300, 1200, 900]);
+    link.stop();
+  });
+});
