@@ -34,3 +34,5 @@ export {
   type IkCode,
   type IkResult,
 } from './ik.ts';
+export * from './profile/index.ts';
+export * from './numeric/index.ts';

@@ -1,0 +1,5 @@
+/** Robot profiles: format, parser, conversions, and the views other parts need. */
+export * from './types.ts';
+export * from './convert.ts';
+export { parseProfile } from './parse.ts';
+export * from './servo-table.ts';

@@ -1,0 +1,76 @@
+/**
+ * What other parts need from a profile, in their own terms: the pulse-level servo table a
+ * simulator runs (`armtwin sim --profile <name>`), a named pose as pulses, and, for an
+ * `analytic5` profile, the `ArmProfile` that `solveIk` takes.
+ */
+import type { ArmProfile, ServoSpec } from '../arm.ts';
+import { maxSpeedPwm, pwmFromServo, pwmLimits, servoLimits } from './convert.ts';
+import type { Profile } from './types.ts';
+
+/** One servo as a simulator sees it: everything in pulses (µs). */
+export interface ServoTableEntry {
+  /** Wire id (`000` is 0). */
+  readonly id: number;
+  /** Three-digit wire id. */
+  readonly key: string;
+  readonly name: string;
+  readonly type: 'revolute' | 'prismatic';
+  /** Pulses of the joint limits, `minPwm ≤ maxPwm`; anything outside is refused. */
+  readonly minPwm: number;
+  readonly maxPwm: number;
+  /** Fastest the pulse may change, µs per second. */
+  readonly maxSpeedPwmPerS: number;
+  /** The `home` pose, µs: where the servo starts. */
+  readonly homePwm: number;
+}
+
+/** A named pose as pulses, in servo order; NaN where the pose leaves a servo be. */
+export function posePwm(profile: Profile, pose: string): number[] | undefined {
+  const values = profile.poses[pose];
+  if (values === undefined) return undefined;
+  return profile.servos.map((s, i) => {
+    const v = values[i] ?? NaN;
+    return Number.isNaN(v) ? NaN : pwmFromServo(s, v);
+  });
+}
+
+/** The servo table of a parsed profile, in the profile's servo order. */
+export function servoTable(profile: Profile): ServoTableEntry[] {
+  const home = posePwm(profile, 'home') ?? [];
+  return profile.servos.map((s, i) => {
+    const { min, max } = pwmLimits(s);
+    return {
+      id: s.id,
+      key: s.key,
+      name: s.name,
+      type: s.type,
+      minPwm: min,
+      maxPwm: max,
+      maxSpeedPwmPerS: maxSpeedPwm(s),
+      homePwm: home[i] ?? NaN,
+    };
+  });
+}
+
+/**
+ * The `ArmProfile` of an `analytic5` profile (what `solveIk`, `forwardKinematics` and the 5-axis
+ * simulator take), or undefined for a numeric one. Servo limits are servo angles; the §4 joint
+ * offsets come from `ik.analytic5.jointOffsetsDeg` (servos after 003 get 0).
+ */
+export function armProfileFromProfile(profile: Profile): ArmProfile | undefined {
+  const a = profile.ik.analytic5;
+  if (profile.ik.kind !== 'analytic5' || a === undefined) return undefined;
+  const servos: ServoSpec[] = profile.servos.map((s, i) => {
+    const { min, max } = servoLimits(s);
+    return {
+      id: s.id,
+      name: s.name,
+      polarity: s.polarity,
+      minDeg: min,
+      maxDeg: max,
+      jointOffsetDeg: a.jointOffsetsDeg[i] ?? 0,
+      maxSpeedDegPerS: s.maxSpeed,
+    };
+  });
+  return { name: profile.title, links: { ...a.links }, servos };
+}

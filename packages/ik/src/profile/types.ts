@@ -1,0 +1,98 @@
+/**
+ * A robot profile (`public/models/<name>/profile.json`), as `parseProfile` returns it: one
+ * entry per servo mapping the servo's wire id to a URDF joint, its pulse mapping, limits and
+ * speed, plus the IK kind and named poses. docs/robots.md describes the JSON format.
+ *
+ * Units: a revolute servo's values are degrees, a prismatic one's millimetres. The URDF (and
+ * the numeric IK's joint vector) uses radians and metres; `jointFromServo` and friends convert.
+ */
+
+/** The value of the profile's `format` field this parser reads. */
+export const PROFILE_FORMAT = 'armtwin-profile/1';
+
+export type ServoKind = 'revolute' | 'prismatic';
+
+/** Optional servo fields and their values when a profile leaves them out (declared once). */
+export const PROFILE_SERVO_DEFAULTS = {
+  /** Mounting polarity k of PROTOCOL.md §2. */
+  polarity: 1,
+  /** Joint value (deg) at servo angle 0: `joint = s + offset`. Revolute only. */
+  offset: 0,
+  /** Lowest pulse the servo accepts, µs. */
+  pulseMin: 500,
+  /** Highest pulse the servo accepts, µs. */
+  pulseMax: 2500,
+} as const;
+
+export interface ProfileServo {
+  /** Wire id (`000` is 0). */
+  readonly id: number;
+  /** The id as the wire writes it: three digits. */
+  readonly key: string;
+  /** Human-readable name, shown by the HUD. */
+  readonly name: string;
+  /** The URDF joint this servo drives. */
+  readonly joint: string;
+  readonly type: ServoKind;
+  /** Mounting polarity: +1, or −1 when a higher pulse turns (or moves) the joint negative. */
+  readonly polarity: 1 | -1;
+  /**
+   * Revolute: joint angle (URDF value, degrees) at servo angle 0, so `joint = s + offset`.
+   * Prismatic: always 0 (the pulse range maps straight onto the joint limits).
+   */
+  readonly offset: number;
+  /** Pulse range the servo accepts, µs. A prismatic axis spans its limits across it. */
+  readonly pulseMin: number;
+  readonly pulseMax: number;
+  /** Joint limits in joint units: degrees (revolute) or millimetres (prismatic). */
+  readonly min: number;
+  readonly max: number;
+  /** Speed limit, degrees or millimetres per second. */
+  readonly maxSpeed: number;
+}
+
+/** Link lengths (mm) and §4 joint offsets of the analytic 5-axis solver. */
+export interface Analytic5Spec {
+  readonly links: {
+    readonly l0: number;
+    readonly l1: number;
+    readonly l2: number;
+    readonly l3: number;
+  };
+  /**
+   * §4 joint angle minus servo angle for servos 000–003 (DEMO_ARM's `jointOffsetDeg`):
+   * `[0, 90, 0, 0]` on the demo arm, because θ5 = s001 + 90.
+   */
+  readonly jointOffsetsDeg: readonly [number, number, number, number];
+}
+
+export interface ProfileIk {
+  readonly kind: 'analytic5' | 'numeric';
+  /** URDF link the chain starts at (world frame). */
+  readonly baseLink: string;
+  /** URDF link whose frame is the tool (the tip the IK places). */
+  readonly tipLink: string;
+  /** Present when kind is `analytic5`. */
+  readonly analytic5?: Analytic5Spec;
+}
+
+export interface Profile {
+  /** Folder name under public/models, `[a-z0-9-_]+`. */
+  readonly name: string;
+  readonly title: string;
+  /** URDF file name, relative to the profile's folder. */
+  readonly urdf: string;
+  readonly ik: ProfileIk;
+  /** In the order the profile lists them (the sim streams them in this order). */
+  readonly servos: readonly ProfileServo[];
+  /**
+   * Named poses as servo values (§2 servo angle s in degrees, or mm for a prismatic axis), one
+   * per servo in `servos` order; NaN where the pose leaves a servo where it is. `home` is always
+   * present and complete. `posePwm` turns one into pulses.
+   */
+  readonly poses: Readonly<Record<string, readonly number[]>>;
+}
+
+export type ParseProfileResult =
+  | { readonly ok: true; readonly profile: Profile }
+  | { readonly ok: false; readonly errors: string[] };
