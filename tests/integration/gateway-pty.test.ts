@@ -58,6 +58,11 @@ async function stopLine(): Promise<void> {
 
 const online = (value: string) => () =>
   w.retained.get(`arm/${ARM}/online`) === value ? true : undefined;
+/** `online` was published as `value` at some point after history index `from`. */
+const onlineSince = (value: string, from: number) => () =>
+  w.history.slice(from).some((m) => m.topic === `arm/${ARM}/online` && m.payload === value)
+    ? true
+    : undefined;
 
 /** A ping through gateway and line; resent every 2 s (a line just reopened may lose one). */
 async function ping(timeoutMs = 10_000) {
@@ -129,8 +134,9 @@ describe('armtwin gateway over a pty pair', () => {
   });
 
   test('survives the port disappearing and coming back', async () => {
+    const mark = w.history.length;
     await stopLine();
-    await w.until(online('0'), 10_000, 'online 0 while the line is gone');
+    await w.until(onlineSince('0', mark), 10_000, 'online 0 while the line is gone');
     const from = w.items.length;
     await w.send('$PNG:1!');
     const refused = await w.frame((f) => f.type === 'controllerError', from);

@@ -5,7 +5,7 @@
  */
 import { spawn, type ChildProcess } from 'node:child_process';
 import path from 'node:path';
-import mqtt, { type MqttClient } from 'mqtt';
+import mqtt, { type IClientOptions, type MqttClient } from 'mqtt';
 import { createReader, type Frame, type Group } from '@armtwin/protocol';
 import { REPO_ROOT } from '../helpers/services.ts';
 
@@ -61,6 +61,8 @@ export type StatusItem = { frame: Frame; time?: number } | { group: Group; time?
 export class StatusWatcher {
   readonly items: StatusItem[] = [];
   readonly retained = new Map<string, string>();
+  /** Every message on the non-status topics, in order: a brief 0 between two 1s is kept. */
+  readonly history: { topic: string; payload: string }[] = [];
   private waiters: (() => void)[] = [];
 
   private constructor(
@@ -68,8 +70,16 @@ export class StatusWatcher {
     readonly armId: string,
   ) {}
 
-  static async connect(url: string, armId: string): Promise<StatusWatcher> {
-    const client = await mqtt.connectAsync(url, { reconnectPeriod: 500, connectTimeout: 5000 });
+  static async connect(
+    url: string,
+    armId: string,
+    options: IClientOptions = {},
+  ): Promise<StatusWatcher> {
+    const client = await mqtt.connectAsync(url, {
+      reconnectPeriod: 500,
+      connectTimeout: 5000,
+      ...options,
+    });
     const w = new StatusWatcher(client, armId);
     const reader = createReader({
       onFrame: (frame) => frame.type !== 'time' && w.push({ frame, time: frame.time }),
@@ -81,6 +91,7 @@ export class StatusWatcher {
         reader.feed(payload);
       } else {
         w.retained.set(topic, payload.toString());
+        w.history.push({ topic, payload: payload.toString() });
         w.notify();
       }
     });
