@@ -71,6 +71,11 @@ describe('npm start (scripts/start.mjs → armtwin up)', () => {
     await w.frame((f) => f.type === 'ping' && f.seq === 31337, from);
   });
 
+  test('/api/whoami: the anonymous demo gives everyone the operator role', async () => {
+    const res = await fetch(`http://127.0.0.1:${httpPort}/api/whoami`);
+    expect(await res.json()).toEqual({ name: '', role: 'operator', anonymous: true });
+  });
+
   test('/api answers even without the middleware (503, JSON)', async () => {
     const res = await fetch(`http://127.0.0.1:${httpPort}/api/healthz`);
     expect(res.status).toBe(503);

@@ -18,6 +18,16 @@ export interface CliConfig {
   influxUrl: string;
   /** LOG_LEVEL: pino level. */
   logLevel: string;
+  /**
+   * ARMTWIN_USERS: the users-and-roles file ('' = the anonymous local demo, loopback only).
+   * With it the embedded broker authenticates and authorises every client (SECURITY.md).
+   */
+  usersFile: string;
+  /** ARMTWIN_TLS_CERT / ARMTWIN_TLS_KEY: PEM files; both set = MQTTS and HTTPS/WSS. */
+  tlsCert: string;
+  tlsKey: string;
+  /** API_TOKEN: bearer token of the middleware's HTTP API (/metrics, /history), passed through. */
+  apiToken: string;
 }
 
 export const DEFAULT_CLI_CONFIG: CliConfig = {
@@ -29,6 +39,10 @@ export const DEFAULT_CLI_CONFIG: CliConfig = {
   host: '127.0.0.1',
   influxUrl: '',
   logLevel: 'info',
+  usersFile: '',
+  tlsCert: '',
+  tlsKey: '',
+  apiToken: '',
 };
 
 const ENV: Record<keyof CliConfig, string> = {
@@ -40,7 +54,17 @@ const ENV: Record<keyof CliConfig, string> = {
   host: 'ARMTWIN_HOST',
   influxUrl: 'INFLUX_URL',
   logLevel: 'LOG_LEVEL',
+  usersFile: 'ARMTWIN_USERS',
+  tlsCert: 'ARMTWIN_TLS_CERT',
+  tlsKey: 'ARMTWIN_TLS_KEY',
+  apiToken: 'API_TOKEN',
 };
+
+/** Throws unless the certificate and key are both set or both empty. */
+function both(cert: string, key: string): void {
+  if (Boolean(cert) !== Boolean(key))
+    throw new Error('ARMTWIN_TLS_CERT and ARMTWIN_TLS_KEY go together: set both or neither');
+}
 
 function port(name: string, text: string): number {
   const n = Number(text);
@@ -51,6 +75,7 @@ function port(name: string, text: string): number {
 
 /** The config from an environment (`process.env` by default); unset or empty → default. */
 export function loadCliConfig(env: Record<string, string | undefined> = process.env): CliConfig {
+  both(env[ENV.tlsCert]?.trim() ?? '', env[ENV.tlsKey]?.trim() ?? '');
   const get = (key: keyof CliConfig) => env[ENV[key]]?.trim() || String(DEFAULT_CLI_CONFIG[key]);
   return {
     mqttUrl: get('mqttUrl'),
@@ -61,5 +86,9 @@ export function loadCliConfig(env: Record<string, string | undefined> = process.
     host: get('host'),
     influxUrl: env[ENV.influxUrl]?.trim() ?? '',
     logLevel: get('logLevel'),
+    usersFile: env[ENV.usersFile]?.trim() ?? '',
+    tlsCert: env[ENV.tlsCert]?.trim() ?? '',
+    tlsKey: env[ENV.tlsKey]?.trim() ?? '',
+    apiToken: env[ENV.apiToken]?.trim() ?? '',
   };
 }

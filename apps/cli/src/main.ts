@@ -5,6 +5,7 @@ import { registerSim } from './commands/sim.ts';
 import { registerGateway } from './commands/gateway.ts';
 import { registerBroker } from './commands/broker.ts';
 import { registerUp } from './commands/up.ts';
+import { registerDeployMosquitto, registerPasswd } from './commands/security.ts';
 
 /** Each command module adds itself to the program. */
 const COMMANDS: ((program: Command) => void)[] = [
@@ -14,6 +15,8 @@ const COMMANDS: ((program: Command) => void)[] = [
   registerGateway,
   registerBroker,
   registerUp,
+  registerPasswd,
+  registerDeployMosquitto,
 ];
 
 export function buildProgram(): Command {

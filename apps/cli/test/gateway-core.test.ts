@@ -51,3 +51,13 @@ describe('GatewayCore', () => {
     expect(online()).toEqual(['1', '0', '1']);
   });
 });
+
+describe('GatewayCore deadman', () => {
+  test('operator presence 0 writes #255PDST! to the controller; 1 writes nothing', () => {
+    const { core, written } = harness();
+    core.fromOperator(Buffer.from('1'));
+    core.fromOperator(Buffer.from('0'));
+    expect(written).toEqual(['#255PDST!']);
+    expect(core.counters.deadmanStops).toBe(1);
+  });
+});

@@ -49,6 +49,13 @@ export interface MiddlewareConfig {
   port: number;
   /** HOST: HTTP bind address. */
   host: string;
+  /**
+   * API_TOKEN: when set, /metrics and /history need `Authorization: Bearer <token>`; /healthz
+   * stays open (it says only up or down). Required outside the local demo (SECURITY.md).
+   */
+  apiToken: string;
+  /** MAX_PAYLOAD_BYTES: a bigger MQTT message is refused whole (counted as `oversize`). */
+  maxPayloadBytes: number;
   /** LOG_LEVEL: pino level. */
   logLevel: 'fatal' | 'error' | 'warn' | 'info' | 'debug' | 'trace' | 'silent';
 }
@@ -76,6 +83,8 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   spoolMaxBytes: 256 * 1024 * 1024,
   port: 8090,
   host: '127.0.0.1',
+  apiToken: '',
+  maxPayloadBytes: 65536,
   logLevel: 'info',
 };
 
@@ -103,6 +112,8 @@ export const CONFIG_ENV: Record<keyof MiddlewareConfig, string> = {
   spoolMaxBytes: 'SPOOL_MAX_BYTES',
   port: 'PORT',
   host: 'HOST',
+  apiToken: 'API_TOKEN',
+  maxPayloadBytes: 'MAX_PAYLOAD_BYTES',
   logLevel: 'LOG_LEVEL',
 };
 
@@ -144,6 +155,8 @@ const SCHEMA = z.object({
   spoolMaxBytes: int(1024, Number.MAX_SAFE_INTEGER),
   port: int(0, 65535),
   host: z.string().min(1),
+  apiToken: z.string().regex(/^[\x21-\x7e]*$/, 'printable ASCII, no spaces'),
+  maxPayloadBytes: int(64, 268_435_455),
   logLevel: z.enum(['fatal', 'error', 'warn', 'info', 'debug', 'trace', 'silent']),
 });
 

@@ -2,7 +2,9 @@
  * `/healthz` (JSON, 200 or 503) and `/metrics` (Prometheus text). Works at the root of its
  * own port and mounted under `/api` on another server (the `npm start` orchestrator).
  * `/history/…` is the history API (./history), present when storage is configured.
+ * With an API token, everything but `/healthz` needs `Authorization: Bearer <token>` (401).
  */
+import { createHash, timingSafeEqual } from 'node:crypto';
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { HistoryHandler } from './history/index.ts';
 import { renderMetrics, type Metrics } from './metrics.ts';
@@ -24,6 +26,26 @@ export interface HttpSource {
   health(): HealthReport;
   /** The history API, or null when there is no storage to read from. */
   history?: HistoryHandler | null;
+  /** '' = open; else the bearer token /metrics and /history require. */
+  apiToken?: string;
+}
+
+const digest = (s: string) => createHash('sha256').update(s).digest();
+
+/** Whether the request carries `Authorization: Bearer <token>` (compared in constant time). */
+export function hasBearer(req: IncomingMessage, token: string): boolean {
+  const m = /^Bearer +(\S+) *$/i.exec(req.headers.authorization ?? '');
+  return m !== null && timingSafeEqual(digest(m[1]!), digest(token));
+}
+
+function unauthorised(res: ServerResponse): true {
+  res.writeHead(401, {
+    'content-type': 'application/json',
+    'www-authenticate': 'Bearer realm="armtwin"',
+    'cache-control': 'no-store',
+  });
+  res.end(JSON.stringify({ error: 'API token required: Authorization: Bearer <API_TOKEN>' }));
+  return true;
 }
 
 export type HttpHandler = (req: IncomingMessage, res: ServerResponse) => boolean;
@@ -32,7 +54,10 @@ export type HttpHandler = (req: IncomingMessage, res: ServerResponse) => boolean
 export function createHttpHandler(mw: HttpSource): HttpHandler {
   return (req, res) => {
     const path = (req.url ?? '/').split('?')[0]!.replace(/^\/api(?=\/)/, '');
-    if (path === '/history' || path.startsWith('/history/')) {
+    const isHistory = path === '/history' || path.startsWith('/history/');
+    if (mw.apiToken && (isHistory || path === '/metrics') && !hasBearer(req, mw.apiToken))
+      return unauthorised(res);
+    if (isHistory) {
       if (!mw.history) {
         res.writeHead(503, { 'content-type': 'application/json' });
         res.end(JSON.stringify({ error: 'history needs storage: set INFLUX_URL' }));

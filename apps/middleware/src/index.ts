@@ -62,7 +62,7 @@ export async function startMiddleware(
   const clock = deps.clock ?? SYSTEM_CLOCK;
   const now = deps.now ?? Date.now;
   const metrics = new Metrics();
-  const ingest = new Ingest(metrics, once);
+  const ingest = new Ingest(metrics, once, { maxPayloadBytes: config.maxPayloadBytes });
   let stopped = false;
 
   let storage: Storage | null = null;
@@ -182,7 +182,7 @@ export async function startMiddleware(
           once.warn('history-query-failed', { err: (err as Error).message }, 'history query failed'),
       })
     : null;
-  const handler = createHttpHandler({ metrics, health, history });
+  const handler = createHttpHandler({ metrics, health, history, apiToken: config.apiToken });
   let server: http.Server | null = null;
   let httpPort: number | null = null;
   if (deps.listen !== false) {
@@ -197,7 +197,10 @@ export async function startMiddleware(
     const addr = srv.address();
     httpPort = typeof addr === 'object' && addr ? addr.port : null;
     server = srv;
-    log.info({ url: `http://${config.host}:${httpPort}` }, 'HTTP: /healthz and /metrics');
+    log.info(
+      { url: `http://${config.host}:${httpPort}`, apiToken: config.apiToken ? 'required' : 'none' },
+      'HTTP: /healthz and /metrics',
+    );
   }
 
   return {

@@ -48,8 +48,21 @@ const CONTROL_KINDS = new Set([
   'time',
 ]);
 
+export interface IngestOptions {
+  /** A bigger message is refused whole and counted once as `oversize`. */
+  maxPayloadBytes: number;
+  /**
+   * Most (arm, topic) readers kept; beyond it the least recently created is forgotten (its
+   * partial frame, if any, is lost), so a stream of new arm ids cannot grow memory without end.
+   */
+  maxReaders: number;
+}
+
+export const DEFAULT_INGEST_OPTIONS: IngestOptions = { maxPayloadBytes: 65536, maxReaders: 4096 };
+
 export class Ingest {
   private readonly readers = new Map<string, Reader>();
+  private readonly o: IngestOptions;
   private readonly pendingKms = new Map<string, KmsFrame & { at: number }>();
   readonly clock = new SeriesClock();
   // The message being handled (the readers' callbacks write here).
@@ -61,7 +74,10 @@ export class Ingest {
   constructor(
     private readonly metrics: Metrics,
     private readonly once?: LogOnce,
-  ) {}
+    options: Partial<IngestOptions> = {},
+  ) {
+    this.o = { ...DEFAULT_INGEST_OPTIONS, ...options };
+  }
 
   /** Lines for one message (possibly none); `arrivalMs` is the fallback time. */
   handle(topic: string, payload: Uint8Array | string, arrivalMs: number): string[] {
@@ -71,6 +87,15 @@ export class Ingest {
     this.metrics.count(this.metrics.messages, kind ?? 'other');
     if (!parsed || !kind) {
       this.reject('bad-topic', topic);
+      return [];
+    }
+    if (payload.length > this.o.maxPayloadBytes) {
+      this.arm = parsed.armId;
+      this.reject(
+        'oversize',
+        `${payload.length} bytes`,
+        `message over ${this.o.maxPayloadBytes} bytes`,
+      );
       return [];
     }
     this.arm = parsed.armId;
@@ -98,6 +123,14 @@ export class Ingest {
         },
         onError: (e) => this.reject(e.kind, e.text, e.message),
       });
+      if (this.readers.size >= this.o.maxReaders) {
+        this.readers.delete(this.readers.keys().next().value!);
+        this.once?.warn(
+          'readers-evicted',
+          { max: this.o.maxReaders },
+          'too many (arm, topic) readers: forgetting the oldest',
+        );
+      }
       this.readers.set(key, r);
     }
     return r;

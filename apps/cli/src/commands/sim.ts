@@ -5,6 +5,7 @@ import { loadCliConfig } from '../config.ts';
 import { createLogger, firstOnly } from '../log.ts';
 import type { Fault } from '../sim/faults.ts';
 import { simWill, startMqttSim } from '../sim/mqtt-sim.ts';
+import { DEFAULT_PROFILE, loadSimProfile } from '../sim/profile.ts';
 import { MAX_STATE_RATE } from '../sim/runner.ts';
 import { startSerialSim } from '../sim/serial-sim.ts';
 import { untilSignal } from './signals.ts';
@@ -49,6 +50,7 @@ function overheat(value: string): Fault {
 interface SimFlags {
   mqtt: string;
   arm: string;
+  profile: string;
   rate: number;
   healthRate: number;
   username?: string;
@@ -74,6 +76,12 @@ the faults in force are published retained on arm/{id}/sim/faults):
   {"fault":"clear","id":2}  /  {"fault":"clear"}   clear one servo's faults / every fault
 Example: mosquitto_pub -t arm/arm1/sim -m '{"fault":"overheat","id":2}'`;
 
+export const MOTION_HELP = `
+
+Motion requests (docs/protocol.md "Motion requests"): JSON on arm/{id}/request, answers on
+arm/{id}/feedback; the profile is announced retained on arm/{id}/profile.
+Example: mosquitto_pub -t arm/arm1/request -m '{"id":"r1","mode":"joint","targets":["ready"],"execute":true}'`;
+
 export function registerSim(program: Command): void {
   program
     .command('sim')
@@ -82,6 +90,11 @@ export function registerSim(program: Command): void {
     )
     .option('--mqtt <url>', 'broker URL (env MQTT_URL)')
     .option('--arm <id>', 'arm id', armId, 'arm1')
+    .option(
+      '--profile <name>',
+      'robot profile: public/models/<name>/profile.json (announced on arm/{id}/profile)',
+      DEFAULT_PROFILE,
+    )
     .option(
       '--rate <hz>',
       `state rate, Hz (max ${MAX_STATE_RATE})`,
@@ -111,7 +124,7 @@ export function registerSim(program: Command): void {
       'delay every payload and command by this many ms',
       number('latency', 0, 60000, true),
     )
-    .addHelpText('after', FAULT_HELP)
+    .addHelpText('after', FAULT_HELP + MOTION_HELP)
     .action(async (flags: SimFlags) => {
       const env = loadCliConfig();
       const log = createLogger('sim', env.logLevel);
@@ -124,7 +137,9 @@ export function registerSim(program: Command): void {
         ...(flags.drop !== undefined ? [{ fault: 'drop', percent: flags.drop } as Fault] : []),
         ...(flags.latency !== undefined ? [{ fault: 'latency', ms: flags.latency } as Fault] : []),
       ];
+      const profile = loadSimProfile(flags.profile);
       const runnerOptions = {
+        model: profile.model,
         rate: flags.rate,
         healthRate: flags.healthRate,
         faults,
@@ -161,10 +176,11 @@ export function registerSim(program: Command): void {
       });
       client.on('connect', () => log.info({ url, arm: flags.arm }, 'connected'));
       client.on('error', (err) => log.warn({ err: err.message }, 'mqtt error'));
-      const sim = startMqttSim(client, { ...runnerOptions, armId: flags.arm });
+      const sim = startMqttSim(client, { ...runnerOptions, armId: flags.arm, profile });
       log.info(
         {
           arm: flags.arm,
+          profile: flags.profile,
           rate: flags.rate,
           healthRate: flags.healthRate,
           faults: sim.runner.faults,

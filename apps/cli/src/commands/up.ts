@@ -1,15 +1,32 @@
-import type { Command } from 'commander';
+import { InvalidArgumentError, type Command } from 'commander';
+import { describeSecurity, loadBrokerSecurity } from '../broker/security.ts';
 import { loadCliConfig } from '../config.ts';
 import { createLogger, firstOnly } from '../log.ts';
 import { startUp } from '../start/up.ts';
 import { untilSignal } from './signals.ts';
 import { armId, number } from './sim.ts';
+import { PROFILE_NAME } from '../sim/profile.ts';
+
+/** `arm1:armtwin5,arm2:track6` → arms and profiles (a bare id gets armtwin5). */
+export function parseArms(value: string): { id: string; profile: string }[] {
+  const arms = value.split(',').map((part) => {
+    const [id = '', profile = 'armtwin5', extra] = part.trim().split(':');
+    if (extra !== undefined || !PROFILE_NAME.test(profile))
+      throw new InvalidArgumentError(`"${part}": expected id[:profile], profile [a-z0-9_-]{1,32}`);
+    return { id: armId(id), profile };
+  });
+  if (new Set(arms.map((a) => a.id)).size !== arms.length)
+    throw new InvalidArgumentError('each arm id may appear once');
+  return arms;
+}
 
 interface UpFlags {
+  users?: string;
   port?: number;
   mqttPort?: number;
   host?: string;
   arm: string;
+  arms?: { id: string; profile: string }[];
   rate: number;
   web: boolean;
   middleware: boolean;
@@ -33,15 +50,25 @@ export function registerUp(program: Command): void {
     )
     .option(
       '--host <addr>',
-      'listen address (env ARMTWIN_HOST, default 127.0.0.1; 0.0.0.0 for the LAN)',
+      'listen address (env ARMTWIN_HOST, default 127.0.0.1; beyond loopback needs --users)',
     )
+    .option('--users <file>', 'users-and-roles file (env ARMTWIN_USERS): log-ins and roles')
     .option('--arm <id>', 'id of the simulated arm', armId, 'arm1')
+    .option(
+      '--arms <list>',
+      'several simulated arms with their profiles, e.g. arm1:armtwin5,arm2:track6 (replaces --arm)',
+      parseArms,
+    )
     .option('--rate <hz>', 'state rate of the simulated arm, Hz', number('rate', 1, 1000), 50)
     .option('--no-web', 'do not build the HUD when apps/web/dist is missing')
     .option('--no-middleware', 'do not start the middleware')
     .addHelpText(
       'after',
       `
+Security (SECURITY.md): without a users file this is the ANONYMOUS local demo, on loopback only.
+With --users/ARMTWIN_USERS every MQTT client logs in and its role is enforced, and /api (but
+/api/healthz) needs API_TOKEN as a bearer token or a user's password (HTTP Basic).
+ARMTWIN_TLS_CERT + ARMTWIN_TLS_KEY: HTTPS, WSS (/mqtt) and MQTTS with that certificate.
 Storage: INFLUX_URL if set; otherwise a local influxd with its data in .armtwin/influx (if it
 can be started); otherwise none, said plainly. If the default MQTT port 1883 is taken (another
 broker), the embedded broker takes a free port and prints it; an explicitly given port that is
@@ -52,12 +79,18 @@ Ctrl-C stops everything: the arm says offline, the middleware flushes, influxd s
       const env = loadCliConfig();
       const log = createLogger('up', env.logLevel);
       const say = (msg: string) => process.stderr.write(`armtwin: ${msg}\n`);
+      const host = flags.host ?? env.host;
+      const security = loadBrokerSecurity({ ...env, usersFile: flags.users ?? env.usersFile });
+      say(`security: ${describeSecurity(security, host)}`);
       const up = await startUp({
+        ...security,
+        apiToken: env.apiToken,
         httpPort: flags.port ?? env.httpPort,
         mqttPort: flags.mqttPort ?? env.mqttPort,
         mqttPortFallback: flags.mqttPort === undefined && !process.env.ARMTWIN_MQTT_PORT,
-        host: flags.host ?? env.host,
+        host,
         armId: flags.arm,
+        ...(flags.arms ? { arms: flags.arms } : {}),
         rate: flags.rate,
         influxUrl: env.influxUrl,
         buildWeb: flags.web,
@@ -69,7 +102,8 @@ Ctrl-C stops everything: the arm says offline, the middleware flushes, influxd s
       say(
         `broker: MQTT on ${up.broker.url}, MQTT over WebSockets on ${up.url.replace(/^http/, 'ws')}mqtt`,
       );
-      say(`simulated arm "${flags.arm}" streaming at ${flags.rate} Hz`);
+      for (const a of flags.arms ?? [{ id: flags.arm, profile: 'armtwin5' }])
+        say(`simulated arm "${a.id}" (profile ${a.profile}) streaming at ${flags.rate} Hz`);
       process.stdout.write(`\n  armtwin is running: open ${up.url}\n  (Ctrl-C to stop)\n\n`);
       await untilSignal();
       say('stopping…');

@@ -33,6 +33,8 @@ export class GatewayCore {
     rejected: {} as Record<string, number>,
     controlWritten: 0,
     controlDropped: 0,
+    /** `#255PDST!` written because the operator's presence went to 0 (the deadman). */
+    deadmanStops: 0,
   };
   private readonly topics;
   private readonly pieces: string[] = [];
@@ -93,6 +95,17 @@ export class GatewayCore {
     this.pieces.length = 0;
     this.counters.statusPayloads++;
     this.io.publish(this.topics.status, payload, { qos: 0, retain: false });
+  }
+
+  /**
+   * The deadman: a `0` on `arm/{id}/operator` — the operator let go or its last will fired, or
+   * no operator holds the arm when the gateway (re)connects — writes `#255PDST!` to the
+   * controller. The gateway cannot tell whether the arm moves, so it always stops it; a stop
+   * at rest changes nothing.
+   */
+  fromOperator(payload: Buffer): void {
+    if (payload.toString('latin1').trim() !== '0') return;
+    if (this.io.write(Buffer.from('#255PDST!'))) this.counters.deadmanStops++;
   }
 
   /** A control payload: written verbatim, or refused with `$ERR` on status when the line is down. */

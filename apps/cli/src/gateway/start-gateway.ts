@@ -79,7 +79,7 @@ export function startGateway(
   client.on('connect', () => {
     core.brokerConnected(true);
     client.subscribe(
-      topics.control,
+      [topics.control, topics.operator],
       { qos: 1 },
       (err) => err && o.onFirst('subscribe', err.message),
     );
@@ -88,6 +88,7 @@ export function startGateway(
   client.on('error', (err) => o.onFirst(`mqtt:${err.message}`, `mqtt: ${err.message}`));
   client.on('message', (topic, payload) => {
     if (topic === topics.control) core.fromControl(payload);
+    else if (topic === topics.operator) core.fromOperator(payload);
   });
   link.start();
   return {

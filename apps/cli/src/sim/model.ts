@@ -43,9 +43,12 @@ export class SimModel {
     rejected: { limit: 0, 'unknown-servo': 0, group: 0, unexpected: 0, ik: 0 },
   };
 
+  private readonly kmsSolver: SimModelOptions['kms'];
+
   constructor(options: Partial<SimModelOptions> = {}, now = 0) {
     const o = { ...DEFAULT_SIM_MODEL_OPTIONS, ...options };
     this.arm = o.arm;
+    this.kmsSolver = o.kms;
     this.servos = new Servos(o, now);
   }
 
@@ -190,8 +193,18 @@ export class SimModel {
     out: string[],
   ) {
     this.counters.kms++;
-    const r = solveIk(x, y, z, alpha, this.arm);
     const s = this.servos;
+    if (this.kmsSolver) {
+      // Another arm's IK (sim/profile.ts): every servo it gives a pulse moves, together.
+      const now = Array.from({ length: s.count }, (_, i) => s.pwmAt(i, t));
+      const k = this.kmsSolver(x, y, z, alpha, now);
+      if (k.code !== 0) this.counters.rejected.ik++;
+      out.push(encodeKmsResult(k.code));
+      if (k.code === 0)
+        k.pwm.forEach((p, i) => Number.isNaN(p) || s.moveTo(i, Math.round(p), ms, t));
+      return;
+    }
+    const r = solveIk(x, y, z, alpha, this.arm);
     const idx = [0, 1, 2, 3].map((j) => s.indexOf(this.arm.servos[j]?.id ?? -1));
     const ok =
       r.code === 0 && idx.every((i, j) => i >= 0 && isWithinLimits(s.ids[i]!, r.pwm[j]!, this.arm));

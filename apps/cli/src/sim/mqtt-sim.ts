@@ -4,18 +4,24 @@
  * the faults in force are published retained on `arm/{id}/sim/faults`. Presence: retained `1`
  * on `arm/{id}/online` at every (re)connect; the client must be created with the retained `0`
  * will (see `simWill`), and `stop()` publishes `0` itself before disconnecting.
+ * Deadman: `arm/{id}/operator` is watched; a `0` there (the operator let go, or the broker
+ * published its last will because its page dropped) stops a moving arm (`runner.operatorLeft`).
  * The MQTT client is injected.
  */
 import type { IClientOptions, MqttClient } from 'mqtt';
 import { armTopics } from '@armtwin/protocol';
 import { SYSTEM_CLOCK, type Clock } from './clock.ts';
 import { parseFaults } from './faults.ts';
+import { startMotionService } from './motion-service.ts';
+import type { SimProfile } from './profile.ts';
 import { SimRunner, type SimRunnerOptions } from './runner.ts';
 
 export interface MqttSimOptions extends Partial<SimRunnerOptions> {
   /** The arm id: `[a-z0-9-]{1,32}`. */
   armId: string;
   clock?: Clock;
+  /** The arm's profile: announced on `arm/{id}/profile`, and motion requests served (motion-service.ts). */
+  profile?: SimProfile;
 }
 
 export interface MqttSim {
@@ -69,13 +75,18 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
 
   const onConnect = () => {
     client.publish(topics.online, '1', { qos: 1, retain: true });
-    client.subscribe([topics.control, topics.sim], { qos: 1 }, (err) => {
+    client.subscribe([topics.control, topics.sim, topics.operator], { qos: 1 }, (err) => {
       if (err) onFirst('subscribe', err.message);
     });
     publishFaults();
   };
   const onMessage = (topic: string, payload: Buffer) => {
     if (topic === topics.control) return runner.receive(payload);
+    if (topic === topics.operator) {
+      if (payload.toString('latin1').trim() === '0' && runner.operatorLeft())
+        onFirst('deadman', 'operator gone while the arm moved: every servo stopped');
+      return;
+    }
     if (topic !== topics.sim) return;
     try {
       runner.applyFaults(parseFaults(payload.toString('utf8')));
@@ -90,11 +101,22 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
   client.on('message', onMessage);
   if (client.connected) onConnect();
   runner.start();
+  const motion = options.profile
+    ? startMotionService(
+        client,
+        runner,
+        options.armId,
+        options.profile,
+        options.clock ?? SYSTEM_CLOCK,
+        onFirst,
+      )
+    : undefined;
 
   return {
     runner,
     async stop() {
       runner.stop();
+      motion?.stop();
       client.removeListener('message', onMessage);
       client.removeListener('connect', onConnect);
       if (client.connected) {

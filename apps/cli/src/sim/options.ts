@@ -33,7 +33,21 @@ export interface SimModelOptions {
   overheatTauMs: number;
   /** Pulse widths at power-on, µs, by servo index (missing → 1500, the centre). */
   initialPwm: readonly number[];
+  /**
+   * Solves `$KMS` for an arm the §4 solver does not describe (a numeric profile, see
+   * `sim/profile.ts`): the status code and pulses by servo index (NaN = leave). Unset: `solveIk`.
+   */
+  kms?: KmsSolver;
 }
+
+/** (x, y, z mm, pitch deg or undefined, pulses now by servo index) → code and target pulses. */
+export type KmsSolver = (
+  x: number,
+  y: number,
+  z: number,
+  alpha: number | undefined,
+  pwm: readonly number[],
+) => { code: number; pwm: readonly number[] };
 
 export const DEFAULT_SIM_MODEL_OPTIONS: SimModelOptions = {
   arm: DEMO_ARM,

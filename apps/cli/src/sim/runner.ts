@@ -1,8 +1,10 @@
 /**
  * Runs the simulated controller over any byte transport: control bytes in (`receive`), status
  * payloads out (`SimTransport.send`). Owns the state and health loops, the link faults (drop,
- * latency) and the reply batching: the replies to one incoming chunk leave as one payload.
- * The clock and the random source are injected; no sockets here.
+ * latency), the reply batching (the replies to one incoming chunk leave as one payload) and the
+ * interlocks: the command rate limit, the payload bound, the emergency stop that overrides
+ * everything queued, and the deadman (`operatorLeft`). The clock and the random source are
+ * injected; no sockets here.
  */
 import {
   createReader,
@@ -15,6 +17,7 @@ import type { Clock } from './clock.ts';
 import { applyFault, NO_FAULTS, type Fault, type FaultState } from './faults.ts';
 import { SimModel } from './model.ts';
 import { DEFAULT_SIM_MODEL_OPTIONS, type SimModelOptions } from './options.ts';
+import { TokenBucket } from './rate-limit.ts';
 import { StatusWriter } from './status-writer.ts';
 import { TickLoop } from './tick-loop.ts';
 
@@ -47,6 +50,17 @@ export interface SimRunnerOptions {
   faults: Fault[];
   /** Told the first time each kind of problem happens (later ones are only counted). */
   onFirst: (kind: string, message: string) => void;
+  /**
+   * Commands per second the controller accepts, sustained (a top-level frame or a whole `{…}`
+   * group is one command; stops, `#255PDST!` included, are never limited; dropped input costs
+   * nothing). Beyond it commands are dropped, never queued, and the first drop of a run is
+   * answered `$ERR:rate limit!`.
+   */
+  commandRate: number;
+  /** Commands accepted at once after a quiet spell (the bucket's size). */
+  commandBurst: number;
+  /** Largest control payload (or serial chunk) read, bytes; a bigger one is refused whole. */
+  maxPayloadBytes: number;
 }
 
 export const DEFAULT_SIM_RUNNER_OPTIONS: SimRunnerOptions = {
@@ -59,11 +73,18 @@ export const DEFAULT_SIM_RUNNER_OPTIONS: SimRunnerOptions = {
   model: {},
   faults: [],
   onFirst: () => {},
+  commandRate: 50,
+  commandBurst: 100,
+  maxPayloadBytes: 65536,
 };
 
 export const MAX_STATE_RATE = 1000;
 
-type Item = { frame: Frame } | { group: Group } | { error: ReaderError };
+type Item = { frame: Frame } | { group: Group } | { error: ReaderError } | { limited: true };
+
+export const RATE_LIMIT_REPLY = 'rate limit';
+export const OVERSIZE_REPLY = 'payload too large';
+export const DEADMAN_REPLY = 'deadman stop';
 
 export class SimRunner {
   readonly model: SimModel;
@@ -77,6 +98,12 @@ export class SimRunner {
     replyPayloads: 0,
     rejected: {} as Record<string, number>,
     discardedQueued: 0,
+    /** Commands dropped by the rate limit. */
+    rateLimited: 0,
+    /** Control payloads refused for their size. */
+    oversizePayloads: 0,
+    /** Stops made because the operator's presence went to 0 while the arm was moving. */
+    deadmanStops: 0,
   };
   faults: FaultState = { ...NO_FAULTS };
   private readonly o: SimRunnerOptions;
@@ -88,6 +115,8 @@ export class SimRunner {
   private lastStamp = -1;
   private readonly pending = new Set<unknown>(); // latency timers
   private inbound: { due: number; items: Item[]; timer: unknown }[] = [];
+  private readonly bucket: TokenBucket;
+  private limiting = false;
 
   constructor(
     private readonly transport: SimTransport,
@@ -100,6 +129,7 @@ export class SimRunner {
     if (!(o.healthRate > 0 && o.healthRate <= MAX_STATE_RATE))
       throw new RangeError('health rate must be > 0 Hz');
     this.model = new SimModel(o.model, clock.now());
+    this.bucket = new TokenBucket(o.commandRate, o.commandBurst, clock.now());
     this.stateLoop = new TickLoop(clock, (t, n) => this.stateTicks(t, n), {
       hz: o.rate,
       maxBatch: Math.max(1, Math.ceil((o.rate * o.maxCatchUpMs) / 1000)),
@@ -134,18 +164,19 @@ export class SimRunner {
   /** Control bytes as they arrive (an MQTT payload, a serial chunk). */
   receive(chunk: string | Uint8Array): void {
     this.stateLoop.catchUp(); // samples due before this command go out as they were
+    if (chunk.length > this.o.maxPayloadBytes) {
+      if (this.counters.oversizePayloads++ === 0)
+        this.o.onFirst('control:oversize', `control payload of ${chunk.length} bytes refused`);
+      return this.reply([encodeControllerError(OVERSIZE_REPLY)]);
+    }
     this.reader.feed(chunk);
-    const items = this.items.splice(0);
+    const items = this.limit(this.items.splice(0));
     if (items.length === 0) return;
     const latency = this.faults.latencyMs;
     const stopAt = items.findIndex((it) => isEmergencyStop(it));
     if (stopAt >= 0) {
       // The emergency stop acts on arrival and discards every command still queued.
-      for (const q of this.inbound) {
-        this.clock.clearTimeout(q.timer);
-        this.counters.discardedQueued += q.items.length;
-      }
-      this.inbound = [];
+      this.discardQueued();
       this.execute(items.slice(0, stopAt + 1));
       items.splice(0, stopAt + 1);
       if (items.length === 0) return;
@@ -160,12 +191,60 @@ export class SimRunner {
     this.inbound.push(entry);
   }
 
+  /**
+   * The deadman: the operator's presence went to `0` (it let go, or its last will). If a move
+   * is under way or a command is still queued, every servo stops where it is, as `#255PDST!`
+   * would, and the queue is discarded; answered `$ERR:deadman stop!`. At rest it does nothing.
+   * Returns whether it stopped the arm.
+   */
+  operatorLeft(): boolean {
+    this.stateLoop.catchUp();
+    const t = this.clock.now();
+    this.model.advance(t);
+    const s = this.model.servos;
+    let moving = this.inbound.length > 0;
+    for (let i = 0; i < s.count && !moving; i++) moving = s.isMoving(i, t);
+    if (!moving) return false;
+    this.discardQueued();
+    this.model.emergencyStop(t);
+    this.counters.deadmanStops++;
+    this.reply([encodeControllerError(DEADMAN_REPLY)]);
+    return true;
+  }
+
   /** Applies faults now; returns the faults in force. Throws for a servo the arm lacks. */
   applyFaults(faults: Fault[]): FaultState {
     const t = this.clock.now();
     const overheatC = this.o.model.overheatC ?? DEFAULT_SIM_MODEL_OPTIONS.overheatC;
     for (const f of faults) this.faults = applyFault(this.model, this.faults, f, t, overheatC);
     return this.faults;
+  }
+
+  private discardQueued(): void {
+    for (const q of this.inbound) {
+      this.clock.clearTimeout(q.timer);
+      this.counters.discardedQueued += q.items.length;
+    }
+    this.inbound = [];
+  }
+
+  /** Drops the commands over the rate (never stops); marks the first drop of a run for a reply. */
+  private limit(items: Item[]): Item[] {
+    const out: Item[] = [];
+    const now = this.clock.now();
+    for (const it of items) {
+      const costs = ('frame' in it && it.frame.type !== 'time') || 'group' in it;
+      if (!costs || isStop(it) || isEmergencyStop(it) || this.bucket.take(now)) {
+        if (costs) this.limiting = false;
+        out.push(it);
+        continue;
+      }
+      if (this.counters.rateLimited++ === 0)
+        this.o.onFirst('control:rate-limit', `commands over ${this.o.commandRate}/s dropped`);
+      if (!this.limiting) out.push({ limited: true });
+      this.limiting = true;
+    }
+    return out;
   }
 
   private execute(items: Item[]): void {
@@ -175,6 +254,7 @@ export class SimRunner {
     for (const it of items) {
       if ('frame' in it) this.model.execute(it.frame, t, replies);
       else if ('group' in it) this.model.executeGroup(it.group, t, replies);
+      else if ('limited' in it) replies.push(encodeControllerError(RATE_LIMIT_REPLY));
       else {
         const kind = it.error.kind;
         this.counters.rejected[kind] = (this.counters.rejected[kind] ?? 0) + 1;
@@ -184,6 +264,11 @@ export class SimRunner {
           replies.push(encodeControllerError(`${kind} ${it.error.text}`));
       }
     }
+    this.reply(replies, t);
+  }
+
+  /** Sends replies as one payload, `$TIM` first. */
+  private reply(replies: string[], t = this.clock.now()): void {
     if (replies.length === 0) return;
     const w = this.writer.reset();
     if (this.o.stamp) w.time(Math.round(t));
@@ -239,6 +324,14 @@ export class SimRunner {
     }, latency);
     this.pending.add(timer);
   }
+}
+
+/** A stop of one servo or of all: never rate-limited (stopping must always be possible). */
+function isStop(it: Item): boolean {
+  if ('frame' in it) return it.frame.type === 'stop';
+  if ('group' in it)
+    return it.group.invalid === 0 && it.group.frames.every((f) => f.type === 'stop');
+  return false;
 }
 
 function isEmergencyStop(it: Item): boolean {

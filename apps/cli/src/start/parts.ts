@@ -6,6 +6,7 @@
 import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import type http from 'node:http';
+import type { IClientOptions, MqttClient } from 'mqtt';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
@@ -58,9 +59,21 @@ interface MiddlewareModule {
   loadConfig(env: Record<string, string | undefined>): Record<string, unknown>;
   startMiddleware(
     config: Record<string, unknown>,
-    deps: { listen: boolean },
+    deps: { listen: boolean; connect?: ConnectFn },
   ): Promise<RunningMiddleware>;
   startLocalInflux?(o: { dataDir: string; log: Say }): Promise<LocalInflux | null>;
+}
+
+type ConnectFn = (url: string, opts: IClientOptions) => MqttClient;
+
+/** How the middleware reaches the broker, and the token its HTTP API requires. */
+export interface MiddlewareLink {
+  /** Shown in /healthz. */
+  mqttUrl: string;
+  /** Connects its MQTT client (in-process to the embedded broker). */
+  connect: ConnectFn;
+  /** API_TOKEN ('' = open API). */
+  apiToken: string;
 }
 
 export interface StartedMiddleware {
@@ -71,12 +84,12 @@ export interface StartedMiddleware {
 }
 
 /**
- * Starts the middleware on `mqttUrl` if it exists: storage is INFLUX_URL if given, else a local
+ * Starts the middleware on the broker of `link` if it exists: storage is INFLUX_URL if given, else a local
  * influxd under .armtwin/influx if one can be started, else none. Null when there is no
  * middleware in this checkout; throws when it exists but fails to start.
  */
 export async function startMiddlewarePart(
-  mqttUrl: string,
+  link: MiddlewareLink,
   influxUrl: string,
   env: Record<string, string | undefined>,
   say: Say,
@@ -88,7 +101,8 @@ export async function startMiddlewarePart(
   const mod = (await import(pathToFileURL(MIDDLEWARE_INDEX).href)) as MiddlewareModule;
   let influx: LocalInflux | null = null;
   const overrides: Record<string, unknown> = {
-    mqttUrl,
+    mqttUrl: link.mqttUrl,
+    apiToken: link.apiToken,
     spoolDir: env.SPOOL_DIR || MIDDLEWARE_SPOOL,
   };
   if (influxUrl) {
@@ -109,7 +123,7 @@ export async function startMiddlewarePart(
   }
   const config = { ...mod.loadConfig(env), ...overrides };
   try {
-    const middleware = await mod.startMiddleware(config, { listen: false });
+    const middleware = await mod.startMiddleware(config, { listen: false, connect: link.connect });
     const storage = config.influxUrl
       ? `InfluxDB at ${String(config.influxUrl)}${influx ? ` (local influxd, data in ${path.relative(REPO_ROOT, LOCAL_INFLUX_DATA)})` : ''}`
       : 'NONE: no INFLUX_URL and no local influxd could be started, so nothing is stored';

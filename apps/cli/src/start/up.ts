@@ -1,13 +1,23 @@
 /**
- * `armtwin up` (what `npm start` runs): the embedded broker, ONE HTTP server (the HUD's files,
- * MQTT over WebSockets at /mqtt, the middleware under /api), the simulated arm, and the
- * middleware with its storage, each as far as it exists. `stop()` takes them down in order:
- * the sim says offline, the middleware flushes, influxd stops, the broker and server close.
+ * `armtwin up` (what `npm start` runs): the embedded broker, ONE HTTP(S) server (the HUD's
+ * files, MQTT over WebSockets at /mqtt, the middleware under /api), the simulated arm, and the
+ * middleware with its storage, each as far as it exists. The arm and the middleware connect to
+ * the broker in-process (no socket, no password) with the device and middleware roles.
+ * `stop()` takes them down in order: the sim says offline, the middleware flushes, influxd
+ * stops, the broker and server close.
+ *
+ * Security (SECURITY.md): without a users file this is the anonymous local demo and the broker
+ * refuses any non-loopback host. With one, every MQTT client logs in, and /api (but /healthz)
+ * needs either the API token as a bearer token or a user's name and password (HTTP Basic).
  */
+import { randomBytes } from 'node:crypto';
 import http from 'node:http';
-import mqtt from 'mqtt';
-import { startBroker, type Broker } from '../broker/broker.ts';
+import https from 'node:https';
+import type { Principal } from '../auth/roles.ts';
+import type { Users } from '../auth/users.ts';
+import { startBroker, type Broker, type BrokerTls } from '../broker/broker.ts';
 import { simWill, startMqttSim, type MqttSim } from '../sim/mqtt-sim.ts';
+import { DEFAULT_PROFILE, loadSimProfile } from '../sim/profile.ts';
 import { ensureWebBuild, startMiddlewarePart, WEB_DIST, type StartedMiddleware } from './parts.ts';
 import { staticFiles } from './static-files.ts';
 
@@ -22,6 +32,11 @@ export interface UpOptions {
   /** The simulated arm's id and state rate. */
   armId: string;
   rate: number;
+  /**
+   * The simulated arms and their profiles (`--arms arm1:armtwin5,arm2:track6`), all on this
+   * broker; `sim` is the first. Unset or empty: one arm, `armId`, with the default profile.
+   */
+  arms?: { id: string; profile: string }[];
   /** INFLUX_URL ('' = local influxd if possible). */
   influxUrl: string;
   /** Build the HUD if it is missing. */
@@ -30,6 +45,12 @@ export interface UpOptions {
   middleware: boolean;
   /** The environment handed to the middleware's own config loader. */
   env: Record<string, string | undefined>;
+  /** Users and roles (null = the anonymous local demo, loopback only). */
+  users: Users | null;
+  /** HTTPS/WSS and MQTTS with this certificate (null = plain). */
+  tls: BrokerTls | null;
+  /** API_TOKEN for /api ('' with users = a random one, so only log-ins reach /api). */
+  apiToken: string;
   /** Progress lines for the operator. */
   say: (msg: string) => void;
   onFirst: (kind: string, message: string) => void;
@@ -40,6 +61,8 @@ export interface Up {
   url: string;
   broker: Broker;
   sim: MqttSim;
+  /** Every simulated arm, in `arms` order. */
+  sims: MqttSim[];
   /** Resolves when the middleware (if any) is up or has failed to start. */
   middlewareReady: Promise<StartedMiddleware | null>;
   stop(): Promise<void>;
@@ -52,12 +75,19 @@ const MIDDLEWARE_MISSING = JSON.stringify({
 });
 
 export async function startUp(o: UpOptions): Promise<Up> {
+  const armSpecs = o.arms?.length ? o.arms : [{ id: o.armId, profile: DEFAULT_PROFILE }];
+  const profiles = armSpecs.map((a) => loadSimProfile(a.profile)); // a bad profile fails here, before anything starts
   const hasWeb = o.buildWeb ? ensureWebBuild(o.say) : false;
   const broker = await startBroker({
     host: o.host,
     port: o.mqttPort,
     fallbackToFreePort: o.mqttPortFallback,
+    users: o.users,
+    tls: o.tls,
+    onDenied: (what, detail) =>
+      o.onFirst(`denied:${what}`, `${what} refused ${JSON.stringify(detail)}`),
   });
+  const apiToken = o.apiToken || (o.users ? randomBytes(32).toString('base64url') : '');
   if (broker.fellBack)
     o.say(`broker: port ${o.mqttPort} is taken; MQTT/TCP on ${broker.port} instead`);
 
@@ -66,8 +96,10 @@ export async function startUp(o: UpOptions): Promise<Up> {
     WEB_DIST,
     'The HUD is not built: run `npm run build -w @armtwin/web`.\n',
   );
-  const server = http.createServer((req, res) => {
+  const onRequest = (req: http.IncomingMessage, res: http.ServerResponse) => {
     if (req.url === '/api' || req.url?.startsWith('/api/')) {
+      if (req.url === '/api/whoami') return whoami(req, res, o.users);
+      if (o.users) basicToBearer(req, o.users, apiToken);
       if (mw?.middleware.handler(req, res)) return;
       res.writeHead(mw ? 404 : 503, {
         'content-type': 'application/json',
@@ -77,7 +109,10 @@ export async function startUp(o: UpOptions): Promise<Up> {
       return;
     }
     files(req, res);
-  });
+  };
+  const server = o.tls
+    ? https.createServer({ ...o.tls, minVersion: 'TLSv1.2' }, onRequest)
+    : http.createServer(onRequest);
   broker.attach(server);
   try {
     await new Promise<void>((resolve, reject) => {
@@ -93,18 +128,41 @@ export async function startUp(o: UpOptions): Promise<Up> {
   const address = server.address();
   const httpPort = typeof address === 'object' && address ? address.port : o.httpPort;
   const shownHost = o.host === '0.0.0.0' || o.host === '::' ? 'localhost' : o.host;
-  const url = `http://${shownHost}:${httpPort}/`;
+  const url = `${o.tls ? 'https' : 'http'}://${shownHost}:${httpPort}/`;
 
-  const client = mqtt.connect(broker.url, {
-    clientId: `armtwin-sim-${o.armId}`,
-    will: simWill(o.armId),
-    reconnectPeriod: 1000,
-    queueQoSZero: false,
+  const sims = armSpecs.map(({ id }, k) => {
+    const client = broker.connectInProcess(
+      { name: `sim-${id}`, role: 'device', arm: id },
+      {
+        clientId: `armtwin-sim-${id}`,
+        will: simWill(id),
+        reconnectPeriod: 1000,
+        queueQoSZero: false,
+      },
+    );
+    const profile = profiles[k]!;
+    return startMqttSim(client, {
+      armId: id,
+      rate: o.rate,
+      onFirst: o.onFirst,
+      model: profile.model,
+      profile,
+    });
   });
-  const sim = startMqttSim(client, { armId: o.armId, rate: o.rate, onFirst: o.onFirst });
+  const sim = sims[0]!;
 
   const middlewareReady = o.middleware
-    ? startMiddlewarePart(broker.url, o.influxUrl, o.env, o.say).then(
+    ? startMiddlewarePart(
+        {
+          mqttUrl: broker.url,
+          connect: (_url, opts) =>
+            broker.connectInProcess({ name: 'middleware', role: 'middleware' }, opts),
+          apiToken,
+        },
+        o.influxUrl,
+        o.env,
+        o.say,
+      ).then(
         (started) => {
           mw = started;
           if (started) o.say(`middleware: running; storage: ${started.storage}`);
@@ -121,7 +179,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
   let stopping: Promise<void> | undefined;
   const stop = () =>
     (stopping ??= (async () => {
-      await sim.stop();
+      await Promise.all(sims.map((s) => s.stop()));
       const started = await middlewareReady;
       if (started) {
         await started.middleware
@@ -137,5 +195,41 @@ export async function startUp(o: UpOptions): Promise<Up> {
       await closed;
     })());
 
-  return { url, broker, sim, middlewareReady, stop };
+  return { url, broker, sim, sims, middlewareReady, stop };
+}
+
+/**
+ * HTTP Basic with a user's name and password (any role: a viewer may read the history) is
+ * turned into the bearer token the middleware checks; anything else reaches it unchanged.
+ */
+function basicToBearer(req: http.IncomingMessage, users: Users, token: string): void {
+  if (!/^Basic /i.test(req.headers.authorization ?? '')) return;
+  if (basicUser(req, users)) req.headers.authorization = `Bearer ${token}`;
+  else delete req.headers.authorization;
+}
+
+/** The principal named by an HTTP Basic header, or null. */
+function basicUser(req: http.IncomingMessage, users: Users): Principal | null {
+  const m = /^Basic +([A-Za-z0-9+/=]+) *$/i.exec(req.headers.authorization ?? '');
+  if (!m) return null;
+  const text = Buffer.from(m[1]!, 'base64').toString('utf8');
+  const colon = text.indexOf(':');
+  return colon < 0 ? null : users.authenticate(text.slice(0, colon), text.slice(colon + 1));
+}
+
+/**
+ * `GET /api/whoami`, for the HUD: `{anonymous: true, role: 'operator'}` in the local demo;
+ * with a users file, the role of the HTTP Basic credentials (`{name, role, arm?}`) or 401.
+ * The broker enforces the role either way; this only lets the page say why a control is off.
+ */
+function whoami(req: http.IncomingMessage, res: http.ServerResponse, users: Users | null): void {
+  const p: (Principal & { anonymous?: boolean }) | null = users
+    ? basicUser(req, users)
+    : { name: '', role: 'operator', anonymous: true };
+  const headers = { 'content-type': 'application/json', 'cache-control': 'no-store' };
+  if (!p) {
+    res.writeHead(401, headers).end(JSON.stringify({ error: 'log in: HTTP Basic with a user' }));
+    return;
+  }
+  res.writeHead(200, headers).end(JSON.stringify(p));
 }

@@ -1,0 +1,103 @@
+/**
+ * Who may do what on the broker: the four roles of issue 7 as topic rules, and the matching
+ * used by the embedded broker's hooks. The same table is written out as Mosquitto's ACL file
+ * (./mosquitto-config.ts), so both brokers enforce one policy. Pure, no I/O.
+ *
+ * `{arm}` in a rule is the device user's own arm id; `+` is any arm.
+ */
+export const ROLES = ['viewer', 'operator', 'device', 'middleware'] as const;
+export type Role = (typeof ROLES)[number];
+
+export interface RoleRules {
+  /** Topic filters the role may subscribe to (and receive messages from). */
+  read: readonly string[];
+  /** Topics the role may publish to (including its last will). */
+  write: readonly string[];
+}
+
+const VIEWER_READ = [
+  'arm/+/status',
+  'arm/+/online',
+  'arm/+/operator',
+  'arm/+/sim/faults',
+  'arm/+/profile',
+  'arm/+/feedback',
+] as const;
+
+export const ROLE_RULES: Record<Role, RoleRules> = {
+  viewer: { read: VIEWER_READ, write: [] },
+  operator: {
+    read: VIEWER_READ,
+    write: ['arm/+/control', 'arm/+/operator', 'arm/+/request', 'arm/+/sim'],
+  },
+  device: {
+    read: ['arm/{arm}/control', 'arm/{arm}/operator', 'arm/{arm}/sim', 'arm/{arm}/request'],
+    write: [
+      'arm/{arm}/status',
+      'arm/{arm}/online',
+      'arm/{arm}/sim/faults',
+      'arm/{arm}/profile',
+      'arm/{arm}/feedback',
+    ],
+  },
+  middleware: { read: ['arm/+/status', 'arm/+/control'], write: [] },
+};
+
+/** What a connected client is. `arm` is set for (and only for) devices. */
+export interface Principal {
+  name: string;
+  role: Role;
+  arm?: string;
+}
+
+/** The rules of one principal, with `{arm}` filled in. */
+export function rulesFor(p: Principal): RoleRules {
+  const r = ROLE_RULES[p.role];
+  const fill = (t: string) => t.replaceAll('{arm}', p.arm ?? '');
+  return { read: r.read.map(fill), write: r.write.map(fill) };
+}
+
+/** MQTT topic matching: does the topic name match the filter (`+`, `#`)? */
+export function topicMatches(filter: string, topic: string): boolean {
+  if (topic.startsWith('$') !== filter.startsWith('$')) return false;
+  const f = filter.split('/');
+  const t = topic.split('/');
+  for (let i = 0; i < f.length; i++) {
+    if (f[i] === '#') return true;
+    if (i >= t.length) return false;
+    if (f[i] !== '+' && f[i] !== t[i]) return false;
+  }
+  return f.length === t.length;
+}
+
+/**
+ * Is every topic the subscription `sub` can match also matched by the rule `rule`? So a rule
+ * `arm/+/status` admits `arm/+/status` and `arm/arm1/status`, never `arm/#` or `#`.
+ */
+export function filterWithin(sub: string, rule: string): boolean {
+  const s = sub.split('/');
+  const r = rule.split('/');
+  for (let i = 0; i < r.length; i++) {
+    if (r[i] === '#') return true;
+    if (i >= s.length) return false;
+    if (s[i] === '#') return false;
+    if (r[i] === '+') continue;
+    if (s[i] !== r[i]) return false;
+  }
+  return s.length === r.length;
+}
+
+/** `$share/<group>/<filter>` → `<filter>` (the group is no one's business but the broker's). */
+export function stripShare(filter: string): string {
+  const m = /^\$share\/[^/+#]+\/(.+)$/.exec(filter);
+  return m ? m[1]! : filter;
+}
+
+export function canPublish(p: Principal, topic: string): boolean {
+  return rulesFor(p).write.some((rule) => topicMatches(rule, topic));
+}
+
+export function canSubscribe(p: Principal, filter: string): boolean {
+  const f = stripShare(filter);
+  return rulesFor(p).read.some((rule) => filterWithin(f, rule));
+}
