@@ -284,11 +284,12 @@ test.describe('interpolation at 5 Hz', () => {
       description: `${frames.length} frames, mean ${mean.toFixed(1)}°/s, max ${Math.max(...speeds).toFixed(1)}°/s, still ${still}`,
     });
     // 20°/s reported every 200 ms. Drawn as reported, most frames would stand still and the
-    // others would jump 4° at once (several times the mean speed). Interpolated, nearly every
-    // frame moves, at about the mean speed.
+    // others would jump 4° at once (about 12× the mean speed, measured with interpolation
+    // switched off). Interpolated, nearly every frame moves, at about the mean speed. The
+    // bound on the fastest frame leaves room for a loaded machine's uneven frame times.
     expect(mean).toBeGreaterThan(5);
     expect(still / speeds.length).toBeLessThan(0.3);
-    expect(Math.max(...speeds)).toBeLessThan(2.2 * mean);
+    expect(Math.max(...speeds)).toBeLessThan(4 * mean);
   });
 });
 

@@ -13,6 +13,8 @@ import { Viewer } from './scene/Viewer.ts';
 import { MODEL_URL } from './model/armModel.ts';
 import { HudContext, type Hud } from './hud/HudContext.ts';
 import { App } from './hud/App.tsx';
+import { ReplayPlayer } from './replay/ReplayPlayer.ts';
+import { historyProbe } from './panels/History/probe.ts';
 import 'uplot/dist/uPlot.min.css';
 import './styles.css';
 
@@ -26,10 +28,12 @@ const viewEl = document.getElementById('view')!;
 const hudEl = document.getElementById('hud')!;
 const messageEl = document.getElementById('message')!;
 
-const viewer = new Viewer(viewEl, store, target);
+const replay = new ReplayPlayer(store.opts.arm.servos.map((s) => s.polarity));
+const viewer = new Viewer(viewEl, store, target, replay);
 const hud: Hud = {
   store,
   target,
+  replay,
   settings,
   link: new ArmLink(store, settings, connect),
   reconnect(next: HudSettings) {
@@ -51,6 +55,8 @@ declare global {
       viewer: Viewer;
       readonly link: ArmLink;
       ready: boolean;
+      replay: ReplayPlayer;
+      history: typeof historyProbe;
     };
   }
 }
@@ -62,6 +68,8 @@ window.__armtwin = {
     return hud.link;
   },
   ready: false,
+  replay,
+  history: historyProbe,
 };
 
 const root = createRoot(hudEl);

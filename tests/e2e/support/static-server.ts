@@ -7,6 +7,7 @@ import fs from 'node:fs';
 import http from 'node:http';
 import path from 'node:path';
 import type { AddressInfo } from 'node:net';
+import { proxyRequest } from './api-proxy.ts';
 
 const TYPES: Record<string, string> = {
   '.html': 'text/html; charset=utf-8',
@@ -23,9 +24,17 @@ export interface StaticServer {
   close(): Promise<void>;
 }
 
-export async function serveStatic(root: string): Promise<StaticServer> {
+/** `proxy`: requests under `prefix` (e.g. `/api/`) go to `target` (the middleware), as `npm start` does. */
+export async function serveStatic(
+  root: string,
+  opts: { proxy?: { prefix: string; target: string } } = {},
+): Promise<StaticServer> {
   const base = path.resolve(root);
   const server = http.createServer((req, res) => {
+    if (opts.proxy && (req.url ?? '').startsWith(opts.proxy.prefix)) {
+      proxyRequest(req, res, opts.proxy.target);
+      return;
+    }
     const pathname = decodeURIComponent(new URL(req.url ?? '/', 'http://x').pathname);
     const file = path.resolve(
       base,

@@ -6,7 +6,8 @@
 import { z } from 'zod';
 import { parseTime } from './time.ts';
 
-export const FIELDS = ['pwm', 'angle', 'temp', 'volt'] as const;
+/** `command` = the commanded angle (measurement `command`, field `angle`), for the HUD's chart. */
+export const FIELDS = ['pwm', 'angle', 'temp', 'volt', 'command'] as const;
 export type Field = (typeof FIELDS)[number];
 export type Endpoint = 'series' | 'alarms' | 'tracking' | 'pose';
 

@@ -49,9 +49,13 @@ function head(
   |> filter(fn: (r) => r._measurement == ${measurement} and r.arm == ${arm} and (${fieldExpr})${idClause(ids)})`;
 }
 
-/** Mean of `field` per window, one table per servo id: `_time` (window start), `_value`, `id`. */
+/**
+ * Mean of `field` per window, one table per servo id: `_time` (window start), `_value`, `id`.
+ * `command` reads the commanded `angle` (measurement `command`) instead of the servo's.
+ */
 export function seriesQuery(bucket: string, p: HistoryParams, every: string): ParameterizedQuery {
-  return flux`${head(bucket, 'servo', p.arm, [p.field], p.ids, p.startMs, p.stopMs)}
+  const [measurement, field] = p.field === 'command' ? ['command', 'angle'] : ['servo', p.field];
+  return flux`${head(bucket, measurement, p.arm, [field], p.ids, p.startMs, p.stopMs)}
   |> aggregateWindow(every: ${fluxDuration(every)}, fn: mean, createEmpty: false, timeSrc: "_start")
   |> keep(columns: ["_time", "_value", "id"])`;
 }

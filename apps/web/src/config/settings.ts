@@ -23,6 +23,8 @@ export interface HudSettings {
   kmsMoveMs: number;
   /** How often to send `$PNG`, ms. */
   pingIntervalMs: number;
+  /** Base URL of the middleware's HTTP API (`…/history/series` etc.); `npm start` serves `/api`. */
+  apiBase: string;
 }
 
 /** Same-origin broker URL: ws(s)://<host>/mqtt. */
@@ -41,6 +43,7 @@ export function defaultSettings(loc: { protocol: string; host: string }): HudSet
     jogIntervalMs: 50,
     kmsMoveMs: 1500,
     pingIntervalMs: 1000,
+    apiBase: `${loc.protocol}//${loc.host}/api`,
   };
 }
 
@@ -50,12 +53,14 @@ const NUMBER_KEYS = {
   kmsms: 'kmsMoveMs',
 } as const;
 
-/** Applies query parameters (broker, arm, user, password, alpha, jogms, kmsms) over `base`. */
+/** Applies query parameters (broker, api, arm, user, password, alpha, jogms, kmsms) over `base`. */
 export function applyQuery(base: HudSettings, search: string): HudSettings {
   const q = new URLSearchParams(search);
   const out = { ...base };
   const broker = q.get('broker');
   if (broker && /^wss?:\/\//.test(broker)) out.brokerUrl = broker;
+  const api = q.get('api');
+  if (api && /^(https?:\/\/|\/)\S*$/.test(api)) out.apiBase = api.replace(/\/+$/, '');
   const arm = q.get('arm');
   if (arm && isValidArmId(arm)) out.armId = arm;
   const user = q.get('user');

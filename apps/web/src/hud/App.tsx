@@ -6,6 +6,7 @@ import { ConnectionPanel } from '../panels/Connection/ConnectionPanel.tsx';
 import { HealthPanel } from '../panels/Health/HealthPanel.tsx';
 import { CartesianPanel } from '../panels/Cartesian/CartesianPanel.tsx';
 import { GhostPanel } from '../panels/Ghost/GhostPanel.tsx';
+import { HistoryPanel } from '../panels/History/HistoryPanel.tsx';
 
 export function App() {
   return (
@@ -14,6 +15,9 @@ export function App() {
         <JogPanel />
         <CartesianPanel />
         <GhostPanel />
+      </div>
+      <div className="column center">
+        <HistoryPanel />
       </div>
       <div className="column right">
         <EmergencyStopButton />

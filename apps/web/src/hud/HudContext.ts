@@ -4,6 +4,7 @@ import type { ArmStore } from '../store/ArmStore.ts';
 import type { TargetPreview } from '../store/TargetPreview.ts';
 import type { ArmLink } from '../mqtt/ArmLink.ts';
 import type { HudSettings } from '../config/settings.ts';
+import type { ReplayPlayer } from '../replay/ReplayPlayer.ts';
 
 export interface Hud {
   store: ArmStore;
@@ -11,6 +12,8 @@ export interface Hud {
   /** The current MQTT link (replaced when the Connection panel reconnects). */
   link: ArmLink;
   settings: HudSettings;
+  /** The History panel's replay, drawn as the sibling arm by the Viewer. */
+  replay: ReplayPlayer;
   reconnect(settings: HudSettings): void;
 }
 

@@ -14,6 +14,8 @@ import { SERVO_JOINTS, jointValueFromAngle } from '../model/armModel.ts';
 import { RobotModelLoader, solidMaterial } from './loadRobot.ts';
 import { createStage, ghostMaterial, type Stage } from './stage.ts';
 import { ResolutionGovernor } from './ResolutionGovernor.ts';
+import type { ReplayPlayer } from '../replay/ReplayPlayer.ts';
+import { ReplaySibling, siblingMaterial } from '../replay/ReplaySibling.ts';
 
 const MM = 0.001;
 const GHOST_HIDDEN_LINKS = ['base_link', 'turret'];
@@ -30,6 +32,8 @@ export class Viewer {
   private ghost: URDFRobot | null = null;
   private robotJoints: (URDFJoint | undefined)[] = [];
   private ghostJoints: (URDFJoint | undefined)[] = [];
+  /** The replay's sibling arm (History panel), when a ReplayPlayer is given. */
+  private sibling: ReplaySibling | null = null;
   private readonly ghostAngles: Float64Array;
   private needsRender = true;
   private frame = 0;
@@ -58,6 +62,7 @@ export class Viewer {
     private readonly container: HTMLElement,
     private readonly store: ArmStore,
     private readonly target: TargetPreview,
+    private readonly replay: ReplayPlayer | null = null,
   ) {
     this.ghostAngles = new Float64Array(store.servoCount);
     this.renderer = new THREE.WebGLRenderer({ antialias: true });
@@ -101,6 +106,10 @@ export class Viewer {
     this.robotJoints = SERVO_JOINTS.map((n) => robot.joints[n]);
     this.ghostJoints = SERVO_JOINTS.map((n) => ghost.joints[n]);
     this.stage.world.add(robot, ghost);
+    if (this.replay) {
+      this.sibling = new ReplaySibling(await loader.build(siblingMaterial), this.replay);
+      this.stage.world.add(this.sibling.robot);
+    }
   }
 
   /** Attaches the canvas and starts the loop (call after `load`). */
@@ -131,6 +140,7 @@ export class Viewer {
     if (this.store.sample(now))
       this.needsRender = this.pose(this.robotJoints, this.store.rendered) || this.needsRender;
     this.updateGhost();
+    if (this.sibling?.update(now)) this.needsRender = true;
     this.updateTarget();
     if (this.warmupFrames > 0) {
       this.warmupFrames--;

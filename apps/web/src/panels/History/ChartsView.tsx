@@ -1,0 +1,170 @@
+/**
+ * The charts tab: temperature per servo (60 / 75 °C lines), supply voltage per servo (6.5 V
+ * line), and the chosen joint's actual against commanded angle. Each with its CSV export;
+ * a view that failed shows its error text instead.
+ */
+import { useMemo } from 'react';
+import { SERVO_COLOURS, TEMP_LINES, VOLT_LINES } from '../Health/constants.ts';
+import { alignSeries, holdUntil, type Aligned } from './align.ts';
+import { csvFileName, seriesCsv } from './csv.ts';
+import { downloadText } from './download.ts';
+import { timeTickFormat, type ChartSpec } from './historyChart.ts';
+import type { AngleViews, OverviewViews } from './loadHistory.ts';
+import { SeriesChart } from './SeriesChart.tsx';
+import type { Loaded, SeriesAnswer } from './types.ts';
+import { ViewError, ViewHeader } from './ViewHeader.tsx';
+
+const colourOf = (id: string) => SERVO_COLOURS[Number(id) % SERVO_COLOURS.length]!;
+const CHART_HEIGHT = 120;
+
+function perServo(answer: SeriesAnswer, name: (id: string) => string): Aligned {
+  return alignSeries(
+    answer.series.map((s) => ({ label: name(s.id), times: s.times, values: s.values })),
+  );
+}
+
+function specFor(answer: SeriesAnswer, base: Omit<ChartSpec, 'colours' | 'height'>): ChartSpec {
+  return {
+    ...base,
+    colours: answer.series.map((s) => colourOf(s.id)),
+    height: CHART_HEIGHT,
+    tick: timeTickFormat(answer.stop - answer.start),
+  };
+}
+
+function ServoSeriesView(props: {
+  name: 'temp' | 'volt';
+  title: string;
+  view: Loaded<SeriesAnswer>;
+  spec: Omit<ChartSpec, 'colours' | 'height'>;
+  servoName: (id: string) => string;
+  arm: string;
+}) {
+  const { view, servoName, spec } = props;
+  const shown = useMemo(
+    () =>
+      view.ok ? { aligned: perServo(view.data, servoName), spec: specFor(view.data, spec) } : null,
+    [view, servoName, spec],
+  );
+  const csv =
+    shown && view.ok
+      ? () =>
+          downloadText(
+            csvFileName(props.arm, props.name, view.data.start),
+            seriesCsv(shown.aligned),
+          )
+      : null;
+  return (
+    <section className="history-view" aria-label={props.title}>
+      <ViewHeader title={props.title} csvLabel={`Download ${props.title} CSV`} onCsv={csv} />
+      {!view.ok && <ViewError error={view.error} />}
+      {shown && (
+        <SeriesChart
+          name={props.name}
+          title={props.title}
+          aligned={shown.aligned}
+          spec={shown.spec}
+        />
+      )}
+    </section>
+  );
+}
+
+const TEMP_SPEC = { unit: '°', include: [20, 80], thresholds: TEMP_LINES } as const;
+const VOLT_SPEC = { unit: 'V', include: [6, 8], thresholds: VOLT_LINES } as const;
+const ANGLE_COLOURS = ['#38bdf8', '#fbbf24'];
+
+export function ChartsView(props: {
+  arm: string;
+  overview: OverviewViews;
+  angles: AngleViews | null;
+  servoIds: string[];
+  joint: string;
+  onJoint: (id: string) => void;
+  servoName: (id: string) => string;
+}) {
+  const { overview, angles, servoName } = props;
+  const angle = useMemo(() => {
+    if (!angles?.actual.ok || !angles.commanded.ok) return null;
+    const name = servoName(angles.id);
+    const pick = (a: SeriesAnswer) =>
+      a.series.find((s) => s.id === angles.id) ?? { times: [], values: [] };
+    const actual = pick(angles.actual.data);
+    // The command in force is drawn up to the last actual sample (a step, held).
+    const commanded = holdUntil(
+      { label: `commanded ${name}`, ...pick(angles.commanded.data) },
+      actual.times.at(-1) ?? NaN,
+    );
+    const aligned = alignSeries([{ label: `actual ${name}`, ...actual }, commanded]);
+    const spec: ChartSpec = {
+      unit: '°',
+      colours: ANGLE_COLOURS,
+      stepped: [false, true],
+      height: CHART_HEIGHT,
+      tick: timeTickFormat(angles.range.stop - angles.range.start),
+    };
+    return { aligned, spec };
+  }, [angles, servoName]);
+  const angleError =
+    angles &&
+    (!angles.actual.ok
+      ? angles.actual.error
+      : !angles.commanded.ok
+        ? angles.commanded.error
+        : null);
+  const angleCsv = angle
+    ? () =>
+        downloadText(
+          csvFileName(props.arm, `angle-${angles!.id}`, overview.range.start),
+          seriesCsv(angle.aligned),
+        )
+    : null;
+
+  return (
+    <div className="history-charts">
+      <ServoSeriesView
+        name="temp"
+        title="Temperature"
+        view={overview.temp}
+        spec={TEMP_SPEC}
+        servoName={servoName}
+        arm={props.arm}
+      />
+      <ServoSeriesView
+        name="volt"
+        title="Supply voltage"
+        view={overview.volt}
+        spec={VOLT_SPEC}
+        servoName={servoName}
+        arm={props.arm}
+      />
+      <section className="history-view" aria-label="Commanded and actual angle">
+        <ViewHeader
+          title="Angle: actual and commanded"
+          csvLabel="Download angle CSV"
+          onCsv={angleCsv}
+        />
+        <label className="history-joint">
+          Joint{' '}
+          <select value={props.joint} onChange={(e) => props.onJoint(e.currentTarget.value)}>
+            {props.servoIds.map((id) => (
+              <option key={id} value={id}>
+                {servoName(id)} ({id})
+              </option>
+            ))}
+          </select>
+        </label>
+        {angleError && <ViewError error={angleError} />}
+        {!angles && <p className="dim">Loading…</p>}
+        {angle && (
+          <SeriesChart
+            name="angle"
+            title={`Actual and commanded angle of ${servoName(props.joint)}`}
+            aligned={angle.aligned}
+            spec={angle.spec}
+          />
+        )}
+      </section>
+    </div>
+  );
+}

@@ -1,0 +1,14 @@
+/**
+ * What the History panel's charts show, for the end-to-end tests and the console
+ * (`window.__armtwin.history`): per chart, the series labels and their point counts.
+ * Written when a chart is drawn; read-only by convention.
+ */
+export interface ChartProbe {
+  labels: string[];
+  /** Non-null points per series. */
+  points: number[];
+  /** Largest value per series (NaN when it has none). */
+  max: number[];
+}
+
+export const historyProbe: { charts: Record<string, ChartProbe> } = { charts: {} };

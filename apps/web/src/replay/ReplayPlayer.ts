@@ -1,0 +1,92 @@
+/**
+ * The replay as a plain object: the loaded pose record, the clock, and the sibling arm's
+ * current servo angles. The frame loop calls `update(now)` (no React, no allocation); the
+ * panel calls `load`/`play`/`pause`/`seek`/`setSpeed` and samples the position a few times a
+ * second. Exposed as `window.__armtwin.replay` (read-only by convention).
+ */
+import { poseAt, slotsFor, type PoseRecord } from './poseAt.ts';
+import { ReplayClock, type ReplaySpeed } from './ReplayClock.ts';
+
+export interface ReplayRecord extends PoseRecord {
+  ids: string[];
+  /** The selected range, epoch ms: what the scrubber spans. */
+  start: number;
+  stop: number;
+}
+
+export class ReplayPlayer {
+  readonly clock = new ReplayClock();
+  /** The sibling's servo angles now, degrees (NaN = no record for that servo yet). */
+  readonly angles: Float64Array;
+  record: ReplayRecord | null = null;
+  /** Whether the sibling arm is shown. */
+  active = false;
+  /** Frame index drawn now (−1 before the first frame). */
+  frame = -1;
+  /** Bumped whenever `angles` is recomputed (for tests and the panel). */
+  version = 0;
+  private slots: Int16Array = new Int16Array(0);
+  private drawnAt = NaN;
+  private dirty = false;
+
+  /**
+   * `polarities`: each servo's mounting polarity k (§2). The record's `angle` is the pulse's
+   * angle at k = 1, so the servo angle the model needs is k × that.
+   */
+  constructor(private readonly polarities: readonly number[]) {
+    this.angles = new Float64Array(polarities.length).fill(NaN);
+  }
+
+  /** Shows the sibling at the record's start, paused. */
+  load(record: ReplayRecord): void {
+    this.record = record;
+    this.slots = slotsFor(record.ids, this.angles.length);
+    this.angles.fill(NaN);
+    this.clock.load(record.start, record.stop);
+    this.active = true;
+    this.dirty = true;
+  }
+
+  /** Hides the sibling and forgets the record. */
+  close(): void {
+    this.clock.pause();
+    this.record = null;
+    this.active = false;
+    this.dirty = true;
+  }
+
+  play(): void {
+    this.clock.play();
+  }
+
+  pause(): void {
+    this.clock.pause();
+  }
+
+  seek(t: number): void {
+    this.clock.seek(t);
+    this.dirty = true;
+  }
+
+  setSpeed(speed: ReplaySpeed): void {
+    this.clock.setSpeed(speed);
+  }
+
+  /** Frame loop: advances the clock and recomputes the angles; true if they may have changed. */
+  update(now: number): boolean {
+    const rec = this.record;
+    if (!rec) {
+      const was = this.dirty;
+      this.dirty = false;
+      return was;
+    }
+    const t = this.clock.tick(now);
+    if (!this.dirty && t === this.drawnAt) return false;
+    this.dirty = false;
+    this.drawnAt = t;
+    this.frame = poseAt(rec, this.slots, t, this.angles);
+    for (let i = 0; i < this.angles.length; i++) this.angles[i]! *= this.polarities[i] ?? 1;
+    this.version++;
+    return true;
+  }
+}
