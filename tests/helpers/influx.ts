@@ -9,6 +9,7 @@ import path from 'node:path';
 import { LOOPBACK } from './ports.ts';
 import { REPO_ROOT } from './files.ts';
 import { startService, type ServiceProcess } from './process.ts';
+import { influxdConf } from '../../apps/middleware/src/local-influx.ts';
 
 /** The influxd that install-deps.sh builds (resolved from the repo root, not the cwd). */
 export const INFLUXD = path.join(REPO_ROOT, '.tools', 'bin', 'influxd');
@@ -53,37 +54,6 @@ export interface InfluxService {
   dispose(opts?: { keepLogs?: boolean }): Promise<string | undefined>;
 }
 
-function influxConf(dir: string, httpPort: number, rpcPort: number, extra: string): string {
-  return `# written by tests/helpers/influx.ts
-reporting-disabled = true
-bind-address = "${LOOPBACK}:${rpcPort}"
-
-[meta]
-  dir = "${dir}/meta"
-
-[data]
-  dir = "${dir}/data"
-  wal-dir = "${dir}/wal"
-  query-log-enabled = false
-
-[http]
-  enabled = true
-  bind-address = "${LOOPBACK}:${httpPort}"
-  auth-enabled = false
-  log-enabled = false
-  flux-enabled = true
-
-[monitor]
-  store-enabled = false
-
-[continuous_queries]
-  enabled = false
-
-[logging]
-  level = "info"
-${extra}
-`;
-}
 
 async function ping(url: string): Promise<boolean> {
   const res = await fetch(`${url}/ping`, { signal: AbortSignal.timeout(1000) });
@@ -108,7 +78,7 @@ export async function startInflux(opts: InfluxOptions = {}): Promise<InfluxServi
     const [httpPort = 0, rpcPort = 0] = ports;
     url = `http://${LOOPBACK}:${httpPort}`;
     const confFile = path.join(dir, 'influxd.conf');
-    fs.writeFileSync(confFile, influxConf(dir, httpPort, rpcPort, o.extraConfig));
+    fs.writeFileSync(confFile, influxdConf(dir, httpPort, rpcPort, o.extraConfig));
     const pingUrl = url;
     return {
       name: 'influxd',

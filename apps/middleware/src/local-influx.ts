@@ -67,8 +67,13 @@ export function buildInfluxd(log: (m: string) => void): string | null {
   return fs.existsSync(LOCAL_INFLUXD) ? null : 'go install finished but produced no influxd';
 }
 
-const conf = (dir: string, port: number) => `reporting-disabled = true
-bind-address = "127.0.0.1:${port + 2}"
+/**
+ * The influxd 1.8 configuration armtwin runs with (here and in the test helper): Flux on,
+ * usage reporting off, loopback only, everything under `dir`.
+ */
+export function influxdConf(dir: string, httpPort: number, rpcPort: number, extra = ''): string {
+  return `reporting-disabled = true
+bind-address = "127.0.0.1:${rpcPort}"
 [meta]
   dir = "${dir}/meta"
 [data]
@@ -76,13 +81,18 @@ bind-address = "127.0.0.1:${port + 2}"
   wal-dir = "${dir}/wal"
   query-log-enabled = false
 [http]
-  bind-address = "127.0.0.1:${port}"
+  enabled = true
+  bind-address = "127.0.0.1:${httpPort}"
   auth-enabled = false
   log-enabled = false
   flux-enabled = true
 [monitor]
   store-enabled = false
+[continuous_queries]
+  enabled = false
+${extra}
 `;
+}
 
 /**
  * Starts the local influxd; null when impossible, after telling `log` why (the caller
@@ -99,7 +109,7 @@ export async function startLocalInflux(options: LocalInfluxOptions): Promise<Loc
   const dataDir = path.resolve(o.dataDir);
   fs.mkdirSync(dataDir, { recursive: true });
   const confFile = path.join(dataDir, 'influxd.conf');
-  fs.writeFileSync(confFile, conf(dataDir, o.port));
+  fs.writeFileSync(confFile, influxdConf(dataDir, o.port, o.port + 2));
   const logFd = fs.openSync(path.join(dataDir, 'influxd.log'), 'a');
   const child: ChildProcess = spawn(LOCAL_INFLUXD, ['run', '-config', confFile], {
     stdio: ['ignore', logFd, logFd],
