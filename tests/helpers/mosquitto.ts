@@ -65,6 +65,7 @@ function mosquittoConf(dir: string, port: number, wsPort: number, extra: string[
     ...(process.getuid?.() === 0 ? ['user root'] : []),
     'per_listener_settings false',
     'allow_anonymous true',
+    'set_tcp_nodelay true',
     `listener ${port} ${LOOPBACK}`,
     'protocol mqtt',
     `listener ${wsPort} ${LOOPBACK}`,

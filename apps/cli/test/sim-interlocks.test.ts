@@ -37,15 +37,22 @@ describe('TokenBucket', () => {
 describe('rate limit (50 commands/s, burst 100)', () => {
   test('over the burst: dropped, never queued, one $ERR:rate limit! per run', () => {
     const { clock, runner, replies } = harness();
-    for (let i = 0; i < 150; i++) runner.receive(`$PNG:${i}!`);
+    for (let i = 0; i < 150; i++) runner.receive('#000PRAD!');
     const r = replies();
-    expect(r.filter((x) => x.startsWith('$PNG:'))).toHaveLength(100);
+    expect(r.filter((x) => x.startsWith('#000P'))).toHaveLength(100);
     expect(r.filter((x) => x === '$ERR:rate limit!')).toHaveLength(1);
     expect(runner.counters.rateLimited).toBe(50);
     clock.advance(1000); // 50 tokens back; nothing dropped comes back with them
-    runner.receive('$PNG:999!');
-    expect(replies().at(-1)).toBe('$PNG:999!');
-    expect(replies().filter((x) => x.startsWith('$PNG:'))).toHaveLength(101);
+    runner.receive('#000PRAD!');
+    expect(replies().at(-1)).toMatch(/^#000P\d{4}!$/);
+    expect(replies().filter((x) => x.startsWith('#000P'))).toHaveLength(101);
+  });
+
+  test('pings are never limited: they move nothing and measure the link', () => {
+    const { runner, replies } = harness();
+    for (let i = 0; i < 1000; i++) runner.receive(`$PNG:${i}!`);
+    expect(replies().filter((x) => x.startsWith('$PNG:'))).toHaveLength(1000);
+    expect(runner.counters.rateLimited).toBe(0);
   });
 
   test('a {…} group is one command; stops and #255PDST! are never limited', () => {

@@ -80,6 +80,8 @@ export function mosquittoConf(opts: Partial<MosquittoDeployOptions> = {}): strin
     '',
     '# Frames are short: a packet over this is refused and its sender disconnected.',
     `max_packet_size ${o.maxPacketBytes}`,
+    "# Frames are small: send them at once, not after Nagle's algorithm (~40 ms tails).",
+    'set_tcp_nodelay true',
     '# The middleware keeps a persistent session; what arrives while it restarts waits here.',
     `max_queued_messages ${o.maxQueuedMessages}`,
     'persistence true',

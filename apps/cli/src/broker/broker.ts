@@ -109,7 +109,10 @@ export async function startBroker(options: Partial<BrokerOptions> = {}): Promise
     });
     return client;
   };
-  const onSocket = (socket: net.Socket) => void handle(socket);
+  const onSocket = (socket: net.Socket) => {
+    socket.setNoDelay(true); // small frames go out at once, not after Nagle's ~40 ms
+    handle(socket);
+  };
   const tcp = o.tls
     ? tls.createServer({ cert: o.tls.cert, key: o.tls.key, minVersion: 'TLSv1.2' }, onSocket)
     : net.createServer(onSocket);

@@ -54,6 +54,8 @@ export function startGateway(
     reconnectPeriod: o.reconnectMs,
     queueQoSZero: false,
   });
+  // Frames are small: don't let Nagle's algorithm hold them back (~40 ms tails otherwise).
+  client.on('connect', () => (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true));
   const link: SerialLink = new SerialLink(
     { ...o.serial, path: o.serialPath, baudRate: o.baudRate },
     {

@@ -233,7 +233,9 @@ export class SimRunner {
     const out: Item[] = [];
     const now = this.clock.now();
     for (const it of items) {
-      const costs = ('frame' in it && it.frame.type !== 'time') || 'group' in it;
+      // Pings move nothing and measure the link: limiting them would distort the round trip.
+      const costs =
+        ('frame' in it && it.frame.type !== 'time' && it.frame.type !== 'ping') || 'group' in it;
       if (!costs || isStop(it) || isEmergencyStop(it) || this.bucket.take(now)) {
         if (costs) this.limiting = false;
         out.push(it);
