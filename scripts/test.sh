@@ -55,6 +55,9 @@ step typecheck '' npx tsc -p tsconfig.json || true
 if [ -f apps/web/tsconfig.json ]; then
   step typecheck-web '' npx tsc -p apps/web/tsconfig.json || true
 fi
+if [ -f bench/tsconfig.json ]; then
+  step typecheck-bench '' npx tsc -p bench || true
+fi
 
 step unit "$RESULTS/vitest-unit.json" vitest_project unit || true
 step integration "$RESULTS/vitest-integration.json" vitest_project integration || true

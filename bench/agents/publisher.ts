@@ -1,0 +1,48 @@
+/**
+ * The ingest load: publishes pre-built 6-servo state groups (`$TIM:t!{#000Pp!…#005Pp!}`, one
+ * per message, stamps t0, t0+1, … ms) at `rate` messages/s for `seconds`, paced against
+ * absolute time in 5 ms ticks, then disconnects cleanly and prints
+ * `{"sent":…,"wallS":…,"rate":…}`. A separate process, so the middleware's CPU is its own.
+ * Usage: publisher.ts <mqtt url> <topic> <rate> <seconds> <t0 ms> <qos>
+ */
+import mqtt from 'mqtt';
+
+const [url = '', topic = '', rateS = '100', secondsS = '5', t0S = '0', qosS = '0'] =
+  process.argv.slice(2);
+const rate = Number(rateS);
+const total = Math.max(1, Math.round(rate * Number(secondsS)));
+const t0 = Number(t0S);
+const qos = Number(qosS) === 1 ? 1 : 0;
+
+const payloads: Buffer[] = new Array(total);
+for (let k = 0; k < total; k++) {
+  let g = '';
+  for (let id = 0; id < 6; id++) g += `#00${id}P${1000 + ((k * 7 + id * 150) % 1000)}!`;
+  payloads[k] = Buffer.from(`$TIM:${t0 + k}!{${g}}`, 'latin1');
+}
+
+const client = await mqtt.connectAsync(url, {
+  clientId: `bench-pub-${process.pid}`,
+  clean: true,
+  reconnectPeriod: 0,
+});
+const start = performance.now();
+const deadline = start + Number(secondsS) * 1000 * 3 + 10_000; // bounded even when slow
+let sent = 0;
+await new Promise<void>((resolve) => {
+  const tick = () => {
+    const now = performance.now();
+    const due = Math.min(total, Math.floor(((now - start) * rate) / 1000) + 1);
+    while (sent < due) client.publish(topic, payloads[sent++]!, { qos });
+    if (sent >= total || now > deadline) return resolve();
+    setTimeout(tick, 5);
+  };
+  tick();
+});
+const sendMs = performance.now() - start;
+await client.endAsync(); // flushes what is still buffered
+const wallMs = performance.now() - start;
+process.stdout.write(
+  `${JSON.stringify({ sent, wanted: total, sendS: sendMs / 1000, wallS: wallMs / 1000, rate: sent / (wallMs / 1000) })}\n`,
+);
+process.exit(0);

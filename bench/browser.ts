@@ -1,0 +1,363 @@
+/**
+ * Section 4: the HUD in headless Chromium at 6 servos × 250 Hz (`armtwin sim --rate 250`),
+ * health charts running, built HUD (apps/web/dist) served from 127.0.0.1 and pointed at
+ * Mosquitto's WebSockets listener with `?broker=…&arm=…`. The page probe (./lib/page-probe.ts)
+ * records every rendered frame's wall time, newest `$TIM` applied and drawn angles, rAF
+ * callbacks and long tasks; CDP `Performance.getMetrics` gives main-thread TaskDuration.
+ * Meanwhile this process subscribes to the same status stream and keeps the simulator's
+ * samples (its true trajectory, piecewise linear between 4 ms samples), while publishing a
+ * scripted trajectory of group moves on the control topic.
+ * Baselines, same browser and same run: a blank page's rAF rate and busy share (before the
+ * HUD opens); for latency, the status stream's one-way delay to a Node subscriber; for
+ * fidelity, an ideal "draw the newest sample received" renderer at the same frame instants.
+ */
+import fs from 'node:fs';
+import path from 'node:path';
+import { angleFromPwm } from '@armtwin/protocol';
+import { DEMO_ARM } from '@armtwin/ik';
+import { connectMqtt, REPO, startSim } from './lib/stack.ts';
+import { sleep, until } from './lib/proc.ts';
+import { serveStatic } from './lib/static.ts';
+import { blankPageFrames, installProbe, type ProbeResult } from './lib/page-probe.ts';
+import { round, summarize } from './lib/stats.ts';
+import { barChartSvg } from './lib/svg.ts';
+import { fmt, type BenchContext, type Row, type Section, type SectionOutput } from './lib/types.ts';
+
+const ARM = 'bench-hud';
+const DIST = path.join(REPO, 'apps', 'web', 'dist');
+const CHROMIUM = '/usr/bin/chromium';
+const ARGS = [
+  '--headless',
+  '--no-sandbox',
+  '--disable-gpu',
+  '--disable-background-networking',
+  '--disable-component-update',
+  '--disable-sync',
+  '--no-first-run',
+];
+const SERVOS = 6;
+/** The scripted trajectory: poses (µs, servos 000–005) visited in turn, each move 1000 ms. */
+const POSES = [
+  [1500, 1500, 1500, 1500, 1500, 1500],
+  [1900, 1300, 1200, 1700, 1650, 1800],
+  [1100, 1700, 1800, 1300, 1350, 1600],
+  [1500, 1200, 1400, 1900, 1500, 1500],
+];
+const MOVE_MS = 1000;
+const STEP_MS = 1500;
+
+/** The simulator's status stream as received by this process: stamps, pulses, arrival times. */
+class Recorder {
+  readonly stamp: number[] = [];
+  readonly pwm: number[] = [];
+  readonly arrivalMinusStamp: number[] = [];
+  private readonly re = /\$TIM:(\d+)!\{((?:#\d{3}P\d{4}!)+)\}/g;
+  on = false;
+
+  feed(payload: Buffer): void {
+    if (!this.on || this.stamp.length > 500_000) return;
+    const at = performance.timeOrigin + performance.now();
+    const text = payload.toString('latin1');
+    for (const m of text.matchAll(this.re)) {
+      const t = Number(m[1]);
+      const ps = [...m[2]!.matchAll(/#(\d{3})P(\d{4})!/g)];
+      if (ps.length !== SERVOS) continue;
+      this.stamp.push(t);
+      for (const p of ps) this.pwm.push(Number(p[2]));
+      this.arrivalMinusStamp.push(at - t);
+    }
+  }
+
+  /** Servo i's angle at epoch ms t, linear between samples; NaN outside the record. */
+  angleAt(i: number, t: number): number {
+    const s = this.stamp;
+    if (!(t >= s[0]! && t <= s[s.length - 1]!)) return NaN;
+    let lo = 0;
+    let hi = s.length - 1;
+    while (hi - lo > 1) {
+      const mid = (lo + hi) >> 1;
+      if (s[mid]! <= t) lo = mid;
+      else hi = mid;
+    }
+    const a = this.pwm[lo * SERVOS + i]!;
+    const b = this.pwm[hi * SERVOS + i]!;
+    const f = s[hi] === s[lo] ? 0 : (t - s[lo]!) / (s[hi]! - s[lo]!);
+    return angleFromPwm(a + (b - a) * f, DEMO_ARM.servos[i]!.polarity);
+  }
+}
+
+function analyse(p: ProbeResult, rec: Recorder) {
+  const n = p.servoCount;
+  const err: number[] = [];
+  const holdErr: number[] = [];
+  const latency: number[] = [];
+  let prevStamp = NaN;
+  for (let k = 0; k < p.frames; k++) {
+    const w = p.wall[k]!;
+    const s = p.stamp[k]!;
+    if (s > prevStamp || (prevStamp !== prevStamp && s === s)) latency.push(w - s);
+    prevStamp = s;
+    for (let i = 0; i < Math.min(n, SERVOS); i++) {
+      const truth = rec.angleAt(i, w);
+      const shown = p.angles[k * n + i]!;
+      if (!Number.isFinite(truth) || !Number.isFinite(shown)) continue;
+      err.push(Math.abs(shown - truth));
+      const held = rec.angleAt(i, s);
+      if (Number.isFinite(held)) holdErr.push(Math.abs(held - truth));
+    }
+  }
+  return {
+    err: summarize(err),
+    holdErr: summarize(holdErr),
+    latency: summarize(latency),
+    transport: summarize(rec.arrivalMinusStamp),
+  };
+}
+
+export const browserSection: Section = {
+  id: 'browser',
+  title: 'HUD in headless Chromium at 6 servos × 250 Hz',
+  precheck() {
+    if (!fs.existsSync(path.join(DIST, 'index.html')))
+      return 'HUD not built: apps/web/dist/index.html missing (npm run build)';
+    if (!fs.existsSync(CHROMIUM)) return `${CHROMIUM} not found`;
+    return null;
+  },
+  async run(ctx: BenchContext): Promise<SectionOutput> {
+    const { chromium } = await import('playwright-core');
+    const windowS = ctx.quick ? 15 : 45;
+    const blankS = ctx.quick ? 4 : 8;
+    const web = await serveStatic(DIST);
+    const sim = await startSim(ctx.broker.url, ARM, 250, path.join(ctx.logDir, 'browser-sim.log'));
+    const client = await connectMqtt(ctx.broker.url, `bench-hud-${process.pid}`);
+    const rec = new Recorder();
+    client.on('message', (_t, payload) => rec.feed(payload));
+    await client.subscribeAsync(`arm/${ARM}/status`, { qos: 0 });
+    const browser = await chromium.launch({
+      executablePath: CHROMIUM,
+      headless: true,
+      args: ARGS,
+      timeout: 60_000,
+    });
+    let trajectory: NodeJS.Timeout | undefined;
+    try {
+      const context = await browser.newContext({ viewport: { width: 1280, height: 800 } });
+      // tsx wraps named functions in __name(); the page needs it to exist.
+      await context.addInitScript({ content: 'globalThis.__name = (f) => f;' });
+      const page = await context.newPage();
+      const pageErrors: string[] = [];
+      page.on('pageerror', (e) => pageErrors.push(e.message));
+      const cdp = await context.newCDPSession(page);
+      await cdp.send('Performance.enable');
+      const taskS = async () => {
+        const { metrics } = (await cdp.send('Performance.getMetrics')) as {
+          metrics: { name: string; value: number }[];
+        };
+        const get = (k: string) => metrics.find((m) => m.name === k)?.value ?? NaN;
+        return {
+          task: get('TaskDuration'),
+          script: get('ScriptDuration'),
+          layout: get('LayoutDuration'),
+          style: get('RecalcStyleDuration'),
+          at: performance.now(),
+        };
+      };
+
+      // Baseline: a blank page in the same browser.
+      ctx.log(`browser: blank page ${blankS} s`);
+      await page.goto(`${web.url}blank-page-for-bench`).catch(() => {});
+      await page.setContent('<!doctype html><title>blank</title><body></body>');
+      const b0 = await taskS();
+      const blank = await page.evaluate(blankPageFrames, blankS * 1000);
+      const b1 = await taskS();
+      const blankBusy = (b1.task - b0.task) / ((b1.at - b0.at) / 1000);
+
+      // The HUD.
+      const url = `${web.url}?broker=${encodeURIComponent(ctx.broker.wsUrl)}&arm=${ARM}`;
+      ctx.log(`browser: HUD at ${url}`);
+      await page.goto(url);
+      await page.waitForFunction(
+        () => (window as { __armtwin?: { ready: boolean } }).__armtwin?.ready === true,
+        null,
+        { timeout: 60_000 },
+      );
+      const live = await until(
+        () =>
+          page.evaluate(() => {
+            const s = (
+              window as unknown as {
+                __armtwin: { store: { connection: string; counters: { messages: number } } };
+              }
+            ).__armtwin.store;
+            return s.connection === 'connected' && s.counters.messages > 100;
+          }),
+        30_000,
+        250,
+      );
+      if (!live) throw new Error('HUD never received the state stream');
+      if (!(await page.evaluate(installProbe, Math.round(windowS * 240))))
+        throw new Error('window.__armtwin has no store/viewer.renderer to probe');
+      await sleep(2000); // settle (resolution governor, JIT)
+
+      // The scripted trajectory and the measurement window.
+      ctx.log(`browser: ${windowS} s window with the scripted trajectory`);
+      rec.on = true;
+      let step = 0;
+      const sendPose = () => {
+        const pose = POSES[step++ % POSES.length]!;
+        client.publish(
+          `arm/${ARM}/control`,
+          `{${pose.map((p, i) => `#00${i}P${p}T${String(MOVE_MS).padStart(4, '0')}!`).join('')}}`,
+          { qos: 1 },
+        );
+      };
+      await sleep(200);
+      const m0 = await taskS();
+      await page.evaluate(() =>
+        (window as unknown as { __benchProbe: { start(): void } }).__benchProbe.start(),
+      );
+      sendPose();
+      trajectory = setInterval(sendPose, STEP_MS);
+      await sleep(windowS * 1000);
+      clearInterval(trajectory);
+      const probe = await page.evaluate(() =>
+        (window as unknown as { __benchProbe: { stop(): ProbeResult } }).__benchProbe.stop(),
+      );
+      const m1 = await taskS();
+      await sleep(300); // the recorder must cover the last frame's instant
+      rec.on = false;
+
+      const wallS = (m1.at - m0.at) / 1000;
+      const busy = (m1.task - m0.task) / wallS;
+      const a = analyse(probe, rec);
+      const fps = probe.rafCount / (probe.windowMs / 1000);
+      const blankFps = blank.raf / (blank.windowMs / 1000);
+      // "2 frames" of the display: the blank page's rAF interval (vsync), not the HUD's own.
+      const frameMs = 1000 / blankFps;
+      const webgl = await page.evaluate(() => {
+        const gl = document.createElement('canvas').getContext('webgl');
+        const ext = gl?.getExtension('WEBGL_debug_renderer_info');
+        return gl
+          ? String(gl.getParameter(ext ? ext.UNMASKED_RENDERER_WEBGL : gl.RENDERER))
+          : 'no WebGL';
+      });
+      const longMax = Math.max(0, ...probe.longTasks.map((t) => t.duration));
+      const rows: Row[] = [
+        {
+          figure: 'Frames/s (rAF callbacks); frames rendered/s',
+          value: `${fmt(fps, 1)}; ${fmt(probe.renderedFramesDelta / (probe.windowMs / 1000), 1)} rendered`,
+          baseline: `blank page ${fmt(blankFps, 1)}`,
+          target: 'reported',
+          met: null,
+        },
+        {
+          figure:
+            'Main-thread busy share (CDP TaskDuration); of the window in renderer.render / in script',
+          value: `${fmt(busy * 100, 1)} %; ${fmt((probe.renderMsTotal / probe.windowMs) * 100, 1)} % / ${fmt(((m1.script - m0.script) / wallS) * 100, 1)} %`,
+          baseline: `blank page ${fmt(blankBusy * 100, 1)} %`,
+          target: 'reported',
+          met: null,
+        },
+        {
+          figure: 'Long tasks (count, longest)',
+          value: `${probe.longTasks.length}, ${fmt(longMax, 0)} ms`,
+          baseline: `blank page ${blank.longTasks}`,
+          target: 'none > 50 ms',
+          met: probe.longTasks.length === 0,
+        },
+        {
+          figure: 'Display latency $TIM → frame showing it, ms (p50 / p99)',
+          value: `${fmt(a.latency.p50, 1)} / ${fmt(a.latency.p99, 1)} (${a.latency.n} frames)`,
+          baseline: `stream to a Node subscriber ${fmt(a.transport.p50, 1)} / ${fmt(a.transport.p99, 1)}`,
+          target: `p99 ≤ 2 frames (2 × ${fmt(frameMs, 1)} ms)`,
+          met: a.latency.p99 <= 2 * frameMs,
+        },
+        {
+          figure: 'Twin fidelity |sim − rendered| °, all 6 servos (mean / max)',
+          value: `${fmt(a.err.mean, 3)} / ${fmt(a.err.max, 2)}`,
+          baseline: `draw-newest-sample ${fmt(a.holdErr.mean, 3)} / ${fmt(a.holdErr.max, 2)}; seed 003: 1.42 mean`,
+          target: 'mean ≤ 0.5°',
+          met: a.err.mean <= 0.5,
+        },
+      ];
+      const file = `${ctx.stamp}-browser-latency.svg`;
+      const lat = probe.wall
+        .map((w, k) => w - probe.stamp[k]!)
+        .filter((v, k) => k === 0 || probe.stamp[k]! > probe.stamp[k - 1]!);
+      const hi = Math.max(10, a.latency.p99 * 1.25);
+      const bins = 25;
+      const hist = (xs: number[]) => {
+        const c = new Array<number>(bins).fill(0);
+        for (const v of xs) if (v >= 0) c[Math.min(bins - 1, Math.floor((v / hi) * bins))]!++;
+        return c.map((x) => round((100 * x) / Math.max(1, xs.length), 2));
+      };
+      fs.writeFileSync(
+        path.join(ctx.resultsDir, file),
+        barChartSvg({
+          title: `HUD display latency ($TIM → rendered frame), 6 × 250 Hz, ${windowS} s`,
+          xLabel: 'ms (bin start; last bin: more)',
+          yLabel: '% of samples',
+          categories: Array.from({ length: bins }, (_, i) => ((i * hi) / bins).toFixed(1)),
+          labelEvery: 2,
+          series: [
+            { name: 'HUD frame', values: hist(lat), colour: '#d95f02' },
+            {
+              name: 'Node subscriber (transport)',
+              values: hist(rec.arrivalMinusStamp),
+              colour: '#1b9e77',
+            },
+          ],
+        }),
+      );
+      return {
+        rows,
+        plots: [{ file, title: 'HUD display latency' }],
+        settings: {
+          simRateHz: 250,
+          servos: 6,
+          windowS,
+          blankS,
+          viewport: '1280x800',
+          chromiumArgs: ARGS,
+          trajectory: { poses: POSES, moveMs: MOVE_MS, stepMs: STEP_MS },
+        },
+        data: {
+          framesPerS: round(fps, 2),
+          renderedFramesPerS: round(probe.renderedFramesDelta / (probe.windowMs / 1000), 2),
+          rafMaxGapMs: round(probe.rafMaxGapMs, 1),
+          busyShare: round(busy, 4),
+          scriptS: round(m1.script - m0.script, 3),
+          renderCallShare: round(probe.renderMsTotal / probe.windowMs, 4),
+          renderCallMaxMs: round(probe.renderMsMax, 1),
+          layoutS: round(m1.layout - m0.layout, 3),
+          styleS: round(m1.style - m0.style, 3),
+          longTasks: probe.longTasks.map((t) => ({
+            start: round(t.start, 1),
+            duration: round(t.duration, 1),
+          })),
+          latencyMs: a.latency,
+          transportMs: a.transport,
+          fidelityDeg: a.err,
+          drawNewestDeg: a.holdErr,
+          recordedSamples: rec.stamp.length,
+          statusMessagesInPage: probe.storeMessages,
+          clockSkewMs: {
+            start: round(probe.clockSkewStartMs, 3),
+            end: round(probe.clockSkewEndMs, 3),
+          },
+          chartCanvases: probe.chartCanvases,
+          pixelRatio: probe.pixelRatio,
+          blank: { ...blank, busyShare: round(blankBusy, 4) },
+          pageErrors: pageErrors.slice(0, 10),
+          webglRenderer: webgl,
+        },
+      };
+    } finally {
+      if (trajectory) clearInterval(trajectory);
+      await browser.close().catch(() => {});
+      await client.endAsync().catch(() => {});
+      await sim.stop();
+      await web.close();
+    }
+  },
+};

@@ -1,0 +1,176 @@
+/// <reference lib="dom" />
+/**
+ * Code that runs inside the HUD page (passed to Playwright's `page.evaluate`), using only the
+ * HUD's debug hook `window.__armtwin` ({ store, viewer, … }). It wraps `store.ingest` to note
+ * the newest `$TIM` of each state payload, and `viewer.renderer.render` to record, per rendered
+ * frame: the wall time (performance.timeOrigin + performance.now(), epoch ms), the newest
+ * `$TIM` applied so far, and `store.rendered` (the servo angles drawn). It also counts
+ * requestAnimationFrame callbacks and long tasks. Fixed-size typed arrays: bounded memory.
+ */
+
+export interface ProbeResult {
+  frames: number;
+  wall: number[];
+  stamp: number[];
+  angles: number[];
+  rafCount: number;
+  rafMaxGapMs: number;
+  renderedFramesDelta: number;
+  longTasks: { start: number; duration: number }[];
+  windowMs: number;
+  clockSkewStartMs: number;
+  clockSkewEndMs: number;
+  chartCanvases: number;
+  pixelRatio: number;
+  storeMessages: number;
+  servoCount: number;
+  /** Time spent inside renderer.render (WebGL submission, incl. waits on the GPU process). */
+  renderMsTotal: number;
+  renderMsMax: number;
+}
+
+interface Hook {
+  store: {
+    ingest(p: string | Uint8Array, now: number): void;
+    rendered: Float64Array;
+    counters: { messages: number };
+  };
+  viewer: {
+    renderer: { render(s: unknown, c: unknown): void };
+    renderedFrames: number;
+    pixelRatio: number;
+  };
+}
+interface Probe {
+  start(): void;
+  stop(): ProbeResult;
+}
+type W = Window & { __armtwin?: Hook; __benchProbe?: Probe };
+
+/** Installs the probe (idle until `start()`); call via page.evaluate(installProbe, maxFrames). */
+export function installProbe(maxFrames: number): boolean {
+  const w = window as W;
+  const hook = w.__armtwin;
+  if (!hook?.store || !hook.viewer?.renderer) return false;
+  const { store, viewer } = hook;
+  const n = store.rendered.length;
+  const wall = new Float64Array(maxFrames);
+  const stamp = new Float64Array(maxFrames);
+  const angles = new Float64Array(maxFrames * n);
+  const dec = new TextDecoder();
+  const position = /#\d{3}P\d{4}!/;
+  const epoch = () => performance.timeOrigin + performance.now();
+  let newest = NaN;
+  let k = 0;
+  let on = false;
+  let raf = 0;
+  let rafLast = NaN;
+  let rafMaxGap = 0;
+  let t0 = 0;
+  let skew0 = 0;
+  let frames0 = 0;
+  let msgs0 = 0;
+  let renderMs = 0;
+  let renderMax = 0;
+  const longTasks: { start: number; duration: number }[] = [];
+
+  const ingest = store.ingest.bind(store);
+  store.ingest = (payload, now) => {
+    ingest(payload, now);
+    const text = typeof payload === 'string' ? payload : dec.decode(payload);
+    const j = text.lastIndexOf('$TIM:');
+    if (j >= 0 && position.test(text.slice(j))) {
+      const t = Number(text.slice(j + 5, text.indexOf('!', j)));
+      if (!(t <= newest)) newest = t;
+    }
+  };
+  const renderer = viewer.renderer;
+  const render = renderer.render.bind(renderer);
+  renderer.render = (scene, camera) => {
+    const r0 = performance.now();
+    render(scene, camera);
+    if (!on) return;
+    const dt = performance.now() - r0;
+    renderMs += dt;
+    if (dt > renderMax) renderMax = dt;
+    if (k >= maxFrames) return;
+    wall[k] = epoch();
+    stamp[k] = newest;
+    for (let i = 0; i < n; i++) angles[k * n + i] = store.rendered[i]!;
+    k++;
+  };
+  const tick = (t: number) => {
+    if (!on) return;
+    raf++;
+    if (rafLast === rafLast) rafMaxGap = Math.max(rafMaxGap, t - rafLast);
+    rafLast = t;
+    requestAnimationFrame(tick);
+  };
+  new PerformanceObserver((list) => {
+    if (!on) return;
+    for (const e of list.getEntries()) longTasks.push({ start: e.startTime, duration: e.duration });
+  }).observe({ type: 'longtask', buffered: false });
+
+  w.__benchProbe = {
+    start() {
+      on = true;
+      k = raf = 0;
+      rafLast = NaN;
+      rafMaxGap = 0;
+      longTasks.length = 0;
+      renderMs = renderMax = 0;
+      t0 = performance.now();
+      skew0 = epoch() - Date.now();
+      frames0 = viewer.renderedFrames;
+      msgs0 = store.counters.messages;
+      requestAnimationFrame(tick);
+    },
+    stop() {
+      on = false;
+      return {
+        frames: k,
+        wall: Array.from(wall.subarray(0, k)),
+        stamp: Array.from(stamp.subarray(0, k)),
+        angles: Array.from(angles.subarray(0, k * n)),
+        rafCount: raf,
+        rafMaxGapMs: rafMaxGap,
+        renderedFramesDelta: viewer.renderedFrames - frames0,
+        longTasks: longTasks.slice(),
+        windowMs: performance.now() - t0,
+        clockSkewStartMs: skew0,
+        clockSkewEndMs: epoch() - Date.now(),
+        chartCanvases: document.querySelectorAll('.uplot canvas').length,
+        pixelRatio: viewer.pixelRatio,
+        storeMessages: store.counters.messages - msgs0,
+        servoCount: n,
+        renderMsTotal: renderMs,
+        renderMsMax: renderMax,
+      };
+    },
+  };
+  return true;
+}
+
+/** A blank page's rAF rate and long tasks over `ms` (the browser's own ceiling). */
+export function blankPageFrames(
+  ms: number,
+): Promise<{ raf: number; windowMs: number; longTasks: number; maxGapMs: number }> {
+  return new Promise((resolve) => {
+    let raf = 0;
+    let last = NaN;
+    let maxGap = 0;
+    let longTasks = 0;
+    new PerformanceObserver((l) => (longTasks += l.getEntries().length)).observe({
+      type: 'longtask',
+    });
+    const t0 = performance.now();
+    const tick = (t: number) => {
+      raf++;
+      if (last === last) maxGap = Math.max(maxGap, t - last);
+      last = t;
+      if (t - t0 < ms) requestAnimationFrame(tick);
+      else resolve({ raf, windowMs: performance.now() - t0, longTasks, maxGapMs: maxGap });
+    };
+    requestAnimationFrame(tick);
+  });
+}

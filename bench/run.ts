@@ -1,0 +1,151 @@
+/**
+ * `npm run bench [-- --quick] [-- --only rtt,ik] [-- --keep-logs]`: runs the benchmark
+ * sections on real services (a throwaway Mosquitto and influxd from tests/helpers, the
+ * simulator, the middleware, headless Chromium), each figure beside its baseline in the same
+ * run, and writes bench/results/<stamp>.json, SVG plots there, and the generated block of
+ * BENCHMARKS.md. A section that cannot run is reported as skipped or failed with the reason;
+ * every child process is killed at the end.
+ */
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import {
+  startInflux,
+  startMosquitto,
+  type InfluxService,
+  type MosquittoService,
+} from '../tests/helpers/services.ts';
+import { machineInfo, versions } from './lib/machine.ts';
+import { killAll, liveChildren } from './lib/proc.ts';
+import { markdown, updateBenchmarksMd, writeJson, type RunRecord } from './lib/report.ts';
+import { REPO } from './lib/stack.ts';
+import type { BenchContext, Section, SectionResult } from './lib/types.ts';
+import { ikSection } from './ik.ts';
+import { rttSection } from './rtt.ts';
+import { ingestSection } from './ingest.ts';
+import { cpuSection } from './cpu.ts';
+import { browserSection } from './browser.ts';
+
+const SECTIONS: Section[] = [rttSection, ingestSection, cpuSection, browserSection, ikSection];
+/** Broker settings for every section (recorded in the JSON): see BENCHMARKS.md on Nagle. */
+export const BROKER_EXTRA = ['set_tcp_nodelay true', 'max_queued_messages 1000000'];
+const NEEDS_SERVICES = new Set(['rtt', 'ingest', 'cpu', 'browser']);
+
+const USAGE = `usage: npm run bench [-- --quick] [-- --only ${SECTIONS.map((s) => s.id).join(',')}] [-- --keep-logs] [-- --no-md]
+  --quick      shorter runs (< 5 min): 5,000 pings at 1 kHz, short ramps and windows
+  --only a,b   run only these sections
+  --keep-logs  keep child-process logs (printed at the end)
+  --no-md      do not rewrite BENCHMARKS.md (the JSON and SVGs are still written)`;
+
+function parseArgs(argv: string[]) {
+  const o = { quick: false, only: null as Set<string> | null, keepLogs: false, md: true };
+  for (let i = 0; i < argv.length; i++) {
+    const a = argv[i]!;
+    if (a === '--quick') o.quick = true;
+    else if (a === '--keep-logs') o.keepLogs = true;
+    else if (a === '--no-md') o.md = false;
+    else if (a === '--only' || a.startsWith('--only=')) {
+      const v = a.includes('=') ? a.slice(7) : (argv[++i] ?? '');
+      o.only = new Set(v.split(',').filter(Boolean));
+      const bad = [...o.only].filter((id) => !SECTIONS.some((s) => s.id === id));
+      if (bad.length) throw new Error(`unknown section(s): ${bad.join(', ')}\n${USAGE}`);
+    } else if (a === '--help' || a === '-h') {
+      console.log(USAGE);
+      process.exit(0);
+    } else throw new Error(`unknown argument ${a}\n${USAGE}`);
+  }
+  return o;
+}
+
+const log = (m: string) => console.log(`[bench ${new Date().toISOString().slice(11, 19)}] ${m}`);
+
+async function main(): Promise<number> {
+  const args = parseArgs(process.argv.slice(2));
+  const sections = SECTIONS.filter((s) => !args.only || args.only.has(s.id));
+  const startedAt = new Date();
+  const stamp = startedAt.toISOString().replace(/[:]/g, '-').slice(0, 19);
+  const resultsDir = path.join(REPO, 'bench', 'results');
+  fs.mkdirSync(resultsDir, { recursive: true });
+  const logDir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-bench-'));
+  const machine: Record<string, unknown> = machineInfo();
+  log(`${args.quick ? 'quick' : 'full'} run ${stamp}: ${sections.map((s) => s.id).join(', ')}`);
+
+  let broker: MosquittoService | undefined;
+  let influx: InfluxService | undefined;
+  const results: RunRecord['sections'] = {};
+  try {
+    if (sections.some((s) => NEEDS_SERVICES.has(s.id))) {
+      log('starting Mosquitto and influxd');
+      broker = await startMosquitto({ extraConfig: BROKER_EXTRA });
+      influx = await startInflux();
+    }
+    const ctx: BenchContext = {
+      quick: args.quick,
+      resultsDir,
+      stamp,
+      logDir,
+      broker: broker!,
+      influx: influx!,
+      log,
+    };
+    for (const s of sections) {
+      const t0 = performance.now();
+      const dur = () => Math.round((performance.now() - t0) / 100) / 10;
+      const skip = s.precheck?.() ?? null;
+      let r: SectionResult;
+      if (skip) r = { status: 'skipped', reason: skip, durationS: 0 };
+      else {
+        log(`§ ${s.id}: ${s.title}`);
+        try {
+          r = { status: 'ok', ...(await s.run(ctx)), durationS: 0 };
+          r.durationS = dur();
+        } catch (err) {
+          const e = err as Error;
+          r = {
+            status: 'failed',
+            reason: e.message.split('\n')[0] ?? String(err),
+            durationS: dur(),
+          };
+          log(`§ ${s.id} failed: ${e.stack ?? e.message}`);
+        }
+      }
+      log(`§ ${s.id}: ${r.status} in ${r.durationS} s${r.status !== 'ok' ? ` (${r.reason})` : ''}`);
+      results[s.id] = { ...r, title: s.title };
+    }
+    machine.loadAverageAtEnd = os.loadavg().map((v) => Math.round(v * 100) / 100);
+    const run: RunRecord = {
+      stamp,
+      startedAt: startedAt.toISOString(),
+      finishedAt: new Date().toISOString(),
+      mode: args.quick ? 'quick' : 'full',
+      command: `npm run bench${process.argv.length > 2 ? ` -- ${process.argv.slice(2).join(' ')}` : ''}`,
+      machine,
+      versions: await versions(influx?.url),
+      sections: results,
+    };
+    const json = writeJson(resultsDir, run);
+    const rel = path.relative(REPO, json);
+    const block = markdown(run, sections, rel);
+    if (args.md) await updateBenchmarksMd(path.join(REPO, 'BENCHMARKS.md'), block);
+    console.log(`\n${block}\n`);
+    log(`wrote ${rel}${args.md ? ' and BENCHMARKS.md' : ''}`);
+    return Object.values(results).some((r) => r.status === 'failed') ? 1 : 0;
+  } finally {
+    await broker?.dispose().catch(() => {});
+    await influx?.dispose().catch(() => {});
+    const left = liveChildren();
+    killAll();
+    if (left) log(`killed ${left} child process(es) still running`);
+    if (args.keepLogs) log(`logs kept in ${logDir}`);
+    else fs.rmSync(logDir, { recursive: true, force: true });
+  }
+}
+
+main().then(
+  (code) => process.exit(code),
+  (err: unknown) => {
+    console.error(err instanceof Error ? err.message : err);
+    killAll();
+    process.exit(2);
+  },
+);
