@@ -77,7 +77,8 @@ export const test = base.extend<
   hudQuery: ['', { option: true }],
 
   hud: async ({ page, stack, arm, hudQuery }, use) => {
-    const url = `${stack.web.url}?broker=${encodeURIComponent(stack.broker.wsUrl)}&arm=${arm.id}${hudQuery}`;
+    // role=operator: the static server has no /api/whoami, and an unknown role only watches.
+    const url = `${stack.web.url}?broker=${encodeURIComponent(stack.broker.wsUrl)}&arm=${arm.id}&role=operator${hudQuery}`;
     page.on('pageerror', (err) => console.error(`[page error] ${err.message}`));
     await page.goto(url);
     await page.waitForFunction(

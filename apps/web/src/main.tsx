@@ -10,11 +10,15 @@ import { TargetPreview } from './store/TargetPreview.ts';
 import { ArmLink, type MqttConnect } from './mqtt/ArmLink.ts';
 import { loadSettings, type HudSettings } from './config/settings.ts';
 import { Viewer } from './scene/Viewer.ts';
-import { MODEL_URL } from './model/armModel.ts';
 import { HudContext, type Hud } from './hud/HudContext.ts';
 import { App } from './hud/App.tsx';
 import { ReplayPlayer } from './replay/ReplayPlayer.ts';
 import { historyProbe } from './panels/History/probe.ts';
+import { Session } from './auth/Session.ts';
+import { fetchWhoami } from './auth/whoami.ts';
+import { armQueryProblem } from './config/queryProblems.ts';
+import { RobotsHub } from './robots/RobotsHub.ts';
+import { settingsForArm } from './robots/selectArm.ts';
 import 'uplot/dist/uPlot.min.css';
 import './styles.css';
 
@@ -30,7 +34,25 @@ const messageEl = document.getElementById('message')!;
 
 const replay = new ReplayPlayer(store.opts.arm.servos.map((s) => s.polarity));
 const viewer = new Viewer(viewEl, store, target, replay);
+const session = new Session({
+  whoami: (s) => fetchWhoami(s.apiBase, s),
+  queryProblem: armQueryProblem(window.location.search),
+});
+// Issue 9: the fleet, the selected arm's robot profile and model, planning (src/robots).
+const robots = new RobotsHub(
+  store,
+  viewer,
+  (url, opts) => mqtt.connect(url, opts),
+  settings,
+  () => render(),
+);
 const hud: Hud = {
+  robots,
+  selectArm(armId: string) {
+    const next = settingsForArm(hud.settings, armId);
+    if (next) hud.reconnect(next);
+  },
+  session,
   store,
   target,
   replay,
@@ -40,9 +62,11 @@ const hud: Hud = {
     hud.link.stop();
     store.resetArm();
     store.setInterpolationAlpha(next.interpolationAlpha);
+    const prev = hud.settings;
     hud.settings = next;
     hud.link = new ArmLink(store, next, connect);
-    hud.link.start();
+    robots.switched(prev, next);
+    void session.start(hud.link);
     render();
   },
 };
@@ -57,6 +81,10 @@ declare global {
       ready: boolean;
       replay: ReplayPlayer;
       history: typeof historyProbe;
+      session: Session;
+      robots: RobotsHub;
+      /** The live arm's URDF joint values as drawn (rad, or m for a prismatic joint). */
+      joints(which?: 'robot' | 'ghost'): number[];
     };
   }
 }
@@ -70,6 +98,9 @@ window.__armtwin = {
   ready: false,
   replay,
   history: historyProbe,
+  session,
+  robots,
+  joints: (which) => viewer.jointValues(which),
 };
 
 const root = createRoot(hudEl);
@@ -77,20 +108,24 @@ function render() {
   root.render(
     <StrictMode>
       <HudContext value={{ ...hud }}>
-        <App />
+        <App key={robots.active.spec.name} />
       </HudContext>
     </StrictMode>,
   );
 }
 
-hud.link.start();
+void session.start(hud.link);
+// Let go of the arm when the page goes away (the deadman's `0` at once, not after the will).
+window.addEventListener('pagehide', () => hud.link.release());
+window.addEventListener('pageshow', (e) => e.persisted && hud.reconnect(hud.settings));
 render();
 messageEl.textContent = 'Loading the arm model…';
-viewer
-  .load(new URL(MODEL_URL, document.baseURI).href)
+robots.start(settings.armId);
+robots.active.firstLoad
   .then(() => {
     messageEl.hidden = true;
     viewer.start();
+    robots.viewerStarted();
     window.__armtwin!.ready = true;
     render();
   })

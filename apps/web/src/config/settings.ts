@@ -25,6 +25,16 @@ export interface HudSettings {
   pingIntervalMs: number;
   /** Base URL of the middleware's HTTP API (`…/history/series` etc.); `npm start` serves `/api`. */
   apiBase: string;
+  /**
+   * MQTT keep-alive of an operator's page, s: the deadman's last will fires within 1.5 × this
+   * after the page drops (on the embedded broker). Viewers keep the contract's 60 s.
+   */
+  deadmanKeepAliveS: number;
+  /**
+   * What the user says their role is, used only when `/api/whoami` cannot answer (a Mosquitto
+   * deployment without `npm start`); '' = unknown, treated as viewer (src/auth/roles.ts).
+   */
+  roleHint: '' | 'viewer' | 'operator';
 }
 
 /** Same-origin broker URL: ws(s)://<host>/mqtt. */
@@ -44,6 +54,8 @@ export function defaultSettings(loc: { protocol: string; host: string }): HudSet
     kmsMoveMs: 1500,
     pingIntervalMs: 1000,
     apiBase: `${loc.protocol}//${loc.host}/api`,
+    deadmanKeepAliveS: 2,
+    roleHint: '',
   };
 }
 
@@ -51,9 +63,13 @@ const NUMBER_KEYS = {
   alpha: 'interpolationAlpha',
   jogms: 'jogMoveMs',
   kmsms: 'kmsMoveMs',
+  keepalive: 'deadmanKeepAliveS',
 } as const;
 
-/** Applies query parameters (broker, api, arm, user, password, alpha, jogms, kmsms) over `base`. */
+/**
+ * Applies query parameters (broker, api, arm, user, password, role, alpha, jogms, kmsms,
+ * keepalive) over `base`. An invalid arm id is ignored here; `armQueryProblem` reports it.
+ */
 export function applyQuery(base: HudSettings, search: string): HudSettings {
   const q = new URLSearchParams(search);
   const out = { ...base };
@@ -67,6 +83,8 @@ export function applyQuery(base: HudSettings, search: string): HudSettings {
   if (user !== null) out.username = user;
   const password = q.get('password');
   if (password !== null) out.password = password;
+  const role = q.get('role');
+  if (role === 'operator' || role === 'viewer') out.roleHint = role;
   for (const [key, field] of Object.entries(NUMBER_KEYS)) {
     const v = Number(q.get(key));
     if (q.has(key) && Number.isFinite(v) && v > 0) out[field] = v;

@@ -7,6 +7,10 @@ import { HealthPanel } from '../panels/Health/HealthPanel.tsx';
 import { CartesianPanel } from '../panels/Cartesian/CartesianPanel.tsx';
 import { GhostPanel } from '../panels/Ghost/GhostPanel.tsx';
 import { HistoryPanel } from '../panels/History/HistoryPanel.tsx';
+import { LoginPanel } from '../panels/Login/LoginPanel.tsx';
+import { FleetPanel } from '../panels/Fleet/FleetPanel.tsx';
+import { CommandPanel } from '../panels/Command/CommandPanel.tsx';
+import { PlanPanel } from '../panels/Plan/PlanPanel.tsx';
 
 export function App() {
   return (
@@ -14,6 +18,8 @@ export function App() {
       <div className="column left">
         <JogPanel />
         <CartesianPanel />
+        <CommandPanel />
+        <PlanPanel />
         <GhostPanel />
       </div>
       <div className="column center">
@@ -21,6 +27,8 @@ export function App() {
       </div>
       <div className="column right">
         <EmergencyStopButton />
+        <LoginPanel />
+        <FleetPanel />
         <StatusPanel />
         <HealthPanel />
         <ConnectionPanel />

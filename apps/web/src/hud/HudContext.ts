@@ -5,6 +5,8 @@ import type { TargetPreview } from '../store/TargetPreview.ts';
 import type { ArmLink } from '../mqtt/ArmLink.ts';
 import type { HudSettings } from '../config/settings.ts';
 import type { ReplayPlayer } from '../replay/ReplayPlayer.ts';
+import type { Session } from '../auth/Session.ts';
+import type { RobotsHub } from '../robots/RobotsHub.ts';
 
 export interface Hud {
   store: ArmStore;
@@ -14,7 +16,13 @@ export interface Hud {
   settings: HudSettings;
   /** The History panel's replay, drawn as the sibling arm by the Viewer. */
   replay: ReplayPlayer;
+  /** Log-in state and the role's permissions (src/auth). */
+  session: Session;
   reconnect(settings: HudSettings): void;
+  /** Fleet, the selected arm's robot profile, planning (issue 9, src/robots). */
+  robots: RobotsHub;
+  /** Controls another arm (the fleet list): saves it and reconnects. */
+  selectArm(armId: string): void;
 }
 
 export const HudContext = createContext<Hud | null>(null);

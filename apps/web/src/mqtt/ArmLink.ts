@@ -15,6 +15,8 @@ import { isWithinLimits } from '@armtwin/ik';
 import type { ArmStore } from '../store/ArmStore.ts';
 import type { HudSettings } from '../config/settings.ts';
 import { MoveCoalescer } from './MoveCoalescer.ts';
+import { GapTracker } from './GapTracker.ts';
+import { NO_PERMISSIONS, type LinkPermissions } from '../auth/roles.ts';
 
 /** The part of mqtt.js's MqttClient this module uses. */
 export interface MqttLike {
@@ -39,7 +41,19 @@ export interface ConnectOptions {
   reconnectPeriod: number;
   connectTimeout: number;
   clean: boolean;
+  /** The deadman's last will (operators only): retained `0` on `arm/{id}/operator`. */
+  will?: { topic: string; payload: string; qos: 1; retain: boolean };
 }
+
+/** What the page hears from the link besides data (src/auth/Session.ts listens). */
+export interface LinkEvents {
+  connected?(): void;
+  /** CONNACK 4/5: the broker refused these credentials (or none); reconnecting has stopped. */
+  authRefused?(message: string): void;
+}
+
+/** A link started without a role (unit tests, scripts): commands and stop, no deadman. */
+export const UNCHECKED_PERMISSIONS: LinkPermissions = { command: true, stop: true, deadman: false };
 
 export type MqttConnect = (url: string, opts: ConnectOptions) => MqttLike;
 
@@ -57,6 +71,12 @@ export class ArmLink {
   /** Bumped by every `$KMS` sent, so the Cartesian panel can match the reply. */
   kmsSent = 0;
   lastPublishError = '';
+  /** Broker connection gaps (Status panel). */
+  readonly gap = new GapTracker();
+  /** What this page may publish; nothing until `start`. */
+  permissions: LinkPermissions = NO_PERMISSIONS;
+  private events: LinkEvents = {};
+  private connected = false;
 
   constructor(
     private readonly store: ArmStore,
@@ -69,14 +89,25 @@ export class ArmLink {
     });
   }
 
-  start(): void {
+  /**
+   * Connects. `permissions` (from the page's role, src/auth/roles.ts) decide what may be
+   * published; with `deadman` the page holds `arm/{id}/operator`: a short keep-alive
+   * (settings.deadmanKeepAliveS), a retained `1` at every connect and a last will `0`.
+   */
+  start(permissions: LinkPermissions = UNCHECKED_PERMISSIONS, events: LinkEvents = {}): void {
     const s = this.settings;
+    this.permissions = permissions;
+    this.events = events;
     this.store.connection = 'connecting';
+    const deadman = permissions.deadman;
     const client = this.connect(s.brokerUrl, {
       clientId: `armtwin-hud-${Math.random().toString(16).slice(2, 10)}`,
       ...(s.username ? { username: s.username } : {}),
       ...(s.password ? { password: s.password } : {}),
-      keepalive: KEEPALIVE_S,
+      keepalive: deadman ? Math.max(1, Math.round(s.deadmanKeepAliveS)) : KEEPALIVE_S,
+      ...(deadman
+        ? { will: { topic: this.topics.operator, payload: '0', qos: 1, retain: true } }
+        : {}),
       reconnectPeriod: RECONNECT_MS,
       connectTimeout: 10_000,
       clean: true,
@@ -85,19 +116,38 @@ export class ArmLink {
     client.on('connect', () => {
       this.store.connection = 'connected';
       this.store.connectionError = '';
+      this.connected = true;
+      this.gap.restored(Date.now());
+      if (deadman) client.publish(this.topics.operator, '1', { qos: 1, retain: true });
+      this.events.connected?.();
       client.subscribe([this.topics.status, this.topics.online], { qos: 0 }, (err) => {
         if (err) this.store.connectionError = `subscribe failed: ${err.message}`;
       });
     });
-    client.on('reconnect', () => (this.store.connection = 'reconnecting'));
-    client.on('offline', () => (this.store.connection = 'offline'));
+    // A client this link has let go of (stop/release) still emits close/offline: the store is
+    // the next link's by then, so those events are ignored.
+    const current = () => this.client === client;
+    client.on('reconnect', () => current() && (this.store.connection = 'reconnecting'));
+    client.on('offline', () => {
+      if (!current()) return;
+      this.store.connection = 'offline';
+      this.lost();
+    });
     client.on('close', () => {
+      if (!current()) return;
       if (this.store.connection === 'connected' || this.store.connection === 'connecting')
         this.store.connection = 'offline';
+      this.lost();
     });
     client.on('error', (err) => {
       this.store.connection = 'error';
       this.store.connectionError = err.message;
+      const code = (err as Error & { code?: unknown }).code;
+      if (code === 4 || code === 5 || code === 134 || code === 135) {
+        // mqtt.js stops reconnecting after a refused CONNACK; make sure of it.
+        client.end(true);
+        this.events.authRefused?.(err.message.replace(/^Connection refused: /, ''));
+      }
     });
     client.on('message', (topic, payload) => this.onMessage(topic, payload));
     this.pingTimer = setInterval(() => this.ping(), s.pingIntervalMs);
@@ -109,12 +159,19 @@ export class ArmLink {
     } else if (topic === this.topics.online) {
       const text = new TextDecoder().decode(payload).trim();
       this.store.armOnline = text === '1' ? true : text === '0' ? false : null;
+      this.store.armOnlineText = this.store.armOnline === null ? text.slice(0, 80) : '';
     }
   }
 
-  private publish(payload: string, isCommand = true): boolean {
+  /** The connection dropped: a gap starts (once), and the health charts get a break. */
+  private lost(): void {
+    this.connected = false;
+    if (this.gap.lost(Date.now())) this.store.history.pushGap(Date.now() / 1000);
+  }
+
+  private publish(payload: string, isCommand = true, allowed = this.permissions.command): boolean {
     const client = this.client;
-    if (!client) return false;
+    if (!client || !allowed) return false;
     if (isCommand) this.store.counters.published++;
     client.publish(this.topics.control, payload, { qos: 1 }, (err) => {
       if (err) this.lastPublishError = err.message;
@@ -150,20 +207,46 @@ export class ArmLink {
     this.publish(encodeKms(x, y, z, Math.round(this.settings.kmsMoveMs), alpha));
   }
 
-  /** `#255PDST!` at QoS 1; pending jogs are dropped first. */
+  /** A `{…}` group of timed moves (a plan streamed by the Plan panel); false if not sent. */
+  sendGroup(frame: string): boolean {
+    return this.publish(frame);
+  }
+
+  /** Called first thing by `emergencyStop` (a streamed plan stops at once). */
+  readonly stopListeners = new Set<() => void>();
+
+  /** `#255PDST!` at QoS 1; pending jogs (and a streamed plan) are dropped first. */
   emergencyStop(): boolean {
+    for (const fn of this.stopListeners) fn();
     this.coalescer.cancelAll();
     this.store.commandedPwm.fill(NaN);
-    return this.publish(EMERGENCY_STOP);
+    return this.publish(EMERGENCY_STOP, true, this.permissions.stop);
   }
 
   private ping(): void {
-    if (this.store.connection !== 'connected' || !this.client) return;
+    if (this.store.connection !== 'connected' || !this.client || !this.permissions.command) return;
     const seq = this.store.ping.send(now());
     this.publish(encodePing(seq), false);
   }
 
+  /**
+   * Lets go of the arm and disconnects: with the deadman, a retained `0` first (a moving arm
+   * stops at once, as the will would make it), then a clean DISCONNECT. For pagehide.
+   */
+  release(): void {
+    clearInterval(this.pingTimer);
+    this.coalescer.cancelAll();
+    const client = this.client;
+    this.client = null;
+    if (!client) return;
+    if (this.permissions.deadman && this.connected)
+      client.publish(this.topics.operator, '0', { qos: 1, retain: true });
+    client.end(false);
+    this.store.connection = 'idle';
+  }
+
   stop(): void {
+    if (this.permissions.deadman && this.connected) return this.release();
     clearInterval(this.pingTimer);
     this.coalescer.cancelAll();
     this.client?.end(true);

@@ -11,6 +11,8 @@ import type { ArmStore } from '../store/ArmStore.ts';
 import type { TargetPreview } from '../store/TargetPreview.ts';
 import { ghostPose } from '../store/ghostPose.ts';
 import { SERVO_JOINTS, jointValueFromAngle } from '../model/armModel.ts';
+import type { JointMap } from '../robots/robotSpec.ts';
+import { frameCamera, type GhostSource } from '../robots/sceneHooks.ts';
 import { RobotModelLoader, solidMaterial } from './loadRobot.ts';
 import { createStage, ghostMaterial, type Stage } from './stage.ts';
 import { ResolutionGovernor } from './ResolutionGovernor.ts';
@@ -18,7 +20,7 @@ import type { ReplayPlayer } from '../replay/ReplayPlayer.ts';
 import { ReplaySibling, siblingMaterial } from '../replay/ReplaySibling.ts';
 
 const MM = 0.001;
-const GHOST_HIDDEN_LINKS = ['base_link', 'turret'];
+const GHOST_HIDDEN_LINKS = ['base_link', 'turret', 'rail'];
 /** Idle time after which a full-resolution frame is drawn, ms. */
 const REFINE_AFTER_MS = 300;
 
@@ -34,7 +36,13 @@ export class Viewer {
   private ghostJoints: (URDFJoint | undefined)[] = [];
   /** The replay's sibling arm (History panel), when a ReplayPlayer is given. */
   private sibling: ReplaySibling | null = null;
-  private readonly ghostAngles: Float64Array;
+  private ghostAngles: Float64Array;
+  /** Servo i's URDF joint and store angle → joint value (armtwin5's when none is given). */
+  private joints: JointMap | null = null;
+  /** Drawn into the ghost instead of the target/commanded pose while active (the plan preview). */
+  ghostSource: GhostSource | null = null;
+  /** Called every frame (waypoint spheres, …); a hook returning true asks for a render. */
+  readonly frameHooks = new Set<(now: number) => boolean>();
   private needsRender = true;
   private frame = 0;
   private running = false;
@@ -83,8 +91,25 @@ export class Viewer {
     this.stage = createStage(this.scene);
   }
 
-  /** Loads the live arm and the ghost; rejects with a readable message. */
-  async load(urdfUrl: string): Promise<void> {
+  /** The arm's z-up frame (metres), the camera and the canvas, for the scene's add-ons. */
+  get world(): THREE.Group {
+    return this.stage.world;
+  }
+  get canvas(): HTMLCanvasElement {
+    return this.renderer.domElement;
+  }
+
+  /** The URDF joint values drawn now (rad or m), live arm or ghost, in servo order. */
+  jointValues(which: 'robot' | 'ghost' = 'robot'): number[] {
+    const joints = which === 'robot' ? this.robotJoints : this.ghostJoints;
+    return joints.map((j) => (j ? j.angle : NaN));
+  }
+
+  /**
+   * Loads the live arm and the ghost (replacing any loaded before); rejects with a readable
+   * message. `joints` maps servos to URDF joints (default: armtwin5's, one degree = one degree).
+   */
+  async load(urdfUrl: string, joints?: JointMap): Promise<void> {
     const loader = new RobotModelLoader(urdfUrl);
     const [robot, ghost] = await Promise.all([
       loader.build(solidMaterial),
@@ -101,15 +126,23 @@ export class Viewer {
         if ((child as { isURDFVisual?: boolean }).isURDFVisual) child.visible = false;
     }
     ghost.visible = false;
+    const sibling = this.replay
+      ? new ReplaySibling(await loader.build(siblingMaterial), this.replay)
+      : null;
+    for (const old of [this.robot, this.ghost, this.sibling?.robot])
+      if (old) old.removeFromParent();
     this.robot = robot;
     this.ghost = ghost;
-    this.robotJoints = SERVO_JOINTS.map((n) => robot.joints[n]);
-    this.ghostJoints = SERVO_JOINTS.map((n) => ghost.joints[n]);
+    this.joints = joints ?? null;
+    const names = joints?.names ?? SERVO_JOINTS;
+    this.robotJoints = names.map((n) => robot.joints[n]);
+    this.ghostJoints = names.map((n) => ghost.joints[n]);
+    this.ghostAngles = new Float64Array(names.length);
     this.stage.world.add(robot, ghost);
-    if (this.replay) {
-      this.sibling = new ReplaySibling(await loader.build(siblingMaterial), this.replay);
-      this.stage.world.add(this.sibling.robot);
-    }
+    this.sibling = sibling;
+    if (sibling) this.stage.world.add(sibling.robot);
+    if (joints) frameCamera(this, robot);
+    this.needsRender = true;
   }
 
   /** Attaches the canvas and starts the loop (call after `load`). */
@@ -139,8 +172,9 @@ export class Viewer {
     const now = performance.now();
     if (this.store.sample(now))
       this.needsRender = this.pose(this.robotJoints, this.store.rendered) || this.needsRender;
-    this.updateGhost();
+    this.updateGhost(now);
     if (this.sibling?.update(now)) this.needsRender = true;
+    for (const hook of this.frameHooks) if (hook(now)) this.needsRender = true;
     this.updateTarget();
     if (this.warmupFrames > 0) {
       this.warmupFrames--;
@@ -179,29 +213,33 @@ export class Viewer {
   /** Sets the joints to servo angles (degrees); true if any joint moved. */
   private pose(joints: (URDFJoint | undefined)[], angles: ArrayLike<number>): boolean {
     let changed = false;
+    const m = this.joints;
     for (let i = 0; i < joints.length; i++) {
       const a = angles[i] ?? NaN;
-      if (!Number.isNaN(a) && joints[i]?.setJointValue(jointValueFromAngle(a))) changed = true;
+      const v = m ? m.scale[i]! * a + m.bias[i]! : jointValueFromAngle(a);
+      if (!Number.isNaN(a) && joints[i]?.setJointValue(v)) changed = true;
     }
     return changed;
   }
 
-  private updateGhost(): void {
+  private updateGhost(now: number): void {
     const ghost = this.ghost;
     if (!ghost) return;
     const t = this.target;
-    const shows = t.ghostEnabled
-      ? ghostPose(
-          {
-            arm: this.store.opts.arm,
-            rendered: this.store.rendered,
-            commandedPwm: this.store.commandedPwm,
-            previewOk: t.active && t.code === 0,
-            previewAngles: t.angles,
-          },
-          this.ghostAngles,
-        )
-      : 'nothing';
+    const shows = !t.ghostEnabled
+      ? 'nothing'
+      : this.ghostSource?.sample(now, this.ghostAngles)
+        ? 'plan'
+        : ghostPose(
+            {
+              arm: this.store.opts.arm,
+              rendered: this.store.rendered,
+              commandedPwm: this.store.commandedPwm,
+              previewOk: t.active && t.code === 0,
+              previewAngles: t.angles,
+            },
+            this.ghostAngles,
+          );
     t.ghostShows = shows;
     const visible = shows !== 'nothing';
     if (ghost.visible !== visible) {

@@ -57,23 +57,29 @@ export interface StoreCounters {
 
 export class ArmStore {
   readonly opts: ArmStoreOptions;
-  readonly servoCount: number;
+  // The per-servo arrays are replaced (never resized) by `configure`, when the arm's profile
+  // changes; read them through the store each time, never keep one.
+  servoCount!: number;
   /** Latest reported pulse per servo, NaN until reported. */
-  readonly pwm: Float64Array;
+  pwm!: Float64Array;
   /** Servo angles drawn this frame, degrees (written by `sample`). Read by the debug hook. */
-  readonly rendered: Float64Array;
+  rendered!: Float64Array;
   /** Last pulse this HUD commanded per servo (jog or IK), NaN = none / follow the arm. */
-  readonly commandedPwm: Float64Array;
+  commandedPwm!: Float64Array;
   /** Latest temperature (°C) and supply voltage (mV) per servo, NaN until reported. */
-  readonly temp: Float64Array;
-  readonly mv: Float64Array;
-  readonly history: HealthHistory;
+  temp!: Float64Array;
+  mv!: Float64Array;
+  history!: HealthHistory;
+  /** Bumped by `configure`: the servo list changed. */
+  armVersion = 0;
   readonly counters: StoreCounters;
   readonly ping = new PingTracker();
   connection: ConnectionState = 'idle';
   connectionError = '';
   /** Retained `arm/{id}/online`: true, false, or null before it is known. */
   armOnline: boolean | null = null;
+  /** The retained online payload when it was neither `1` nor `0` (shown as text), else ''. */
+  armOnlineText = '';
   /** When the last state report arrived (ms), NaN = never. */
   lastStateAt = NaN;
   /** Last `$KMS:c!` reply and how many replies have come (so a panel sees a new one). */
@@ -83,27 +89,18 @@ export class ArmStore {
   /** First message per reader error kind, for the Status panel. */
   readonly firstError: Partial<Record<ReaderErrorKind, string>> = {};
 
-  private readonly tweens: JointTween[];
+  private tweens!: JointTween[];
   private readonly interval = new IntervalEstimator();
   private readonly messageRate = new RateMeter();
   private readonly stateRate = new RateMeter();
   private readonly reader: Reader;
-  private readonly rowTemp: Float64Array;
-  private readonly rowVolt: Float64Array;
+  private rowTemp!: Float64Array;
+  private rowVolt!: Float64Array;
   private now = 0;
 
   constructor(opts: Partial<ArmStoreOptions> = {}) {
     this.opts = { ...DEFAULT_ARM_STORE_OPTIONS, ...opts };
-    const n = (this.servoCount = this.opts.arm.servos.length);
-    this.pwm = new Float64Array(n).fill(NaN);
-    this.rendered = new Float64Array(n).fill(NaN);
-    this.commandedPwm = new Float64Array(n).fill(NaN);
-    this.temp = new Float64Array(n).fill(NaN);
-    this.mv = new Float64Array(n).fill(NaN);
-    this.rowTemp = new Float64Array(n);
-    this.rowVolt = new Float64Array(n);
-    this.tweens = Array.from({ length: n }, () => new JointTween());
-    this.history = new HealthHistory(n, this.opts.historyLength);
+    this.allocate();
     this.counters = {
       messages: 0,
       frames: 0,
@@ -124,6 +121,34 @@ export class ArmStore {
         this.firstError[e.kind] ??= `${e.message}: ${JSON.stringify(e.text)}`;
       },
     });
+  }
+
+  private allocate(): void {
+    const n = (this.servoCount = this.opts.arm.servos.length);
+    this.pwm = new Float64Array(n).fill(NaN);
+    this.rendered = new Float64Array(n).fill(NaN);
+    this.commandedPwm = new Float64Array(n).fill(NaN);
+    this.temp = new Float64Array(n).fill(NaN);
+    this.mv = new Float64Array(n).fill(NaN);
+    this.rowTemp = new Float64Array(n);
+    this.rowVolt = new Float64Array(n);
+    this.tweens = Array.from({ length: n }, () => new JointTween());
+    this.history = new HealthHistory(n, this.opts.historyLength);
+  }
+
+  /**
+   * Another arm profile (the selected arm announced a different robot): new per-servo arrays
+   * sized for it, the arm's data forgotten (as `resetArm`) except whether it is online (the
+   * retained message came once). Counters are kept.
+   */
+  configure(arm: ArmProfile): void {
+    const { armOnline, armOnlineText } = this;
+    this.opts.arm = arm;
+    this.allocate();
+    this.resetArm();
+    this.armOnline = armOnline;
+    this.armOnlineText = armOnlineText;
+    this.armVersion++;
   }
 
   /** One MQTT message from `arm/{id}/status`, received at `now`. */
@@ -269,6 +294,7 @@ export class ArmStore {
     this.history.clear();
     this.ping.reset();
     this.armOnline = null;
+    this.armOnlineText = '';
     this.lastStateAt = NaN;
     this.kmsReply = null;
   }

@@ -33,6 +33,18 @@ export class HealthHistory {
     this.version++;
   }
 
+  /**
+   * A break in the data (the broker connection dropped): a row of NaN, drawn as a gap (the
+   * charts hand uPlot null). Its time is kept after the last row so time stays ordered.
+   */
+  pushGap(timeS: number): void {
+    const last = this.time.latest();
+    this.time.push(Number.isNaN(last) ? timeS : Math.max(timeS, last + 0.001));
+    for (const r of this.temp) r.push(NaN);
+    for (const r of this.volt) r.push(NaN);
+    this.version++;
+  }
+
   clear(): void {
     this.time.clear();
     for (const r of this.temp) r.clear();

@@ -3,6 +3,9 @@
  * it on user input), the 3D view (target marker, ghost, floor clicks) and the Ghost panel.
  * Plain mutable state plus one listener list for targets placed by a click in the 3D view.
  */
+/** Servos a preview can hold (a profile has at most a few dozen). */
+const MAX_PREVIEW_SERVOS = 32;
+
 export class TargetPreview {
   /** Whether a target has been entered (the marker and preview ghost are drawn). */
   active = false;
@@ -12,12 +15,12 @@ export class TargetPreview {
   z = 0;
   /** Local IK status code of §4 for the target (0 = reachable). */
   code = 0;
-  /** Servo angles of 000–003 of the previewed solution, degrees (NaN when there is none). */
-  readonly angles = new Float64Array(4).fill(NaN);
+  /** Servo angles of the previewed solution, degrees (NaN for servos it leaves be). */
+  readonly angles = new Float64Array(MAX_PREVIEW_SERVOS).fill(NaN);
   /** Whether the ghost is drawn at all (the Ghost panel's switch). */
   ghostEnabled = true;
   /** What the ghost shows this frame; written by the 3D view, read by the Ghost panel. */
-  ghostShows: 'nothing' | 'preview' | 'commanded' = 'nothing';
+  ghostShows: 'nothing' | 'preview' | 'commanded' | 'plan' = 'nothing';
 
   private readonly placeListeners = new Set<(x: number, y: number) => void>();
 
@@ -27,7 +30,7 @@ export class TargetPreview {
     this.y = y;
     this.z = z;
     this.code = code;
-    for (let i = 0; i < 4; i++) this.angles[i] = angles[i] ?? NaN;
+    for (let i = 0; i < MAX_PREVIEW_SERVOS; i++) this.angles[i] = angles[i] ?? NaN;
   }
 
   setGhostEnabled(on: boolean): void {

@@ -16,7 +16,7 @@ export interface GhostInputs {
   rendered: ArrayLike<number>;
   /** Commanded pulses, NaN = none. */
   commandedPwm: ArrayLike<number>;
-  /** Preview active and reachable, and its servo angles of 000–003. */
+  /** Preview active and reachable, and its servo angles (NaN = servo not in the solution). */
   previewOk: boolean;
   previewAngles: ArrayLike<number>;
 }
@@ -25,7 +25,7 @@ export function ghostPose(g: GhostInputs, out: Float64Array): 'nothing' | 'previ
   const n = out.length;
   let differs = false;
   for (let i = 0; i < n; i++) {
-    const p = g.previewOk && i < 4 ? (g.previewAngles[i] ?? NaN) : NaN;
+    const p = g.previewOk ? (g.previewAngles[i] ?? NaN) : NaN;
     out[i] = Number.isNaN(p) ? commandedOrLive(g, i) : p;
     const live = g.rendered[i] ?? NaN;
     if (!Number.isNaN(out[i]!) && !(Math.abs(out[i]! - live) <= GHOST_HIDE_WITHIN_DEG))

@@ -2,26 +2,40 @@
  * Cartesian target: X, Y, Z (mm) and an optional Pitch (degrees; blank = the controller picks,
  * as §4's search does). Every edit runs the local IK (@armtwin/ik): the ghost shows the
  * solution, or the status code is shown in words, before anything is sent. "Move" publishes
- * `$KMS:…!` only for a target the local IK accepts, and shows the arm's reply code.
+ * `$KMS:…!` only for a target the local IK accepts, and shows the arm's reply code. On an arm
+ * whose profile is not `analytic5` (track6) the IK is the numeric one and "Move" sends a motion
+ * request (`arm/{id}/request`, joint mode) instead (solveTarget.ts).
  * A click on the floor in the 3D view places the target there (X, Y; Z kept).
  */
 import { useEffect, useState } from 'react';
-import { ikCodeMessage, solveIk } from '@armtwin/ik';
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { parseTarget, type TargetFields } from './parseTarget.ts';
+import { codeWords, solveTarget } from './solveTarget.ts';
+import { nextRequestId } from '../Command/RequestLog.ts';
 
 const INITIAL: TargetFields = { x: '200', y: '0', z: '150', pitch: '' };
 
 export function CartesianPanel() {
-  const { store, link, target } = useHud();
+  const { store, link, target, robots } = useHud();
   const [fields, setFields] = useState(INITIAL);
   const [touched, setTouched] = useState(false);
   const [sent, setSent] = useState<{ text: string; replies: number } | null>(null);
   const [refusal, setRefusal] = useState('');
 
   const parsed = parseTarget(fields);
-  const result = parsed.ok ? solveIk(parsed.x, parsed.y, parsed.z, parsed.pitch) : null;
+  const result = parsed.ok
+    ? solveTarget(
+        parsed.x,
+        parsed.y,
+        parsed.z,
+        parsed.pitch,
+        store.opts.arm,
+        robots.active.motion,
+        store.pwm,
+      )
+    : null;
+  const ikCodeMessage = (code: number) => codeWords(code, result?.via ?? 'kms');
 
   // Mirror the preview into the plain store the 3D view reads (marker and ghost).
   useEffect(() => {
@@ -45,7 +59,10 @@ export function CartesianPanel() {
   );
 
   const live = useSampled(() => ({
-    enabled: store.connection === 'connected' && !store.isStale(performance.now()),
+    enabled:
+      link.permissions.command &&
+      store.connection === 'connected' &&
+      !store.isStale(performance.now()),
     replies: store.kmsReplies,
     reply: store.kmsReply,
   }));
@@ -64,6 +81,22 @@ export function CartesianPanel() {
       );
     }
     setRefusal('');
+    if (result.via === 'request') {
+      const t = { x: parsed.x, y: parsed.y, z: parsed.z };
+      const targets = [parsed.pitch === undefined ? t : { ...t, pitch: parsed.pitch }];
+      const id = nextRequestId();
+      if (
+        !link.permissions.command ||
+        !robots.fleet.request({ id, mode: 'joint', targets, execute: true })
+      )
+        return setRefusal('Not sent: the broker is not connected.');
+      robots.requests.sent(id, `move to ${parsed.x} ${parsed.y} ${parsed.z}`);
+      setSent({
+        text: `(${parsed.x}, ${parsed.y}, ${parsed.z}) as a motion request`,
+        replies: Infinity,
+      });
+      return;
+    }
     link.moveTo(parsed.x, parsed.y, parsed.z, parsed.pitch, result.pwm);
     setSent({ text: `(${parsed.x}, ${parsed.y}, ${parsed.z})`, replies: live.replies });
   };
@@ -149,9 +182,11 @@ export function CartesianPanel() {
       )}
       {sent && (
         <p className="note" role="status" data-testid="kms-reply">
-          {replied
-            ? `Arm replied to ${sent.text}: code ${live.reply} — ${ikCodeMessage(live.reply!)}.`
-            : `Sent ${sent.text}; waiting for the arm's reply…`}
+          {sent.replies === Infinity
+            ? `Sent ${sent.text}; its feedback: Command panel.`
+            : replied
+              ? `Arm replied to ${sent.text}: code ${live.reply} — ${ikCodeMessage(live.reply!)}.`
+              : `Sent ${sent.text}; waiting for the arm's reply…`}
         </p>
       )}
     </section>

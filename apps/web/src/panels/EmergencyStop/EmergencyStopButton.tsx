@@ -4,19 +4,25 @@
  */
 import { useCallback, useEffect, useState } from 'react';
 import { useHud } from '../../hud/HudContext.ts';
+import { useSampled } from '../../hud/useSampled.ts';
+import './estop-roles.css';
 
 export function EmergencyStopButton() {
-  const { link } = useHud();
+  const { link, session } = useHud();
   const [feedback, setFeedback] = useState('');
+  // A role that may not publish (viewer) cannot stop the arm from this page: say so plainly.
+  const perm = useSampled(() => session.permissions);
+  const refused = perm !== null && !perm.stop;
 
   const stop = useCallback(() => {
+    if (refused) return;
     const sent = link.emergencyStop();
     setFeedback(
       sent
         ? `Stop sent ${new Date().toLocaleTimeString()}`
         : 'Not connected: stop NOT sent — cut the power',
     );
-  }, [link]);
+  }, [link, refused]);
 
   useEffect(() => {
     const onKey = (e: KeyboardEvent) => {
@@ -28,11 +34,23 @@ export function EmergencyStopButton() {
 
   return (
     <div className="estop">
-      <button type="button" className="estop-button" onClick={stop} aria-keyshortcuts="Escape">
-        Emergency stop
+      <button
+        type="button"
+        className="estop-button"
+        onClick={stop}
+        disabled={refused}
+        aria-keyshortcuts={refused ? undefined : 'Escape'}
+        data-testid="estop"
+      >
+        {refused ? perm.stopRefusal : 'Emergency stop'}
       </button>
       <div className="estop-hint" role="status">
-        {feedback || 'or press Esc'}
+        {feedback ||
+          (refused
+            ? 'this account cannot publish'
+            : perm?.stopUnconfirmed
+              ? 'role unknown: the broker may refuse this stop — keep the physical stop at hand (Esc)'
+              : 'or press Esc')}
       </div>
     </div>
   );

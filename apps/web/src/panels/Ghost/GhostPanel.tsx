@@ -10,6 +10,7 @@ const WORDS = {
   preview: 'showing the previewed target pose',
   commanded: 'showing the commanded pose (the arm is not there yet)',
   nothing: 'hidden: nothing to show apart from the live arm',
+  plan: 'previewing the plan (Plan panel)',
 } as const;
 
 export function GhostPanel() {

@@ -99,7 +99,8 @@ function columns(time: RingBuffer, rings: RingBuffer[]): uPlot.AlignedData {
     ...rings.map((r) => {
       const y = new Float64Array(n);
       r.copyInto(y);
-      return y;
+      // NaN marks a gap (HealthHistory.pushGap): uPlot breaks a line only at null.
+      return Array.from(y, (v) => (Number.isNaN(v) ? null : v));
     }),
   ] as uPlot.AlignedData;
 }

@@ -1,7 +1,16 @@
 import { TEMP_CRITICAL_C, TEMP_WARNING_C, VOLTAGE_MIN_V } from '@armtwin/protocol';
 
-/** One line colour per servo (000–005), in the charts and the table's swatches. */
-export const SERVO_COLOURS = ['#60a5fa', '#f59e0b', '#34d399', '#f472b6', '#a78bfa', '#e5e7eb'];
+/** One line colour per servo (000–007; track6 has 7), in the charts and the table's swatches. */
+export const SERVO_COLOURS = [
+  '#60a5fa',
+  '#f59e0b',
+  '#34d399',
+  '#f472b6',
+  '#a78bfa',
+  '#e5e7eb',
+  '#fb7185',
+  '#2dd4bf',
+];
 
 /** Threshold lines drawn on the charts (PROTOCOL.md §5). */
 export const TEMP_LINES = [

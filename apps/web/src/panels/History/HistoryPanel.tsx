@@ -9,6 +9,7 @@ import { useCallback, useMemo, useRef, useState } from 'react';
 import { useHud } from '../../hud/HudContext.ts';
 import { ChartsView } from './ChartsView.tsx';
 import { HistoryApi } from './historyApi.ts';
+import { authHeaders } from '../../auth/whoami.ts';
 import {
   loadAngles,
   loadOverview,
@@ -43,7 +44,12 @@ export function HistoryPanel() {
   const { settings, store, replay } = useHud();
   const servos = store.opts.arm.servos;
   const arm = settings.armId;
-  const api = useMemo(() => new HistoryApi({ base: settings.apiBase }), [settings.apiBase]);
+  const { apiBase, username, password } = settings;
+  // Under `armtwin up` with users, /api wants the log-in's password (HTTP Basic).
+  const api = useMemo(
+    () => new HistoryApi({ base: apiBase, headers: authHeaders({ username, password }) }),
+    [apiBase, username, password],
+  );
   const [choice, setChoice] = useState(initialChoice);
   const [tab, setTab] = useState<Tab>('charts');
   const [joint, setJoint] = useState(servoId(0));

@@ -1,34 +1,41 @@
 /**
- * Jog: one slider per servo, named after its joint ("Base", "Shoulder", …), in degrees within
- * the servo's limits (so the HUD never sends an out-of-limit pulse). Dragging or arrow keys
+ * Jog: one slider per servo of the arm's profile, named after its joint ("Base", "Shoulder", …),
+ * in degrees (millimetres for a prismatic axis) within the joint's limits (so the HUD never sends
+ * an out-of-limit pulse). Dragging or arrow keys
  * publish `#IIIPppppTtttt!`, coalesced by ArmLink to ≤ 20 per second per servo. Disabled while
  * the data is stale or the broker is not connected.
  */
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { JogSlider } from './JogSlider.tsx';
-import { angleFromPwm } from '@armtwin/protocol';
 
 export function JogPanel() {
-  const { store, link } = useHud();
-  const servos = store.opts.arm.servos;
+  const { store, link, session, robots } = useHud();
+  const servos = robots.active.spec.sliders;
   const snap = useSampled(() => {
     const now = performance.now();
     return {
-      enabled: store.connection === 'connected' && !store.isStale(now),
-      live: Array.from(store.pwm, (p, i) => round1(angleFromPwm(p, servos[i]!.polarity))),
+      enabled: link.permissions.command && store.connection === 'connected' && !store.isStale(now),
+      allowed: link.permissions.command,
+      live: Array.from(store.pwm, (p, i) => round1(servos[i]?.valueFromPwm(p) ?? NaN)),
       commanded: Array.from(store.commandedPwm, (p, i) =>
-        round1(angleFromPwm(p, servos[i]!.polarity)),
+        round1(servos[i]?.valueFromPwm(p) ?? NaN),
       ),
     };
   });
   return (
     <section className="panel jog" aria-labelledby="jog-title">
       <h2 id="jog-title">Jog</h2>
-      {!snap.enabled && (
-        <p className="note warn" role="status">
-          Jogging disabled until fresh status arrives.
+      {!snap.allowed ? (
+        <p className="note warn" role="status" data-testid="jog-disabled">
+          {session.permissions?.reason || 'Jogging disabled until the role is known.'}
         </p>
+      ) : (
+        !snap.enabled && (
+          <p className="note warn" role="status" data-testid="jog-disabled">
+            Jogging disabled until fresh status arrives.
+          </p>
+        )
       )}
       {servos.map((spec, i) => (
         <JogSlider

@@ -1,15 +1,14 @@
 import { useEffect, useId, useRef, useState } from 'react';
-import { pwmFromAngle } from '@armtwin/protocol';
-import type { ServoSpec } from '@armtwin/ik';
+import type { SliderSpec } from '../../robots/robotSpec.ts';
 
 /** After the user last touched a slider, it follows the arm again after this long, ms. */
 const FOLLOW_AFTER_MS = 1500;
 
 interface Props {
-  spec: ServoSpec;
-  /** Reported servo angle, degrees (NaN = unknown). */
+  spec: SliderSpec;
+  /** Reported joint value, degrees or mm (NaN = unknown). */
   live: number;
-  /** Commanded servo angle, degrees (NaN = none). */
+  /** Commanded joint value, degrees or mm (NaN = none). */
   commanded: number;
   disabled: boolean;
   onJog(pwm: number): void;
@@ -24,33 +23,38 @@ export function JogSlider({ spec, live, commanded, disabled, onJog }: Props) {
   // Follow the commanded (else live) angle unless the user is using the slider.
   useEffect(() => {
     if (Number.isNaN(shown) || performance.now() - touchedAt.current < FOLLOW_AFTER_MS) return;
-    setDeg(Math.round(Math.min(spec.maxDeg, Math.max(spec.minDeg, shown))));
-  }, [shown, spec.minDeg, spec.maxDeg]);
+    const v = Math.min(spec.max, Math.max(spec.min, shown));
+    setDeg(Math.min(spec.max, Math.max(spec.min, Math.round(v / spec.step) * spec.step)));
+  }, [shown, spec.min, spec.max, spec.step]);
 
-  const pwm = pwmFromAngle(deg, spec.polarity);
+  const pwm = spec.pwmFromValue(deg);
+  const unit = spec.unit === 'deg' ? '°' : ' mm';
   return (
     <div className="jog-row">
       <div className="jog-head">
         <label htmlFor={id}>{spec.name}</label>
         <span className="jog-value" aria-hidden="true">
-          {deg}°{' '}
-          <span className="dim">· live {Number.isNaN(live) ? '—' : `${live.toFixed(1)}°`}</span>
+          {deg}
+          {unit}{' '}
+          <span className="dim">
+            · live {Number.isNaN(live) ? '—' : `${live.toFixed(1)}${unit}`}
+          </span>
         </span>
       </div>
       <input
         id={id}
         type="range"
-        min={spec.minDeg}
-        max={spec.maxDeg}
-        step={1}
+        min={spec.min}
+        max={spec.max}
+        step={spec.step}
         value={deg}
         disabled={disabled}
-        aria-valuetext={`${deg} degrees, ${pwm} microseconds`}
+        aria-valuetext={`${deg} ${spec.unit === 'deg' ? 'degrees' : 'millimetres'}, ${pwm} microseconds`}
         onChange={(e) => {
           const next = Number(e.currentTarget.value);
           touchedAt.current = performance.now();
           setDeg(next);
-          onJog(pwmFromAngle(next, spec.polarity));
+          onJog(spec.pwmFromValue(next));
         }}
       />
     </div>

@@ -7,9 +7,10 @@ import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { useStorageStatus } from './useStorageStatus.ts';
 import { CONNECTION_WORDS, armWords, formatRate } from './words.ts';
+import { gapWords } from '../../mqtt/GapTracker.ts';
 
 export function StatusPanel() {
-  const { store, settings } = useHud();
+  const { store, settings, link } = useHud();
   const storage = useStorageStatus();
   const s = useSampled(() => {
     const now = performance.now();
@@ -19,6 +20,8 @@ export function StatusPanel() {
       connection: store.connection,
       error: store.connectionError,
       online: store.armOnline,
+      onlineText: store.armOnlineText,
+      gap: gapWords(link.gap.view(Date.now())),
       stale: store.isStale(now),
       staleFor: Number.isNaN(store.lastStateAt)
         ? NaN
@@ -53,6 +56,7 @@ export function StatusPanel() {
           className={s.online === true ? 'ok' : s.online === false ? 'bad' : ''}
         >
           {armWords(s.online)}
+          {s.onlineText && <span className="dim"> (unrecognised: “{s.onlineText}”)</span>}
         </dd>
         <dt>Messages</dt>
         <dd>
@@ -76,6 +80,14 @@ export function StatusPanel() {
               : 'checking…'}
         </dd>
       </dl>
+      {s.gap && (
+        <p
+          className={`note ${s.connection === 'connected' ? 'warn' : 'bad'}`}
+          data-testid="broker-gap"
+        >
+          {s.gap}
+        </p>
+      )}
       {s.controllerError && <p className="note warn">Controller error: {s.controllerError}</p>}
       <p className={`note ${s.stale ? 'stale' : 'fresh'}`} role="status" data-testid="freshness">
         {s.stale

@@ -1,0 +1,100 @@
+/**
+ * Command box (issue 9): "home", "open gripper", "move to 150 0 80", "line to …", "plan …" →
+ * `parseCommand` (@armtwin/motion) against the arm's profile → a motion request on
+ * `arm/{id}/request`; the arm's feedback (planned, executing, done, unreachable with its code in
+ * words, failed with its message) is listed as it arrives, as text only. The tip line is the FK
+ * of the pulses the arm reports.
+ */
+import { useState } from 'react';
+import { parseCommand, tipPose } from '@armtwin/motion';
+import '../../robots/robots.css';
+import { useHud } from '../../hud/HudContext.ts';
+import { useSampled } from '../../hud/useSampled.ts';
+import { feedbackWords } from '../../robots/feedback.ts';
+import { nextRequestId } from './RequestLog.ts';
+
+export function CommandPanel() {
+  const { robots, link, store } = useHud();
+  const log = robots.requests;
+  const [text, setText] = useState('');
+  const [error, setError] = useState('');
+  const fleet = robots.fleet;
+
+  const snap = useSampled(() => {
+    const motion = robots.active.motion;
+    const pwm = Array.from(store.pwm);
+    const tip =
+      motion && pwm.length === motion.ids.length && pwm.every(Number.isFinite)
+        ? tipPose(motion, pwm)
+        : null;
+    return {
+      version: log.version,
+      allowed: link.permissions.command,
+      connected: fleet.connected,
+      tip: tip ? `x ${tip.x.toFixed(1)}, y ${tip.y.toFixed(1)}, z ${tip.z.toFixed(1)} mm` : '',
+    };
+  });
+
+  const send = () => {
+    const profile = robots.active.spec.profile;
+    const id = nextRequestId();
+    const r = parseCommand(text, id, profile);
+    if (!r.ok) return setError(r.message);
+    if (!fleet.request(r.request)) return setError('Not sent: the broker is not connected.');
+    setError('');
+    log.sent(id, text.trim());
+  };
+
+  return (
+    <section className="panel command" aria-labelledby="command-title">
+      <h2 id="command-title">Command</h2>
+      <form
+        className="command-form"
+        onSubmit={(e) => {
+          e.preventDefault();
+          send();
+        }}
+      >
+        <input
+          type="text"
+          aria-label="Command"
+          placeholder="home · open gripper · move to 150 0 80"
+          value={text}
+          maxLength={120}
+          onChange={(e) => {
+            setText(e.currentTarget.value);
+            setError('');
+          }}
+        />
+        <button type="submit" disabled={!snap.allowed || !snap.connected || text.trim() === ''}>
+          Send
+        </button>
+      </form>
+      {error && (
+        <p className="note bad" data-testid="command-error">
+          {error}
+        </p>
+      )}
+      <ol className="command-log" aria-live="polite" data-testid="command-log">
+        {log.entries.map((e) => {
+          const last = e.feedback[e.feedback.length - 1];
+          return (
+            <li key={e.id} data-testid="command-entry">
+              <span className="command-text">{e.text}</span>{' '}
+              <span
+                className={`command-status ${last ? last.status : ''}`}
+                data-testid="command-status"
+                title={e.feedback.map((f) => feedbackWords(f)).join(' → ')}
+              >
+                {last ? feedbackWords(last) : 'sent…'}
+              </span>
+            </li>
+          );
+        })}
+      </ol>
+      <p className="dim small-print" data-testid="tip-pose">
+        {snap.tip ? `Tip at ${snap.tip}` : 'Tip: no pose reported yet.'}
+      </p>
+    </section>
+  );
+}

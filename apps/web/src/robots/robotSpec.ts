@@ -1,0 +1,138 @@
+/**
+ * What the HUD needs from a robot profile, in its own terms. Pure: no DOM, no three.js.
+ *
+ * - `storeArm`: the `ArmProfile` the store counts in. An `analytic5` profile gives its own
+ *   (armtwin5's equals DEMO_ARM, so the 5-axis HUD is unchanged); any other profile a
+ *   pulse-equivalent one, as `armtwin sim` does (apps/cli/src/sim/profile.ts): each servo's pulse
+ *   limits written as §2 angles with polarity +1, which round-trip to exactly the same pulses,
+ *   a prismatic axis included. So the store's "angles" are always linear in pulses.
+ * - `joints`: per servo, the URDF joint and the linear map store angle → URDF joint value
+ *   (radians, or metres for a prismatic axis): `value = scale·angle + bias`.
+ * - `sliders`: the jog sliders, in joint units (degrees, or millimetres for a prismatic axis).
+ */
+import {
+  armProfileFromProfile,
+  jointFromPwm,
+  pwmFromServo,
+  servoFromPwm,
+  servoTable,
+  type ArmProfile,
+  type Profile,
+  type ProfileServo,
+} from '@armtwin/ik';
+import { PWM_CENTRE, PWM_MAX, PWM_MIN, SERVO_RANGE_DEG, angleFromPwm } from '@armtwin/protocol';
+
+const US_PER_DEG = (PWM_MAX - PWM_MIN) / SERVO_RANGE_DEG;
+
+export interface JointMap {
+  /** URDF joint driven by servo i (profile order). */
+  readonly names: readonly string[];
+  /** URDF joint value = scale[i]·angle + bias[i], angle in the store's degrees. */
+  readonly scale: Float64Array;
+  readonly bias: Float64Array;
+}
+
+export interface SliderSpec {
+  /** Index in the profile (and store) servo order. */
+  readonly index: number;
+  /** Wire id. */
+  readonly id: number;
+  readonly name: string;
+  readonly unit: 'deg' | 'mm';
+  /** Joint limits in joint units (the profile's `min`, `max`). */
+  readonly min: number;
+  readonly max: number;
+  /** Slider step, joint units. */
+  readonly step: number;
+  /** Joint value (deg or mm) of a pulse; NaN for NaN. */
+  valueFromPwm(pwm: number): number;
+  /** Pulse (integer µs) of a joint value. */
+  pwmFromValue(value: number): number;
+}
+
+export interface RobotSpec {
+  readonly profile: Profile;
+  readonly name: string;
+  readonly title: string;
+  /** The URDF, relative to the page: `models/<name>/<urdf>`. */
+  readonly urdfUrl: string;
+  readonly storeArm: ArmProfile;
+  readonly joints: JointMap;
+  readonly sliders: readonly SliderSpec[];
+}
+
+/** Slider step of a prismatic axis, mm (the track6 track is 1.5 mm per µs). */
+export const PRISMATIC_STEP_MM = 5;
+
+/** The pulse-equivalent ArmProfile of any profile (see the file comment). */
+export function pulseEquivalentArm(profile: Profile): ArmProfile {
+  return {
+    name: profile.title,
+    links: { l0: 0, l1: 0, l2: 0, l3: 0 },
+    servos: servoTable(profile).map((s) => ({
+      id: s.id,
+      name: s.name,
+      polarity: 1,
+      minDeg: angleFromPwm(s.minPwm),
+      maxDeg: angleFromPwm(s.maxPwm),
+      jointOffsetDeg: 0,
+      maxSpeedDegPerS: s.maxSpeedPwmPerS / US_PER_DEG,
+    })),
+  };
+}
+
+export function storeArmFor(profile: Profile): ArmProfile {
+  return armProfileFromProfile(profile) ?? pulseEquivalentArm(profile);
+}
+
+/** Exact pulse (µs, unrounded) of a store angle: the inverse of `angleFromPwm`. */
+export const pwmOfStoreAngle = (angle: number, polarity: number): number =>
+  PWM_CENTRE + polarity * US_PER_DEG * angle;
+
+export function jointMap(profile: Profile, arm: ArmProfile): JointMap {
+  const n = profile.servos.length;
+  const scale = new Float64Array(n);
+  const bias = new Float64Array(n);
+  profile.servos.forEach((s, i) => {
+    const k = arm.servos[i]?.polarity ?? 1;
+    const at = (angle: number) => jointFromPwm(s, pwmOfStoreAngle(angle, k));
+    bias[i] = at(0);
+    scale[i] = at(1) - bias[i]!;
+  });
+  return { names: profile.servos.map((s) => s.joint), scale, bias };
+}
+
+/** Joint value (deg or mm) of a pulse: servo value plus the revolute offset. */
+function jointUnits(s: ProfileServo, pwm: number): number {
+  const v = servoFromPwm(s, pwm);
+  return s.type === 'revolute' ? v + s.offset : v;
+}
+
+export function sliderSpecs(profile: Profile): SliderSpec[] {
+  return profile.servos.map((s, index) => ({
+    index,
+    id: s.id,
+    name: s.name,
+    unit: s.type === 'revolute' ? 'deg' : 'mm',
+    min: s.min,
+    max: s.max,
+    step: s.type === 'revolute' ? 1 : PRISMATIC_STEP_MM,
+    valueFromPwm: (pwm: number) => jointUnits(s, pwm),
+    pwmFromValue: (value: number) =>
+      pwmFromServo(s, s.type === 'revolute' ? value - s.offset : value),
+  }));
+}
+
+/** The HUD's view of a parsed profile. */
+export function robotSpec(profile: Profile): RobotSpec {
+  const storeArm = storeArmFor(profile);
+  return {
+    profile,
+    name: profile.name,
+    title: profile.title,
+    urdfUrl: `models/${profile.name}/${profile.urdf}`,
+    storeArm,
+    joints: jointMap(profile, storeArm),
+    sliders: sliderSpecs(profile),
+  };
+}

@@ -1,0 +1,118 @@
+/**
+ * What the 3D view needs to show any robot: the ghost's alternative source (the plan preview)
+ * and framing the camera, fog, shadows and floor on a robot bigger than the 5-axis arm (track6
+ * is 3.7 m long and 2 m tall; the scene's defaults fit a 0.5 m arm). A robot that fits the
+ * default view gets exactly the default view back.
+ */
+import * as THREE from 'three';
+import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+
+/** Fills the ghost's servo angles (store degrees) at `now`; false = nothing to show. */
+export interface GhostSource {
+  sample(now: number, out: Float64Array): boolean;
+}
+
+interface Framed {
+  scene: THREE.Scene;
+  camera: THREE.PerspectiveCamera;
+  controls: OrbitControls;
+}
+
+/** Robots whose bounding sphere is within this radius, m, keep the default view. */
+const DEFAULT_VIEW_RADIUS_M = 0.75;
+/** A bigger robot is seen from this many bounding-sphere radii (the whole robot, 40° fov). */
+const FIT_DISTANCE = 3;
+
+interface Defaults {
+  position: THREE.Vector3;
+  target: THREE.Vector3;
+  maxDistance: number;
+  far: number;
+  fog: { near: number; far: number } | null;
+  sun: { position: THREE.Vector3; extent: number; far: number } | null;
+  scale: Map<THREE.Object3D, number>;
+}
+const defaults = new WeakMap<Framed, Defaults>();
+
+function sunOf(scene: THREE.Scene): THREE.DirectionalLight | null {
+  let sun: THREE.DirectionalLight | null = null;
+  scene.traverse((o) => {
+    if (!sun && (o as THREE.DirectionalLight).isDirectionalLight && o.castShadow)
+      sun = o as THREE.DirectionalLight;
+  });
+  return sun;
+}
+
+/** The floor and the grid (scaled with the robot). */
+function groundOf(scene: THREE.Scene): THREE.Object3D[] {
+  return scene.children.filter((o) => o.name === 'floor' || o.type === 'GridHelper');
+}
+
+function remember(v: Framed): Defaults {
+  let d = defaults.get(v);
+  if (d) return d;
+  const sun = sunOf(v.scene);
+  const fog = v.scene.fog as THREE.Fog | null;
+  d = {
+    position: v.camera.position.clone(),
+    target: v.controls.target.clone(),
+    maxDistance: v.controls.maxDistance,
+    far: v.camera.far,
+    fog: fog ? { near: fog.near, far: fog.far } : null,
+    sun: sun
+      ? {
+          position: sun.position.clone(),
+          extent: sun.shadow.camera.right,
+          far: sun.shadow.camera.far,
+        }
+      : null,
+    scale: new Map(groundOf(v.scene).map((o) => [o, o.scale.x])),
+  };
+  defaults.set(v, d);
+  return d;
+}
+
+/** Frames `robot` (already in the scene): the default view for a small arm, else one that fits. */
+export function frameCamera(v: Framed, robot: THREE.Object3D): void {
+  const d = remember(v);
+  robot.updateMatrixWorld(true);
+  const sphere = new THREE.Box3().setFromObject(robot).getBoundingSphere(new THREE.Sphere());
+  const small = !(sphere.radius > DEFAULT_VIEW_RADIUS_M);
+  // How much bigger than the default view: the camera `FIT_DISTANCE` radii away.
+  const defaultDistance = d.position.distanceTo(d.target);
+  const k = small ? 1 : Math.max(1, (FIT_DISTANCE * sphere.radius) / defaultDistance);
+  const target = small ? d.target : sphere.center;
+  const dir = d.position.clone().sub(d.target).normalize();
+  v.controls.target.copy(target);
+  v.camera.position.copy(target).addScaledVector(dir, defaultDistance * k);
+  v.controls.maxDistance = d.maxDistance * k;
+  v.camera.far = d.far * k;
+  v.camera.updateProjectionMatrix();
+  const fog = v.scene.fog as THREE.Fog | null;
+  if (fog && d.fog) {
+    fog.near = d.fog.near * k;
+    fog.far = d.fog.far * k;
+  }
+  const sun = sunOf(v.scene);
+  if (sun && d.sun) {
+    if (small) {
+      sun.position.copy(d.sun.position);
+      sun.target.position.set(0, 0, 0);
+    } else {
+      sun.position.copy(target).addScaledVector(d.sun.position, k);
+      sun.target.position.copy(target);
+    }
+    sun.target.updateMatrixWorld();
+    const cam = sun.shadow.camera;
+    cam.left = cam.bottom = -d.sun.extent * k;
+    cam.right = cam.top = d.sun.extent * k;
+    cam.far = d.sun.far * k;
+    cam.updateProjectionMatrix();
+  }
+  for (const [o, s] of d.scale) {
+    o.scale.setScalar(s * Math.max(1, Math.ceil(k)));
+    o.position.x = small ? 0 : target.x;
+    o.position.z = small ? 0 : target.z;
+  }
+  v.controls.update();
+}
