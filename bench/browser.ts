@@ -22,19 +22,10 @@ import { blankPageFrames, installProbe, type ProbeResult } from './lib/page-prob
 import { round, summarize } from './lib/stats.ts';
 import { barChartSvg } from './lib/svg.ts';
 import { fmt, type BenchContext, type Row, type Section, type SectionOutput } from './lib/types.ts';
+import { CHROMIUM_ARGS, CHROMIUM_PATH } from '../tests/helpers/chromium.ts';
 
 const ARM = 'bench-hud';
 const DIST = path.join(REPO, 'apps', 'web', 'dist');
-const CHROMIUM = '/usr/bin/chromium';
-const ARGS = [
-  '--headless',
-  '--no-sandbox',
-  '--disable-gpu',
-  '--disable-background-networking',
-  '--disable-component-update',
-  '--disable-sync',
-  '--no-first-run',
-];
 const SERVOS = 6;
 /** The scripted trajectory: poses (µs, servos 000–005) visited in turn, each move 1000 ms. */
 const POSES = [
@@ -120,7 +111,7 @@ export const browserSection: Section = {
   precheck() {
     if (!fs.existsSync(path.join(DIST, 'index.html')))
       return 'HUD not built: apps/web/dist/index.html missing (npm run build)';
-    if (!fs.existsSync(CHROMIUM)) return `${CHROMIUM} not found`;
+    if (!fs.existsSync(CHROMIUM_PATH)) return `${CHROMIUM_PATH} not found`;
     return null;
   },
   async run(ctx: BenchContext): Promise<SectionOutput> {
@@ -134,9 +125,9 @@ export const browserSection: Section = {
     client.on('message', (_t, payload) => rec.feed(payload));
     await client.subscribeAsync(`arm/${ARM}/status`, { qos: 0 });
     const browser = await chromium.launch({
-      executablePath: CHROMIUM,
+      executablePath: CHROMIUM_PATH,
       headless: true,
-      args: ARGS,
+      args: CHROMIUM_ARGS,
       timeout: 60_000,
     });
     let trajectory: NodeJS.Timeout | undefined;
@@ -318,7 +309,7 @@ export const browserSection: Section = {
           windowS,
           blankS,
           viewport: '1280x800',
-          chromiumArgs: ARGS,
+          chromiumArgs: CHROMIUM_ARGS,
           trajectory: { poses: POSES, moveMs: MOVE_MS, stepMs: STEP_MS },
         },
         data: {

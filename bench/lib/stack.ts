@@ -8,6 +8,7 @@ import { fileURLToPath } from 'node:url';
 import mqtt, { type MqttClient } from 'mqtt';
 import { freePort } from '../../tests/helpers/ports.ts';
 import { spawnChild, sleep, until, type Child } from './proc.ts';
+import { parseMetrics } from '../../apps/middleware/test/support/harness.ts';
 
 export const REPO = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const ARMTWIN = path.join(REPO, 'apps', 'cli', 'bin', 'armtwin.mjs');
@@ -130,16 +131,6 @@ export async function startMiddleware(
   };
 }
 
-/** Prometheus text → { 'name{labels}': value } with the `armtwin_middleware_` prefix cut. */
-export function parseMetrics(text: string): Record<string, number> {
-  const out: Record<string, number> = {};
-  for (const line of text.split('\n')) {
-    if (!line || line.startsWith('#')) continue;
-    const i = line.lastIndexOf(' ');
-    out[line.slice(0, i).replace('armtwin_middleware_', '')] = Number(line.slice(i + 1));
-  }
-  return out;
-}
 
 /** `SELECT count(field) FROM measurement WHERE arm = …` in `db` (0 when empty). */
 export async function countPoints(

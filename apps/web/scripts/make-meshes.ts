@@ -7,36 +7,16 @@
  * Units are metres, z up, each mesh in its URDF link's frame (the link's joint is the origin).
  * The dimensions that matter to the kinematics live in the URDF; these only have to look right.
  */
-import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import * as THREE from 'three';
-import { STLExporter } from 'three/examples/jsm/exporters/STLExporter.js';
+import { meshParts, writeStl, type Part } from '../../../scripts/meshes/parts.ts';
 
 const OUT_DIR = path.resolve(
   fileURLToPath(import.meta.url),
   '../../../../public/models/armtwin5/meshes',
 );
-const SEGMENTS = 40;
+const { box, cylZ, cylY } = meshParts(40);
 
-type Part = THREE.BufferGeometry;
-
-/** A box of size (sx, sy, sz) centred at (x, y, z). */
-function box(sx: number, sy: number, sz: number, x = 0, y = 0, z = 0): Part {
-  return new THREE.BoxGeometry(sx, sy, sz).translate(x, y, z);
-}
-
-/** A cylinder along z of radius r from z0 to z1, centred on (x, y). */
-function cylZ(r: number, z0: number, z1: number, x = 0, y = 0, rTop = r): Part {
-  return new THREE.CylinderGeometry(rTop, r, z1 - z0, SEGMENTS)
-    .rotateX(Math.PI / 2)
-    .translate(x, y, (z0 + z1) / 2);
-}
-
-/** A cylinder along y (a pitch joint's hub) of radius r and width w, centred at (x, y, z). */
-function cylY(r: number, w: number, x = 0, y = 0, z = 0): Part {
-  return new THREE.CylinderGeometry(r, r, w, SEGMENTS).translate(x, y, z);
-}
 
 /** A rounded beam along z from z0 to z1: a box with half-cylinder ends around y. */
 function beam(width: number, depth: number, z0: number, z1: number): Part[] {
@@ -77,15 +57,4 @@ const MESHES: Record<string, Part[]> = {
   finger: [box(0.008, 0.018, 0.055, 0, 0, 0.0275), cylY(0.006, 0.018, 0, 0, 0)],
 };
 
-function exportMesh(name: string, parts: Part[]): void {
-  const group = new THREE.Group();
-  for (const geometry of parts) group.add(new THREE.Mesh(geometry));
-  group.updateMatrixWorld(true);
-  const data = new STLExporter().parse(group, { binary: true }) as DataView;
-  const file = path.join(OUT_DIR, `${name}.stl`);
-  fs.writeFileSync(file, new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
-  console.log(`${path.relative(process.cwd(), file)}: ${data.byteLength} bytes`);
-}
-
-fs.mkdirSync(OUT_DIR, { recursive: true });
-for (const [name, parts] of Object.entries(MESHES)) exportMesh(name, parts);
+for (const [name, parts] of Object.entries(MESHES)) writeStl(OUT_DIR, name, parts);

@@ -8,40 +8,13 @@
  * kinematics live in track6.urdf; these only have to look like a generic industrial arm on a
  * floor track (no vendor's shapes). Each file stays well under 200 KB.
  */
-import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import * as THREE from 'three';
-import { STLExporter } from 'three/examples/jsm/exporters/STLExporter.js';
+import { meshParts, writeStl, type Part } from '../../../scripts/meshes/parts.ts';
 
 const OUT_DIR = path.join(path.dirname(fileURLToPath(import.meta.url)), 'meshes');
-const SEGMENTS = 24;
+const { box, cylZ, cylY, cylX } = meshParts(24);
 
-type Part = THREE.BufferGeometry;
-
-/** A box of size (sx, sy, sz) centred at (x, y, z). */
-function box(sx: number, sy: number, sz: number, x = 0, y = 0, z = 0): Part {
-  return new THREE.BoxGeometry(sx, sy, sz).translate(x, y, z);
-}
-
-/** A cylinder along z, radius r (rTop at z1), from z0 to z1, centred on (x, y). */
-function cylZ(r: number, z0: number, z1: number, x = 0, y = 0, rTop = r): Part {
-  return new THREE.CylinderGeometry(rTop, r, z1 - z0, SEGMENTS)
-    .rotateX(Math.PI / 2)
-    .translate(x, y, (z0 + z1) / 2);
-}
-
-/** A cylinder along y (a pitch axis's hub), radius r, width w, centred at (x, y, z). */
-function cylY(r: number, w: number, x = 0, y = 0, z = 0): Part {
-  return new THREE.CylinderGeometry(r, r, w, SEGMENTS).translate(x, y, z);
-}
-
-/** A cylinder along x, radius r (rEnd at x1), from x0 to x1, centred on (y, z). */
-function cylX(r: number, x0: number, x1: number, y = 0, z = 0, rEnd = r): Part {
-  return new THREE.CylinderGeometry(rEnd, r, x1 - x0, SEGMENTS)
-    .rotateZ(-Math.PI / 2)
-    .translate((x0 + x1) / 2, y, z);
-}
 
 /** The rail: two beams along x under the carriage's 0…3 m travel, on sleepers. */
 function rail(): Part[] {
@@ -93,15 +66,4 @@ const MESHES: Record<string, Part[]> = {
   ],
 };
 
-function exportMesh(name: string, parts: Part[]): void {
-  const group = new THREE.Group();
-  for (const geometry of parts) group.add(new THREE.Mesh(geometry));
-  group.updateMatrixWorld(true);
-  const data = new STLExporter().parse(group, { binary: true }) as DataView;
-  const file = path.join(OUT_DIR, `${name}.stl`);
-  fs.writeFileSync(file, new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
-  console.log(`${path.relative(process.cwd(), file)}: ${data.byteLength} bytes`);
-}
-
-fs.mkdirSync(OUT_DIR, { recursive: true });
-for (const [name, parts] of Object.entries(MESHES)) exportMesh(name, parts);
+for (const [name, parts] of Object.entries(MESHES)) writeStl(OUT_DIR, name, parts);
