@@ -16,12 +16,11 @@ import {
   armProfileFromProfile,
   chainFromUrdf,
   parseProfile,
-  servoTable,
-  type ArmProfile,
+  pulseEquivalentArm,
   type Profile,
 } from '@armtwin/ik';
 import { createMotionRobot, solveTip, type MotionRobot } from '@armtwin/motion';
-import { PWM_CENTRE, PWM_MAX, PWM_MIN, SERVO_RANGE_DEG, angleFromPwm } from '@armtwin/protocol';
+import { PWM_CENTRE } from '@armtwin/protocol';
 import { REPO_ROOT } from '../start/parts.ts';
 import type { KmsSolver, SimModelOptions } from './options.ts';
 
@@ -43,25 +42,6 @@ export interface SimProfile {
   model: Partial<SimModelOptions>;
   /** The retained payload of `arm/{id}/profile`: `{"name", "title", "profile": <profile.json>}`. */
   announcement: string;
-}
-
-const US_PER_DEG = (PWM_MAX - PWM_MIN) / SERVO_RANGE_DEG;
-
-/** The pulse-equivalent ArmProfile of any profile (see the file comment). */
-export function pulseEquivalentArm(profile: Profile): ArmProfile {
-  return {
-    name: profile.title,
-    links: { l0: 0, l1: 0, l2: 0, l3: 0 },
-    servos: servoTable(profile).map((s) => ({
-      id: s.id,
-      name: s.name,
-      polarity: 1,
-      minDeg: angleFromPwm(s.minPwm),
-      maxDeg: angleFromPwm(s.maxPwm),
-      jointOffsetDeg: 0,
-      maxSpeedDegPerS: s.maxSpeedPwmPerS / US_PER_DEG,
-    })),
-  };
 }
 
 /**

@@ -11,16 +11,15 @@
  * - `sliders`: the jog sliders, in joint units (degrees, or millimetres for a prismatic axis).
  */
 import {
-  armProfileFromProfile,
   jointFromPwm,
   pwmFromServo,
   servoFromPwm,
-  servoTable,
+  servoModelArm,
   type ArmProfile,
   type Profile,
   type ProfileServo,
 } from '@armtwin/ik';
-import { PWM_CENTRE, PWM_MAX, PWM_MIN, SERVO_RANGE_DEG, angleFromPwm } from '@armtwin/protocol';
+import { PWM_CENTRE, PWM_MAX, PWM_MIN, SERVO_RANGE_DEG } from '@armtwin/protocol';
 
 const US_PER_DEG = (PWM_MAX - PWM_MIN) / SERVO_RANGE_DEG;
 
@@ -64,26 +63,8 @@ export interface RobotSpec {
 /** Slider step of a prismatic axis, mm (the track6 track is 1.5 mm per µs). */
 export const PRISMATIC_STEP_MM = 5;
 
-/** The pulse-equivalent ArmProfile of any profile (see the file comment). */
-export function pulseEquivalentArm(profile: Profile): ArmProfile {
-  return {
-    name: profile.title,
-    links: { l0: 0, l1: 0, l2: 0, l3: 0 },
-    servos: servoTable(profile).map((s) => ({
-      id: s.id,
-      name: s.name,
-      polarity: 1,
-      minDeg: angleFromPwm(s.minPwm),
-      maxDeg: angleFromPwm(s.maxPwm),
-      jointOffsetDeg: 0,
-      maxSpeedDegPerS: s.maxSpeedPwmPerS / US_PER_DEG,
-    })),
-  };
-}
-
-export function storeArmFor(profile: Profile): ArmProfile {
-  return armProfileFromProfile(profile) ?? pulseEquivalentArm(profile);
-}
+/** The arm the store counts in (the same as `armtwin sim`'s servo model). */
+export const storeArmFor = servoModelArm;
 
 /** Exact pulse (µs, unrounded) of a store angle: the inverse of `angleFromPwm`. */
 export const pwmOfStoreAngle = (angle: number, polarity: number): number =>

@@ -3,6 +3,7 @@
  * simulator runs (`armtwin sim --profile <name>`), a named pose as pulses, and, for an
  * `analytic5` profile, the `ArmProfile` that `solveIk` takes.
  */
+import { PWM_MAX, PWM_MIN, SERVO_RANGE_DEG, angleFromPwm } from '@armtwin/protocol';
 import type { ArmProfile, ServoSpec } from '../arm.ts';
 import { maxSpeedPwm, pwmFromServo, pwmLimits, servoLimits } from './convert.ts';
 import type { Profile } from './types.ts';
@@ -74,3 +75,31 @@ export function armProfileFromProfile(profile: Profile): ArmProfile | undefined 
   });
   return { name: profile.title, links: { ...a.links }, servos };
 }
+
+const US_PER_DEG = (PWM_MAX - PWM_MIN) / SERVO_RANGE_DEG;
+
+/**
+ * The `ArmProfile` of any profile in pulse terms: each servo's pulse limits and pulse speed
+ * from `servoTable`, written as §2 angles with polarity +1, which round-trip to exactly the
+ * same pulses (a prismatic axis included). What a servo model or the HUD's store counts in
+ * for an arm the §4 solver does not describe.
+ */
+export function pulseEquivalentArm(profile: Profile): ArmProfile {
+  return {
+    name: profile.title,
+    links: { l0: 0, l1: 0, l2: 0, l3: 0 },
+    servos: servoTable(profile).map((s) => ({
+      id: s.id,
+      name: s.name,
+      polarity: 1,
+      minDeg: angleFromPwm(s.minPwm),
+      maxDeg: angleFromPwm(s.maxPwm),
+      jointOffsetDeg: 0,
+      maxSpeedDegPerS: s.maxSpeedPwmPerS / US_PER_DEG,
+    })),
+  };
+}
+
+/** The arm a servo model counts in: an `analytic5` profile's own, else the pulse-equivalent one. */
+export const servoModelArm = (profile: Profile): ArmProfile =>
+  armProfileFromProfile(profile) ?? pulseEquivalentArm(profile);
