@@ -1,10 +1,12 @@
 /// <reference lib="dom" />
 /**
  * Code that runs inside the HUD page (passed to Playwright's `page.evaluate`), using only the
- * HUD's debug hook `window.__armtwin` ({ store, viewer, … }). It wraps `store.ingest` to note
- * the newest `$TIM` of each state payload, and `viewer.renderer.render` to record, per rendered
- * frame: the wall time (performance.timeOrigin + performance.now(), epoch ms), the newest
- * `$TIM` applied so far, and `store.rendered` (the servo angles drawn). It also counts
+ * HUD's debug hook `window.__armtwin` ({ store, viewer, … }). Per rendered frame (the viewer's
+ * `renderHooks`) it records the wall time (performance.timeOrigin + performance.now(), epoch
+ * ms), the newest `$TIM` of a state report taken in (`store.lastStateStamp`), and
+ * `store.rendered` (the servo angles drawn). A HUD without those hooks (older builds) is probed
+ * by wrapping `store.ingest` (newest `$TIM` of each state payload) and `renderer.render`. The
+ * time inside `renderer.render` is always measured by wrapping it. It also counts
  * requestAnimationFrame callbacks and long tasks. Fixed-size typed arrays: bounded memory.
  */
 
@@ -34,11 +36,13 @@ interface Hook {
     ingest(p: string | Uint8Array, now: number): void;
     rendered: Float64Array;
     counters: { messages: number };
+    lastStateStamp?: number;
   };
   viewer: {
     renderer: { render(s: unknown, c: unknown): void };
     renderedFrames: number;
     pixelRatio: number;
+    renderHooks?: Set<(now: number) => void>;
   };
 }
 interface Probe {
@@ -74,16 +78,27 @@ export function installProbe(maxFrames: number): boolean {
   let renderMax = 0;
   const longTasks: { start: number; duration: number }[] = [];
 
-  const ingest = store.ingest.bind(store);
-  store.ingest = (payload, now) => {
-    ingest(payload, now);
-    const text = typeof payload === 'string' ? payload : dec.decode(payload);
-    const j = text.lastIndexOf('$TIM:');
-    if (j >= 0 && position.test(text.slice(j))) {
-      const t = Number(text.slice(j + 5, text.indexOf('!', j)));
-      if (!(t <= newest)) newest = t;
-    }
+  const hooked = 'lastStateStamp' in store && viewer.renderHooks instanceof Set;
+  if (!hooked) {
+    const ingest = store.ingest.bind(store);
+    store.ingest = (payload, now) => {
+      ingest(payload, now);
+      const text = typeof payload === 'string' ? payload : dec.decode(payload);
+      const j = text.lastIndexOf('$TIM:');
+      if (j >= 0 && position.test(text.slice(j))) {
+        const t = Number(text.slice(j + 5, text.indexOf('!', j)));
+        if (!(t <= newest)) newest = t;
+      }
+    };
+  }
+  const record = () => {
+    if (!on || k >= maxFrames) return;
+    wall[k] = epoch();
+    stamp[k] = hooked ? store.lastStateStamp! : newest;
+    for (let i = 0; i < n; i++) angles[k * n + i] = store.rendered[i]!;
+    k++;
   };
+  if (hooked) viewer.renderHooks!.add(record);
   const renderer = viewer.renderer;
   const render = renderer.render.bind(renderer);
   renderer.render = (scene, camera) => {
@@ -93,11 +108,7 @@ export function installProbe(maxFrames: number): boolean {
     const dt = performance.now() - r0;
     renderMs += dt;
     if (dt > renderMax) renderMax = dt;
-    if (k >= maxFrames) return;
-    wall[k] = epoch();
-    stamp[k] = newest;
-    for (let i = 0; i < n; i++) angles[k * n + i] = store.rendered[i]!;
-    k++;
+    if (!hooked) record();
   };
   const tick = (t: number) => {
     if (!on) return;

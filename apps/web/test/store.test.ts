@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { encodeGroup, encodeHealth, encodePosition } from '@armtwin/protocol';
+import { angleFromPwm, encodeGroup, encodeHealth, encodePosition } from '@armtwin/protocol';
+import { DEMO_ARM } from '@armtwin/ik';
 import { ArmStore } from '../src/store/ArmStore.ts';
 import { RingBuffer } from '../src/store/RingBuffer.ts';
 import { RateMeter } from '../src/store/RateMeter.ts';
@@ -64,6 +65,22 @@ describe('ArmStore', () => {
     s.sample(10_000);
     expect(s.rendered[0]).toBeCloseTo(100.04, 1);
     expect(s.counters.frames).toBe(13); // $TIM + 12 positions
+  });
+
+  it('draws each report as it is once reports come faster than 100/s (no tween lag)', () => {
+    const s = new ArmStore();
+    // 250 Hz for a second, then a burst taken in at one instant (a busy page).
+    for (let k = 0; k <= 250; k++)
+      s.ingest(
+        `$TIM:${1_700_000_000_000 + k * 4}!${state([1500, 1500, 1500, 1500, 1500, 1500])}`,
+        k * 4,
+      );
+    s.ingest(state([1600, 1500, 1500, 1500, 1500, 1500]), 1004);
+    s.ingest(state([1700, 1500, 1500, 1500, 1500, 1500]), 1004);
+    s.sample(1004);
+    expect(s.pwm[0]).toBe(1700);
+    expect(s.rendered[0]).toBe(angleFromPwm(1700, DEMO_ARM.servos[0]!.polarity));
+    expect(s.lastStateStamp).toBe(1_700_000_001_000);
   });
 
   it('handles payloads split anywhere and several frames per payload', () => {

@@ -43,9 +43,11 @@ function sunOf(scene: THREE.Scene): THREE.DirectionalLight | null {
   return sun;
 }
 
-/** The floor and the grid (scaled with the robot). */
+/** The floor, its shadow disc and the grid (scaled with the robot). */
 function groundOf(scene: THREE.Scene): THREE.Object3D[] {
-  return scene.children.filter((o) => o.name === 'floor' || o.type === 'GridHelper');
+  return scene.children.filter(
+    (o) => o.name === 'floor' || o.name === 'floor-shadow' || o.type === 'GridHelper',
+  );
 }
 
 function remember(v: Framed): Defaults {

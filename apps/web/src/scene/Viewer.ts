@@ -16,6 +16,7 @@ import { frameCamera, type GhostSource } from '../robots/sceneHooks.ts';
 import { RobotModelLoader, solidMaterial } from './loadRobot.ts';
 import { createStage, ghostMaterial, type Stage } from './stage.ts';
 import { ResolutionGovernor } from './ResolutionGovernor.ts';
+import { isSoftwareWebGL } from './webglInfo.ts';
 import type { ReplayPlayer } from '../replay/ReplayPlayer.ts';
 import { ReplaySibling, siblingMaterial } from '../replay/ReplaySibling.ts';
 
@@ -44,10 +45,22 @@ export class Viewer {
   /** Called every frame (waypoint spheres, …); a hook returning true asks for a render. */
   readonly frameHooks = new Set<(now: number) => boolean>();
   private needsRender = true;
+  /**
+   * Whether a shadow caster moved since the shadow map was drawn. The map is drawn only then
+   * (`shadowMap.autoUpdate` is off): an orbiting camera or a moving ghost re-renders the view
+   * but not the shadows.
+   */
+  private shadowsDirty = true;
   private frame = 0;
   private running = false;
   /** Frames actually rendered (for the debug hook). */
   renderedFrames = 0;
+  /** Shadow maps drawn (for the debug hook): only when a shadow caster moved. */
+  shadowUpdates = 0;
+  /** Whether WebGL runs in software (no MSAA then, see the constructor). */
+  readonly software: boolean;
+  /** Called after each rendered frame with its `performance.now()` (bench probe, tests). */
+  readonly renderHooks = new Set<(now: number) => void>();
 
   /** The canvas's current pixel ratio (lowered while frames are slow). */
   get pixelRatio(): number {
@@ -73,11 +86,15 @@ export class Viewer {
     private readonly replay: ReplayPlayer | null = null,
   ) {
     this.ghostAngles = new Float64Array(store.servoCount);
-    this.renderer = new THREE.WebGLRenderer({ antialias: true });
+    // Software WebGL (SwiftShader, llvmpipe) pays for every multisampled pixel on the CPU, and
+    // the page waits for it: no MSAA there (the resolution governor's scaling smooths edges).
+    this.software = isSoftwareWebGL();
+    this.renderer = new THREE.WebGLRenderer({ antialias: !this.software });
     this.governor = new ResolutionGovernor({ maxRatio: Math.min(window.devicePixelRatio || 1, 2) });
     this.renderer.setPixelRatio(this.governor.ratio);
     this.renderer.shadowMap.enabled = true;
     this.renderer.shadowMap.type = THREE.PCFShadowMap;
+    this.renderer.shadowMap.autoUpdate = false;
     this.renderer.outputColorSpace = THREE.SRGBColorSpace;
     this.renderer.domElement.setAttribute('aria-label', '3D view of the arm');
     this.renderer.domElement.setAttribute('role', 'img');
@@ -143,6 +160,7 @@ export class Viewer {
     if (sibling) this.stage.world.add(sibling.robot);
     if (joints) frameCamera(this, robot);
     this.needsRender = true;
+    this.shadowsDirty = true;
   }
 
   /** Attaches the canvas and starts the loop (call after `load`). */
@@ -170,11 +188,12 @@ export class Viewer {
     if (!this.running) return;
     this.frame = requestAnimationFrame(this.tick);
     const now = performance.now();
-    if (this.store.sample(now))
-      this.needsRender = this.pose(this.robotJoints, this.store.rendered) || this.needsRender;
+    if (this.store.sample(now) && this.pose(this.robotJoints, this.store.rendered))
+      this.needsRender = this.shadowsDirty = true;
     this.updateGhost(now);
-    if (this.sibling?.update(now)) this.needsRender = true;
-    for (const hook of this.frameHooks) if (hook(now)) this.needsRender = true;
+    if (this.sibling?.update(now)) this.needsRender = this.shadowsDirty = true;
+    // A hook may move something that casts a shadow (waypoint spheres): redraw the map too.
+    for (const hook of this.frameHooks) if (hook(now)) this.needsRender = this.shadowsDirty = true;
     this.updateTarget();
     if (this.warmupFrames > 0) {
       this.warmupFrames--;
@@ -185,8 +204,7 @@ export class Viewer {
       this.governor.frame(now - this.lastRenderAt);
       if (this.renderer.getPixelRatio() !== this.governor.ratio)
         this.renderer.setPixelRatio(this.governor.ratio);
-      this.renderer.render(this.scene, this.camera);
-      this.renderedFrames++;
+      this.draw(now);
       this.lastRenderAt = now;
       this.lastMovedAt = now;
       this.refined = false;
@@ -206,8 +224,18 @@ export class Viewer {
     this.refined = true;
     if (this.governor.ratio >= full) return;
     this.renderer.setPixelRatio(full);
+    this.draw(now);
+  }
+
+  private draw(now: number): void {
+    if (this.shadowsDirty) {
+      this.renderer.shadowMap.needsUpdate = true;
+      this.shadowsDirty = false;
+      this.shadowUpdates++;
+    }
     this.renderer.render(this.scene, this.camera);
     this.renderedFrames++;
+    for (const hook of this.renderHooks) hook(now);
   }
 
   /** Sets the joints to servo angles (degrees); true if any joint moved. */
@@ -293,7 +321,7 @@ export class Viewer {
 
   /** Asks for a render on the next frame (e.g. after a settings change). */
   invalidate(): void {
-    this.needsRender = true;
+    this.needsRender = this.shadowsDirty = true;
   }
 
   dispose(): void {

@@ -29,6 +29,13 @@ export interface ArmStoreOptions {
   historyLength: number;
   /** No state report for longer than this, ms, and the data is stale. */
   staleAfterMs: number;
+  /**
+   * State reports per second (over the last second) from which each report is drawn as it is,
+   * not tweened: reports then come faster than frames, and a tween toward the newest one only
+   * lags behind it (by up to a report interval, more when a busy page takes several reports at
+   * once). Below it, reports are interpolated (a 5 Hz arm glides).
+   */
+  drawNewestAboveHz: number;
 }
 
 export const DEFAULT_ARM_STORE_OPTIONS: ArmStoreOptions = {
@@ -36,6 +43,7 @@ export const DEFAULT_ARM_STORE_OPTIONS: ArmStoreOptions = {
   interpolationAlpha: 1,
   historyLength: 240,
   staleAfterMs: 1000,
+  drawNewestAboveHz: 100,
 };
 
 export type ConnectionState =
@@ -82,6 +90,8 @@ export class ArmStore {
   armOnlineText = '';
   /** When the last state report arrived (ms), NaN = never. */
   lastStateAt = NaN;
+  /** The newest `$TIM` (epoch ms) of a state report taken in, NaN = none stamped yet. */
+  lastStateStamp = NaN;
   /** Last `$KMS:c!` reply and how many replies have come (so a panel sees a new one). */
   kmsReply: number | null = null;
   kmsReplies = 0;
@@ -97,6 +107,8 @@ export class ArmStore {
   private rowTemp!: Float64Array;
   private rowVolt!: Float64Array;
   private now = 0;
+  /** Whether the stream is fast enough to draw each report as it is (`drawNewestAboveHz`). */
+  private drawNewest = false;
 
   constructor(opts: Partial<ArmStoreOptions> = {}) {
     this.opts = { ...DEFAULT_ARM_STORE_OPTIONS, ...opts };
@@ -169,7 +181,7 @@ export class ArmStore {
     this.counters.frames += g.frames.length;
     for (const f of g.frames) {
       if (f.type === 'position') {
-        if (positions++ === 0) this.stateArrived();
+        if (positions++ === 0) this.stateArrived(g.time);
         this.setPosition(f.id, f.pwm);
       } else if (f.type === 'health') {
         health++;
@@ -189,7 +201,7 @@ export class ArmStore {
   private handle(f: Frame): void {
     switch (f.type) {
       case 'position':
-        this.stateArrived();
+        this.stateArrived(f.time);
         this.setPosition(f.id, f.pwm);
         break;
       case 'health':
@@ -214,10 +226,12 @@ export class ArmStore {
     }
   }
 
-  private stateArrived(): void {
+  private stateArrived(stamp: number | undefined): void {
     this.lastStateAt = this.now;
+    if (stamp !== undefined && !(stamp <= this.lastStateStamp)) this.lastStateStamp = stamp;
     this.stateRate.add(this.now);
     this.interval.arrive(this.now);
+    this.drawNewest = this.stateRate.rate(this.now) >= this.opts.drawNewestAboveHz;
   }
 
   private setPosition(id: number, pwm: number): void {
@@ -227,7 +241,7 @@ export class ArmStore {
     this.tweens[id]!.retarget(
       deg,
       this.now,
-      this.interval.intervalMs,
+      this.drawNewest ? 0 : this.interval.intervalMs,
       this.opts.interpolationAlpha,
     );
   }
@@ -296,6 +310,8 @@ export class ArmStore {
     this.armOnline = null;
     this.armOnlineText = '';
     this.lastStateAt = NaN;
+    this.lastStateStamp = NaN;
     this.kmsReply = null;
+    this.drawNewest = false;
   }
 }
