@@ -248,7 +248,7 @@ export const rttSection: Section = {
     });
     // The same 101 pings on a Mosquitto with its default config (set_tcp_nodelay false).
     ctx.log('rtt: 101 pings on a Mosquitto with default settings (Nagle on)');
-    const plain = await startMosquitto();
+    const plain = await startMosquitto({ tcpNoDelay: false });
     try {
       await withPaths(ctx, plain.url, 'rtt-nagle', async (pinger, simPath, echoPath) => {
         const [s, e] = await pinger.alternating(simPath, echoPath, 101);

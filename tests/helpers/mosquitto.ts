@@ -14,11 +14,14 @@ export interface MosquittoOptions {
   extraConfig?: string[];
   /** Milliseconds to wait for both listeners to accept connections. */
   startTimeoutMs?: number;
+  /** `set_tcp_nodelay true`, as armtwin deploys Mosquitto; false = Mosquitto's own default. */
+  tcpNoDelay?: boolean;
 }
 
 export const DEFAULT_MOSQUITTO_OPTIONS: Required<MosquittoOptions> = {
   extraConfig: [],
   startTimeoutMs: 15_000,
+  tcpNoDelay: true,
 };
 
 export interface MosquittoService {
@@ -58,14 +61,20 @@ export function mosquittoBinary(): string {
   throw new Error('mosquitto not found; run scripts/install-deps.sh');
 }
 
-function mosquittoConf(dir: string, port: number, wsPort: number, extra: string[]): string {
+function mosquittoConf(
+  dir: string,
+  port: number,
+  wsPort: number,
+  extra: string[],
+  tcpNoDelay: boolean,
+): string {
   return [
     '# written by tests/helpers/mosquitto.ts',
     // Run as root, Mosquitto 2 switches to user "mosquitto", which cannot write our temp dir.
     ...(process.getuid?.() === 0 ? ['user root'] : []),
     'per_listener_settings false',
     'allow_anonymous true',
-    'set_tcp_nodelay true',
+    `set_tcp_nodelay ${tcpNoDelay}`,
     `listener ${port} ${LOOPBACK}`,
     'protocol mqtt',
     `listener ${wsPort} ${LOOPBACK}`,
@@ -89,7 +98,7 @@ export async function startMosquitto(opts: MosquittoOptions = {}): Promise<Mosqu
   const proc: ServiceProcess = await startService('mosquitto', 2, (dir, ports) => {
     const [port = 0, wsPort = 0] = ports;
     const confFile = path.join(dir, 'mosquitto.conf');
-    fs.writeFileSync(confFile, mosquittoConf(dir, port, wsPort, o.extraConfig));
+    fs.writeFileSync(confFile, mosquittoConf(dir, port, wsPort, o.extraConfig, o.tcpNoDelay));
     return {
       name: 'mosquitto',
       command,
