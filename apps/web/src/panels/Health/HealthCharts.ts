@@ -3,41 +3,17 @@
  * servo) redrawn from the store's ring buffers when a new health row has arrived.
  */
 import uPlot from 'uplot';
+import { thresholdPlugin, type Threshold } from '../../charts/thresholdPlugin.ts';
 import type { ArmStore } from '../../store/ArmStore.ts';
 import type { RingBuffer } from '../../store/RingBuffer.ts';
 import { CHART_HEIGHT, CHART_POLL_MS, SERVO_COLOURS, TEMP_LINES, VOLT_LINES } from './constants.ts';
-
-type Line = { value: number; colour: string };
-
-function thresholdPlugin(lines: Line[]): uPlot.Plugin {
-  return {
-    hooks: {
-      draw: (u: uPlot) => {
-        const ctx = u.ctx;
-        const { left, width } = u.bbox;
-        ctx.save();
-        ctx.setLineDash([6, 4]);
-        ctx.lineWidth = 1.5 * uPlot.pxRatio;
-        for (const l of lines) {
-          const y = Math.round(u.valToPos(l.value, 'y', true));
-          ctx.strokeStyle = l.colour;
-          ctx.beginPath();
-          ctx.moveTo(left, y);
-          ctx.lineTo(left + width, y);
-          ctx.stroke();
-        }
-        ctx.restore();
-      },
-    },
-  };
-}
 
 function makeChart(
   el: HTMLElement,
   names: string[],
   unit: string,
   range: [number, number],
-  lines: Line[],
+  lines: readonly Threshold[],
 ): uPlot {
   const opts: uPlot.Options = {
     width: Math.max(200, el.clientWidth),

@@ -4,12 +4,10 @@
  * the data changes and resizes it with its box.
  */
 import uPlot from 'uplot';
+import { thresholdPlugin, type Threshold } from '../../charts/thresholdPlugin.ts';
 import type { Aligned } from './align.ts';
 
-export interface Threshold {
-  value: number;
-  colour: string;
-}
+export type { Threshold } from '../../charts/thresholdPlugin.ts';
 
 export interface ChartSpec {
   /** Axis unit, e.g. `°C`. */
@@ -36,29 +34,6 @@ export function timeTickFormat(spanMs: number): (ms: number) => string {
     if (spanMs <= 15 * 60_000) return `${hm}:${p2(d.getSeconds())}`;
     if (spanMs <= 2 * 86_400_000) return hm;
     return `${p2(d.getMonth() + 1)}-${p2(d.getDate())} ${hm}`;
-  };
-}
-
-function thresholdPlugin(lines: readonly Threshold[]): uPlot.Plugin {
-  return {
-    hooks: {
-      draw: (u: uPlot) => {
-        const { ctx } = u;
-        const { left, width } = u.bbox;
-        ctx.save();
-        ctx.setLineDash([6, 4]);
-        ctx.lineWidth = 1.5 * uPlot.pxRatio;
-        for (const l of lines) {
-          const y = Math.round(u.valToPos(l.value, 'y', true));
-          ctx.strokeStyle = l.colour;
-          ctx.beginPath();
-          ctx.moveTo(left, y);
-          ctx.lineTo(left + width, y);
-          ctx.stroke();
-        }
-        ctx.restore();
-      },
-    },
   };
 }
 
