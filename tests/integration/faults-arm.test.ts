@@ -15,6 +15,7 @@ import { afterAll, describe, expect, test } from 'vitest';
 import { freePort } from '../helpers/ports.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 import {
+  middlewareEnv,
   spawnMiddleware,
   tempDir,
   type MiddlewareProcess,
@@ -63,7 +64,7 @@ describe('faults', () => {
     async () => {
       dir = tempDir('faults-arm');
       mw = await spawnMiddleware(
-        { MQTT_URL: broker().url, MQTT_CLIENT_ID: 'mw-faults', SPOOL_DIR: path.join(dir, 'spool') },
+        middlewareEnv({ mqttUrl: broker().url }, 'mw-faults', dir),
         await freePort(),
         path.join(dir, 'middleware.log'),
       );

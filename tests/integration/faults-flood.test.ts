@@ -13,6 +13,7 @@ import { freePort } from '../helpers/ports.ts';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import {
   select,
+  middlewareEnv,
   spawnMiddleware,
   tempDir,
   type MiddlewareProcess,
@@ -90,14 +91,9 @@ test(
   async () => {
     dir = tempDir('flood');
     mw = await spawnMiddleware(
-      {
-        MQTT_URL: broker().url,
-        MQTT_CLIENT_ID: 'mw-flood',
-        INFLUX_URL: influx().url,
-        INFLUX_BUCKET: influx().bucket,
+      middlewareEnv({ mqttUrl: broker().url, influx: influx() }, 'mw-flood', dir, {
         FLUSH_INTERVAL_MS: '500',
-        SPOOL_DIR: path.join(dir, 'spool'),
-      },
+      }),
       await freePort(),
       path.join(dir, 'middleware.log'),
     );

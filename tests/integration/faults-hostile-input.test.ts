@@ -12,6 +12,7 @@ import { freePort } from '../helpers/ports.ts';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import {
   select,
+  middlewareEnv,
   spawnMiddleware,
   tempDir,
   type MiddlewareProcess,
@@ -62,15 +63,10 @@ test(
   async () => {
     dir = tempDir('hostile');
     mw = await spawnMiddleware(
-      {
-        MQTT_URL: broker().url,
-        MQTT_CLIENT_ID: 'mw-hostile',
-        INFLUX_URL: influx().url,
-        INFLUX_BUCKET: influx().bucket,
+      middlewareEnv({ mqttUrl: broker().url, influx: influx() }, 'mw-hostile', dir, {
         FLUSH_INTERVAL_MS: '200',
         MAX_PAYLOAD_BYTES: '4096',
-        SPOOL_DIR: path.join(dir, 'spool'),
-      },
+      }),
       await freePort(),
       path.join(dir, 'middleware.log'),
     );

@@ -10,6 +10,7 @@ import { freePort } from '../helpers/ports.ts';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import {
   countPoints,
+  middlewareEnv,
   spawnMiddleware,
   startPublisher,
   statePayloads,
@@ -35,17 +36,12 @@ test(
   async () => {
     dir = tempDir('mw-outage');
     mw = await spawnMiddleware(
-      {
-        MQTT_URL: broker().url,
-        MQTT_CLIENT_ID: 'mw-outage',
-        INFLUX_URL: influx().url,
-        INFLUX_BUCKET: influx().bucket,
+      middlewareEnv({ mqttUrl: broker().url, influx: influx() }, 'mw-outage', dir, {
         FLUSH_INTERVAL_MS: '250',
         BATCH_SIZE: '300',
         MIN_RETRY_DELAY_MS: '250',
         MAX_RETRY_DELAY_MS: '2000',
-        SPOOL_DIR: path.join(dir, 'spool'),
-      },
+      }),
       await freePort(),
       path.join(dir, 'middleware.log'),
     );

@@ -11,6 +11,7 @@ import { freePort } from '../helpers/ports.ts';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import {
   countPoints,
+  middlewareEnv,
   spawnMiddleware,
   startPublisher,
   statePayloads,
@@ -37,15 +38,10 @@ test(
   async () => {
     dir = tempDir('mw-restart');
     const port = await freePort();
-    const env = {
-      MQTT_URL: broker().url,
-      MQTT_CLIENT_ID: 'mw-restart',
-      INFLUX_URL: influx().url,
-      INFLUX_BUCKET: influx().bucket,
+    const env = middlewareEnv({ mqttUrl: broker().url, influx: influx() }, 'mw-restart', dir, {
       FLUSH_INTERVAL_MS: '1000', // a full open batch is in flight when the kill comes
       BATCH_SIZE: '100000',
-      SPOOL_DIR: path.join(dir, 'spool'),
-    };
+    });
     const log = path.join(dir, 'middleware.log');
     mw = await spawnMiddleware(env, port, log);
     const inf = { url: influx().url, db: influx().db };

@@ -11,6 +11,7 @@ import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import {
   countPoints,
   publishAll,
+  middlewareEnv,
   spawnMiddleware,
   statePayloads,
   tempDir,
@@ -36,15 +37,13 @@ test(
     for (const name of ['a', 'b']) {
       instances.push(
         await spawnMiddleware(
-          {
-            MQTT_URL: broker().url,
-            MQTT_CLIENT_ID: `mw-shared-${name}`,
-            MQTT_SHARE_GROUP: 'armtwin',
-            INFLUX_URL: influx().url,
-            INFLUX_BUCKET: influx().bucket,
-            FLUSH_INTERVAL_MS: '200',
-            SPOOL_DIR: path.join(dir, `spool-${name}`),
-          },
+          middlewareEnv(
+            { mqttUrl: broker().url, influx: influx() },
+            `mw-shared-${name}`,
+            dir,
+            { MQTT_SHARE_GROUP: 'armtwin', FLUSH_INTERVAL_MS: '200' },
+            `spool-${name}`,
+          ),
           await freePort(),
           path.join(dir, `middleware-${name}.log`),
         ),

@@ -13,6 +13,7 @@ import {
   countPoints,
   publishAll,
   select,
+  middlewareEnv,
   spawnMiddleware,
   statePayloads,
   tempDir,
@@ -29,15 +30,10 @@ let mw: MiddlewareProcess;
 beforeAll(async () => {
   dir = tempDir('mw-store');
   mw = await spawnMiddleware(
-    {
-      MQTT_URL: broker().url,
-      MQTT_CLIENT_ID: 'mw-store',
-      INFLUX_URL: influx().url,
-      INFLUX_BUCKET: influx().bucket,
+    middlewareEnv({ mqttUrl: broker().url, influx: influx() }, 'mw-store', dir, {
       FLUSH_INTERVAL_MS: '200',
       BATCH_SIZE: '500',
-      SPOOL_DIR: path.join(dir, 'spool'),
-    },
+    }),
     await freePort(),
     path.join(dir, 'middleware.log'),
   );

@@ -29,6 +29,28 @@ export interface MiddlewareProcess {
   stop(): Promise<number | null>;
 }
 
+/**
+ * The environment of a middleware on the tests' own services: `broker`, `influx` (omitted:
+ * no storage), a fixed client id, and its spool in `dir/<spool>`. `extra` adds or overrides.
+ */
+export function middlewareEnv(
+  services: { mqttUrl: string; influx?: { url: string; bucket: string } },
+  clientId: string,
+  dir: string,
+  extra: Record<string, string> = {},
+  spool = 'spool',
+): Record<string, string> {
+  return {
+    MQTT_URL: services.mqttUrl,
+    MQTT_CLIENT_ID: clientId,
+    ...(services.influx
+      ? { INFLUX_URL: services.influx.url, INFLUX_BUCKET: services.influx.bucket }
+      : {}),
+    SPOOL_DIR: path.join(dir, spool),
+    ...extra,
+  };
+}
+
 /** Starts `node --import tsx apps/middleware/src/main.ts` with env; waits for /healthz. */
 export async function spawnMiddleware(
   env: Record<string, string>,

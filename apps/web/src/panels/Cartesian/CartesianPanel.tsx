@@ -16,6 +16,14 @@ import { nextRequestId } from '../Command/RequestLog.ts';
 
 const INITIAL: TargetFields = { x: '200', y: '0', z: '150', pitch: '' };
 
+/** The target's inputs and their visible labels (also their accessible names). */
+const CART_FIELDS = [
+  ['x', 'X'],
+  ['y', 'Y'],
+  ['z', 'Z'],
+  ['pitch', 'Pitch'],
+] as const;
+
 export function CartesianPanel() {
   const { store, link, target, robots } = useHud();
   const [fields, setFields] = useState(INITIAL);
@@ -120,46 +128,20 @@ export function CartesianPanel() {
           move();
         }}
       >
-        <label className="field small">
-          <span>X</span>
-          <input
-            type="number"
-            step="any"
-            value={fields.x}
-            onChange={edit('x')}
-            aria-describedby="cart-units"
-          />
-        </label>
-        <label className="field small">
-          <span>Y</span>
-          <input
-            type="number"
-            step="any"
-            value={fields.y}
-            onChange={edit('y')}
-            aria-describedby="cart-units"
-          />
-        </label>
-        <label className="field small">
-          <span>Z</span>
-          <input
-            type="number"
-            step="any"
-            value={fields.z}
-            onChange={edit('z')}
-            aria-describedby="cart-units"
-          />
-        </label>
-        <label className="field small">
-          <span>Pitch</span>
-          <input
-            type="number"
-            step="any"
-            value={fields.pitch}
-            placeholder="auto"
-            onChange={edit('pitch')}
-          />
-        </label>
+        {CART_FIELDS.map(([key, label]) => (
+          <label className="field small" key={key}>
+            <span>{label}</span>
+            <input
+              type="number"
+              step="any"
+              value={fields[key]}
+              onChange={edit(key)}
+              {...(key === 'pitch'
+                ? { placeholder: 'auto' }
+                : { 'aria-describedby': 'cart-units' })}
+            />
+          </label>
+        ))}
         <button type="submit" disabled={!live.enabled}>
           Move
         </button>
