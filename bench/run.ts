@@ -25,11 +25,19 @@ import { rttSection } from './rtt.ts';
 import { ingestSection } from './ingest.ts';
 import { cpuSection } from './cpu.ts';
 import { browserSection } from './browser.ts';
+import { deadmanSection } from './deadman.ts';
 
-const SECTIONS: Section[] = [rttSection, ingestSection, cpuSection, browserSection, ikSection];
+const SECTIONS: Section[] = [
+  rttSection,
+  ingestSection,
+  cpuSection,
+  browserSection,
+  deadmanSection,
+  ikSection,
+];
 /** Broker settings for every section (recorded in the JSON): see BENCHMARKS.md on Nagle. */
 export const BROKER_EXTRA = ['set_tcp_nodelay true', 'max_queued_messages 1000000'];
-const NEEDS_SERVICES = new Set(['rtt', 'ingest', 'cpu', 'browser']);
+const NEEDS_SERVICES = new Set(['rtt', 'ingest', 'cpu', 'browser', 'deadman']);
 
 const USAGE = `usage: npm run bench [-- --quick] [-- --only ${SECTIONS.map((s) => s.id).join(',')}] [-- --keep-logs] [-- --no-md]
   --quick      shorter runs (< 5 min): 5,000 pings at 1 kHz, short ramps and windows

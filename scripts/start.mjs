@@ -1,5 +1,4 @@
 #!/usr/bin/env node
-/* global process */
 // `npm start`: the one command that runs the twin. On a fresh clone it installs the
 // dependencies first (`npm ci`), then runs `armtwin up` in this process (TypeScript via tsx):
 // the embedded broker, the HUD + /mqtt + /api on ARMTWIN_PORT (default 8080), the simulated

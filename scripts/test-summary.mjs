@@ -9,7 +9,6 @@
 // a failing test in its report (typecheck, build, a crash, an interrupt) counts as 1 failed.
 // The very last line printed is exactly `N passed, N failed, N skipped` (CI reads it); the
 // exit code is 1 if anything failed.
-/* global process, console */
 import fs from 'node:fs';
 
 const [stepsFile = 'test-results/steps.tsv', elapsedArg] = process.argv.slice(2);

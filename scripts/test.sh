@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs every test: `npm test`. Installs what is missing (scripts/install-deps.sh), typechecks,
+# Runs every test: `npm test`. Installs what is missing (scripts/install-deps.sh), typechecks, lints (ESLint),
 # runs Vitest `unit` then `integration` (real Mosquitto and influxd), then, when the web app
 # can be built and tests/e2e has specs, builds it and runs Playwright on the system Chromium.
 # Always ends with a summary from the JSON reports in test-results/ (scripts/test-summary.mjs)
@@ -58,6 +58,7 @@ fi
 if [ -f bench/tsconfig.json ]; then
   step typecheck-bench '' npx tsc -p bench || true
 fi
+step lint '' npx eslint . || true
 
 step unit "$RESULTS/vitest-unit.json" vitest_project unit || true
 step integration "$RESULTS/vitest-integration.json" vitest_project integration || true

@@ -3,16 +3,16 @@
  * - broker restart: the simulated arm and the middleware reconnect by themselves, and the arm
  *   says `online 1` again;
  * - simulator killed (SIGKILL): the retained `online` becomes `0` from its last will;
- * - deadman: an operator holding `arm/{id}/operator` (will `0`) goes silent mid-move: the
- *   broker publishes the will after 1.5 × its keep-alive and the arm stops where it is.
+ * - deadman: an operator holding `arm/{id}/operator` (will `0`) goes silent mid-move and the arm
+ *   stops where it is: by the controller's lease when the operator beats (as the HUD does), by
+ *   the broker's will when it held with a single `1`.
  */
 import fs from 'node:fs';
-import net from 'node:net';
 import path from 'node:path';
 import mqtt from 'mqtt';
-import { generate } from 'mqtt-packet';
 import { afterAll, describe, expect, test } from 'vitest';
 import { freePort } from '../helpers/ports.ts';
+import { rawOperator } from '../helpers/raw-operator.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 import {
   middlewareEnv,
@@ -20,6 +20,7 @@ import {
   tempDir,
   type MiddlewareProcess,
 } from '../../apps/middleware/test/support/harness.ts';
+import { OPERATOR_BEAT_MS } from '@armtwin/protocol';
 import { startBroker } from '../../apps/cli/src/broker/broker.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
 
@@ -118,29 +119,31 @@ describe('faults', () => {
   );
 
   test(
-    'deadman on Mosquitto 2.0: the operator goes silent mid-move; its will stops the arm',
+    'deadman on Mosquitto 2.0: a beating operator (the HUD) goes silent mid-move; its lease stops the arm before the will',
     { timeout: 60_000 },
     async () => {
-      // Mosquitto 2.0 checks keep-alives only every 6 s, on whole seconds: measured 4.6–8.6 s for
-      // a 2 s keep-alive (1.5 × 2 s = 3 s). The bound is 1.5 × keep-alive + 1 s + its 6 s period.
-      const ms = await deadman(broker().url, broker().port, 'dm1');
-      expect(ms).toBeLessThanOrEqual(1.5 * KEEPALIVE_S * 1000 + 7000 + 1000);
+      // Mosquitto 2.0.11 publishes the will up to 9 s after the last packet for a 2 s keep-alive
+      // (its keep-alive check is coarse), often after a 9 s jog has ended: a plain `1` holder
+      // gets no deadman there in time (measured by `npm run bench -- --only deadman`). The
+      // controller's lease (OPERATOR_LEASE_MS after the last beat) does not wait for it.
+      const r = await deadman(broker().url, broker().port, 'dm1', true);
+      expect(r.cause).toBe('lease');
       console.log(
-        `deadman (Mosquitto): arm stopped ${ms} ms after the operator went silent (keep-alive ${KEEPALIVE_S} s)`,
+        `deadman (Mosquitto, beating): arm stopped ${r.ms} ms after the operator went silent (keep-alive ${KEEPALIVE_S} s)`,
       );
     },
   );
 
   test(
-    'deadman on the embedded broker: stops within 1.5 × keep-alive',
+    'deadman on the embedded broker: an operator holding with a single 1 goes silent; its will stops the arm',
     { timeout: 60_000 },
     async () => {
       const aedes = await startBroker({ port: 0 });
       try {
-        const ms = await deadman(aedes.url, aedes.port, 'dm2');
-        expect(ms).toBeLessThanOrEqual(1.5 * KEEPALIVE_S * 1000 + 500);
+        const r = await deadman(aedes.url, aedes.port, 'dm2', false);
+        expect(r.cause).toBe('will');
         console.log(
-          `deadman (embedded): arm stopped ${ms} ms after the operator went silent (keep-alive ${KEEPALIVE_S} s)`,
+          `deadman (embedded, will only): arm stopped ${r.ms} ms after the operator went silent (keep-alive ${KEEPALIVE_S} s)`,
         );
       } finally {
         await aedes.close();
@@ -152,51 +155,50 @@ describe('faults', () => {
 const KEEPALIVE_S = 2;
 
 /**
- * An operator holding `arm/{arm}/operator` (will `0`) jogs servo 000 over 9 s and goes silent
- * with its TCP connection open (a frozen page, a pulled cable): a raw MQTT client, so nothing
- * answers for it. Returns the ms from its silence to the arm's `$ERR:deadman stop!`, after
- * checking the arm really stopped on the way.
+ * An operator holding `arm/{arm}/operator` (will `0`, keep-alive 2 s) jogs servo 000 over 9 s
+ * and goes silent with its TCP connection open (a frozen page, a pulled cable: `rawOperator`).
+ * With `beat` it repeats its retained `1` every OPERATOR_BEAT_MS until then, as the HUD does.
+ * Checks that the arm stopped on the way and returns what stopped it (`lease`: the stop came before the broker's will; `will`: after it)
+ * and the ms from the silence to the arm's `$ERR:deadman stop!` (reported, not asserted).
  */
-async function deadman(url: string, port: number, arm: string): Promise<number> {
+async function deadman(
+  url: string,
+  port: number,
+  arm: string,
+  beat: boolean,
+): Promise<{ cause: 'lease' | 'will'; ms: number }> {
   const sim = armtwin(['sim', '--mqtt', url, '--arm', arm, '--rate', '50']);
   children.push(sim);
   const w = await StatusWatcher.connect(url, arm);
   watchers.push(w);
+  const operatorTopic = `arm/${arm}/operator`;
+  await w.client.subscribeAsync(operatorTopic, { qos: 1 });
   await online(w, arm, '1');
-  const sock = net.connect(port, '127.0.0.1');
-  await new Promise((r) => sock.once('connect', r));
-  sock.on('data', () => {});
-  sock.on('error', () => {});
-  sock.write(
-    generate({
-      cmd: 'connect',
-      protocolId: 'MQTT',
-      protocolVersion: 4,
-      clean: true,
-      clientId: `hud-operator-${arm}`,
-      keepalive: KEEPALIVE_S,
-      will: { topic: `arm/${arm}/operator`, payload: Buffer.from('0'), qos: 1, retain: true },
-    }),
-  );
-  sock.write(
-    generate({
-      cmd: 'publish',
-      topic: `arm/${arm}/operator`,
-      payload: Buffer.from('1'),
-      qos: 0,
-      retain: true,
-      dup: false,
-    }),
-  );
-  const silentAt = Date.now();
+  const raw = await rawOperator({
+    port,
+    armId: arm,
+    keepaliveS: KEEPALIVE_S,
+    ...(beat ? { beatMs: OPERATOR_BEAT_MS } : {}),
+  });
+  await sleep(3 * OPERATOR_BEAT_MS); // with beats, the sim has seen repeats: the lease runs
   const op = await mqtt.connectAsync(url);
   const from = w.items.length;
   await op.publishAsync(`arm/${arm}/control`, '#000P2500T9000!', { qos: 1 }); // a 9 s jog
+  await w.until(
+    () => (w.positions(0, from).some(([, p]) => p > 1560) ? true : undefined),
+    10_000,
+    'the base to start moving',
+  );
+  const silentAt = raw.silence();
+  const willFrom = w.history.length;
+  const willArrived = () =>
+    w.history.slice(willFrom).some((h) => h.topic === operatorTopic && h.payload === '0');
   const err = await w.frame(
     (f) => f.type === 'controllerError' && f.text === 'deadman stop',
     from,
-    15_000,
+    20_000,
   );
+  const cause = willArrived() ? 'will' : 'lease';
   await sleep(1000);
   const last = w
     .positions(0)
@@ -205,9 +207,10 @@ async function deadman(url: string, port: number, arm: string): Promise<number> 
   expect(new Set(last).size).toBe(1); // not moving
   expect(last[0]).toBeGreaterThan(1500);
   expect(last[0]).toBeLessThan(2500); // stopped on the way, long before the 9 s were up
-  expect(w.retained.get(`arm/${arm}/operator`) ?? '0').toBe('0');
-  sock.destroy();
+  // The broker publishes the will in the end either way: the topic says nobody holds the arm.
+  await w.until(() => (willArrived() ? true : undefined), 15_000, 'the will: operator = 0');
+  raw.close();
   await op.endAsync(true);
   await sim.stop();
-  return err.time - silentAt;
+  return { cause, ms: err.time - silentAt };
 }

@@ -147,6 +147,25 @@ describe('armtwin up with ARMTWIN_USERS and TLS', () => {
       arm: 'arm1',
     });
   });
+
+  // Last in this file: it locks 127.0.0.1 out for the `middleware` user for 5 minutes.
+  test('failed log-ins: past 20 wrong passwords a minute, that user is locked out from this address, over MQTTS and /api', async () => {
+    const connect = connector(`mqtts://localhost:${mqttPort}`, { ca: ca.ca });
+    const basic = (u: string, p: string) => `Basic ${Buffer.from(`${u}:${p}`).toString('base64')}`;
+    for (let i = 0; i < 21; i++)
+      await expect(connect('middleware', { password: 'guess' })).rejects.toThrow(/Not authorized/);
+    // The right password is refused now too, unchecked; /api says so with 429 and Retry-After.
+    await expect(connect('middleware')).rejects.toThrow(/Not authorized/);
+    expect(await get('/api/whoami', basic('middleware', password('middleware')))).toBe(429);
+    expect(await get('/api/metrics', basic('middleware', password('middleware')))).toBe(401);
+    // Another user from the same address is not affected.
+    await (await connect('viewer')).endAsync(true);
+    expect(await getJson('/api/whoami', basic('viewer', password('viewer')))).toEqual({
+      name: 'viewer',
+      role: 'viewer',
+    });
+    expect(up.output()).toContain('login-locked-out');
+  });
 });
 
 test('without a users file, up refuses a non-loopback host', async () => {

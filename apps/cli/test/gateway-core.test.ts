@@ -1,7 +1,10 @@
 import { describe, expect, test } from 'vitest';
+import { OPERATOR_BEAT_MS, OPERATOR_LEASE_MS } from '@armtwin/protocol';
 import { GatewayCore } from '../src/gateway/gateway.ts';
+import { FakeClock } from './fake-clock.ts';
 
 function harness() {
+  const clock = new FakeClock();
   const published: { topic: string; payload: string; retain: boolean }[] = [];
   const written: string[] = [];
   let lineUp = true;
@@ -10,9 +13,11 @@ function harness() {
       published.push({ topic, payload: payload.toString(), retain: opts.retain }),
     write: (data) => (lineUp ? (written.push(data.toString()), true) : false),
     now: () => 1_700_000_000_000,
+    setTimeout: (fn, ms) => clock.setTimeout(fn, ms),
+    clearTimeout: (h) => clock.clearTimeout(h),
     onFirst: () => {},
   });
-  return { core, published, written, setLine: (up: boolean) => (lineUp = up) };
+  return { core, clock, published, written, setLine: (up: boolean) => (lineUp = up) };
 }
 
 describe('GatewayCore', () => {
@@ -59,5 +64,28 @@ describe('GatewayCore deadman', () => {
     core.fromOperator(Buffer.from('0'));
     expect(written).toEqual(['#255PDST!']);
     expect(core.counters.deadmanStops).toBe(1);
+  });
+
+  test('an operator that beats and falls silent: #255PDST! one lease after its last 1', () => {
+    const { core, clock, written } = harness();
+    for (let i = 0; i < 10; i++) {
+      core.fromOperator(Buffer.from('1'));
+      clock.advance(OPERATOR_BEAT_MS);
+    }
+    expect(written).toEqual([]);
+    clock.advance(OPERATOR_LEASE_MS - OPERATOR_BEAT_MS - 1);
+    expect(written).toEqual([]);
+    clock.advance(1);
+    expect(written).toEqual(['#255PDST!']);
+    expect(core.counters.deadmanStops).toBe(1);
+    clock.advance(60_000);
+    expect(written).toEqual(['#255PDST!']);
+  });
+
+  test('a single 1 (a script holding the topic) is never timed out', () => {
+    const { core, clock, written } = harness();
+    core.fromOperator(Buffer.from('1'));
+    clock.advance(60_000);
+    expect(written).toEqual([]);
   });
 });

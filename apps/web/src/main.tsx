@@ -5,9 +5,13 @@
 import { StrictMode } from 'react';
 import { createRoot } from 'react-dom/client';
 import mqtt from 'mqtt';
+import {
+  clearInterval as clearWorkerInterval,
+  setInterval as setWorkerInterval,
+} from 'worker-timers';
 import { ArmStore } from './store/ArmStore.ts';
 import { TargetPreview } from './store/TargetPreview.ts';
-import { ArmLink, type MqttConnect } from './mqtt/ArmLink.ts';
+import { ArmLink, type IntervalTimers, type MqttConnect } from './mqtt/ArmLink.ts';
 import { loadSettings, type HudSettings } from './config/settings.ts';
 import { Viewer } from './scene/Viewer.ts';
 import { HudContext, type Hud } from './hud/HudContext.ts';
@@ -23,6 +27,11 @@ import 'uplot/dist/uPlot.min.css';
 import './styles.css';
 
 const connect: MqttConnect = (url, opts) => mqtt.connect(url, opts);
+/** The deadman's beat keeps time in a worker: a hidden tab is not throttled into a stop. */
+const workerIntervals: IntervalTimers = {
+  setInterval: (fn, ms) => setWorkerInterval(fn, ms),
+  clearInterval: (id) => clearWorkerInterval(id),
+};
 
 const settings = loadSettings();
 const store = new ArmStore({ interpolationAlpha: settings.interpolationAlpha });
@@ -57,14 +66,14 @@ const hud: Hud = {
   target,
   replay,
   settings,
-  link: new ArmLink(store, settings, connect),
+  link: new ArmLink(store, settings, connect, workerIntervals),
   reconnect(next: HudSettings) {
     hud.link.stop();
     store.resetArm();
     store.setInterpolationAlpha(next.interpolationAlpha);
     const prev = hud.settings;
     hud.settings = next;
-    hud.link = new ArmLink(store, next, connect);
+    hud.link = new ArmLink(store, next, connect, workerIntervals);
     robots.switched(prev, next);
     void session.start(hud.link);
     render();

@@ -4,6 +4,7 @@
  * refused CONNACK reaches the Session, which then asks for a log-in.
  */
 import { afterEach, beforeEach, describe, expect, it, vi } from 'vitest';
+import { OPERATOR_BEAT_MS } from '@armtwin/protocol';
 import { ArmStore } from '../src/store/ArmStore.ts';
 import { ArmLink, type ConnectOptions, type MqttLike } from '../src/mqtt/ArmLink.ts';
 import { defaultSettings, type HudSettings } from '../src/config/settings.ts';
@@ -93,6 +94,29 @@ describe('a role on the link', () => {
     expect(client.ended).toBe(false); // a clean DISCONNECT after the 0, not a forced close
   });
 
+  it('an operator beats: retained 1 every OPERATOR_BEAT_MS while connected, none while down or after release', async () => {
+    const { client, link, session } = setup(operator, { username: 'operator' });
+    await session.start(link);
+    client.emit('connect');
+    const ones = () =>
+      client.published.filter((p) => p.topic === 'arm/arm1/operator' && p.payload === '1');
+    vi.advanceTimersByTime(10 * OPERATOR_BEAT_MS);
+    expect(ones()).toHaveLength(11); // at connect, then ten beats
+    expect(ones().every((p) => p.qos === 1 && p.retain)).toBe(true);
+    client.emit('close');
+    vi.advanceTimersByTime(10 * OPERATOR_BEAT_MS);
+    expect(ones()).toHaveLength(11); // nothing queued while offline
+    client.emit('connect');
+    vi.advanceTimersByTime(OPERATOR_BEAT_MS);
+    expect(ones()).toHaveLength(13);
+    link.release();
+    vi.advanceTimersByTime(10 * OPERATOR_BEAT_MS);
+    expect(client.published.filter((p) => p.topic === 'arm/arm1/operator').at(-1)?.payload).toBe(
+      '0',
+    );
+    expect(ones()).toHaveLength(13);
+  });
+
   it('the keep-alive is a setting', async () => {
     const { link, session, opts } = setup(operator, { deadmanKeepAliveS: 5 });
     await session.start(link);
@@ -111,6 +135,21 @@ describe('a role on the link', () => {
       phase: 'needs-login',
       username: '',
       error: 'This broker needs a log-in.',
+    });
+  });
+
+  it('a locked-out address (whoami 429) is told why and does not connect', async () => {
+    const { link, session, opts } = setup(
+      { kind: 'locked', retryS: 287 },
+      { username: 'operator' },
+    );
+    await session.start(link);
+    expect(opts()).toBeUndefined();
+    expect(session.state).toEqual({
+      phase: 'needs-login',
+      username: 'operator',
+      error:
+        'Log-in refused for "operator": too many failed log-ins from this address; try again in 287 s.',
     });
   });
 

@@ -76,7 +76,12 @@ export function planJointSegment(
     });
   const samples: PlanSample[] = [];
   const steps = Math.max(1, Math.ceil(T / o.stepMs));
-  for (let k = 0; k < steps; k++) samples.push({ t: k * o.stepMs, pwm: at(k * o.stepMs) });
+  for (let k = 0; k < steps; k++) {
+    const t = k * o.stepMs;
+    // A sample a hair before T would make a step so short that rounding shows as overspeed.
+    if (k > 0 && T - t < o.stepMs * 1e-3) break;
+    samples.push({ t, pwm: at(t) });
+  }
   samples.push({ t: T, pwm: [...to] });
   return { mode: 'joint', ids, samples, durationMs: T, targetTimes: [T] };
 }

@@ -7,3 +7,4 @@ export * from './reader.ts';
 export * from './pulse.ts';
 export * from './topics.ts';
 export * from './health.ts';
+export * from './operator.ts';

@@ -1,5 +1,5 @@
 /**
- * The embedded broker's policy: authentication from the users file, authorisation from
+ * The embedded broker's policy: authentication from the users file (through the log-in throttle), authorisation from
  * ROLE_RULES (../auth/roles.ts), the packet-size bound, and in-process clients. Without a
  * users file (the local demo) every client is anonymous and may do anything but publish to
  * `$SYS/`, and the broker must then listen on loopback only (enforced by the caller).
@@ -7,16 +7,20 @@
 import { Duplex } from 'node:stream';
 import type { Aedes, Client, Connection } from 'aedes';
 import { canPublish, canSubscribe, type Principal } from '../auth/roles.ts';
-import type { Users } from '../auth/users.ts';
+import type { LoginThrottle } from '../auth/throttle.ts';
 
 export interface BrokerPolicy {
   /** Gives an in-process connection (no socket, no password) the rights of `principal`. */
   trust(conn: Connection, principal: Principal): void;
+  /** Where a connection comes from (its IP), for the log-in throttle. */
+  from(conn: Connection, address: string): void;
 }
 
 /** What the broker counts, for its log. */
 export interface AuthCounters {
   refusedLogins: number;
+  /** Log-ins refused unchecked because their address is locked out (../auth/throttle.ts). */
+  lockedOutLogins: number;
   deniedPublish: number;
   deniedSubscribe: number;
   oversizePackets: number;
@@ -31,12 +35,13 @@ function notAuthorised(): Error & { returnCode: number } {
 
 export function installPolicy(
   aedes: Aedes,
-  users: Users | null,
+  logins: LoginThrottle | null,
   counters: AuthCounters,
   onDenied: (what: string, detail: Record<string, unknown>) => void,
 ): BrokerPolicy {
   const trusted = new WeakMap<object, Principal>();
   const principals = new WeakMap<Client, Principal>();
+  const sources = new WeakMap<object, string>();
 
   aedes.authenticate = (client, username, password, done) => {
     const inProcess = trusted.get(client.conn);
@@ -44,20 +49,36 @@ export function installPolicy(
       principals.set(client, inProcess);
       return done(null, true);
     }
-    if (!users) return done(null, true);
-    const p = username ? users.authenticate(username, password ?? Buffer.alloc(0)) : null;
-    if (!p) {
-      counters.refusedLogins++;
-      onDenied('login', { user: username ?? '(anonymous)', client: client.id });
-      return done(notAuthorised() as never, false);
-    }
-    principals.set(client, p);
-    done(null, true);
+    if (!logins) return done(null, true);
+    if (!username) return refuse(client, '(anonymous)', done);
+    logins
+      .login(sources.get(client.conn) ?? 'unknown', username, password ?? Buffer.alloc(0))
+      .then((r) => {
+        if (!r.ok) return refuse(client, username, done, r.lockedMs);
+        principals.set(client, r.principal);
+        done(null, true);
+      })
+      .catch((err: unknown) => done(err as never, false));
+  };
+  const refuse = (
+    client: Client,
+    user: string,
+    done: (err: never, ok: boolean) => void,
+    lockedMs = 0,
+  ) => {
+    counters.refusedLogins++;
+    if (lockedMs > 0) counters.lockedOutLogins++;
+    onDenied(lockedMs > 0 ? 'login-locked-out' : 'login', {
+      user,
+      client: client.id,
+      ...(lockedMs > 0 ? { lockedForS: Math.ceil(lockedMs / 1000) } : {}),
+    });
+    done(notAuthorised() as never, false);
   };
 
   aedes.authorizePublish = (client, packet, done) => {
     if (packet.topic.startsWith(SYS)) return done(new Error(`${SYS} is reserved`));
-    if (!users) return done(null);
+    if (!logins) return done(null);
     // client is null only for a will left by a client of an earlier broker process: an
     // in-memory broker has none, so refuse what cannot be attributed.
     const p = client ? principals.get(client) : undefined;
@@ -68,7 +89,7 @@ export function installPolicy(
   };
 
   aedes.authorizeSubscribe = (client, sub, done) => {
-    if (!users) return done(null, sub);
+    if (!logins) return done(null, sub);
     const p = principals.get(client);
     if (p && canSubscribe(p, sub.topic)) return done(null, sub);
     counters.deniedSubscribe++;
@@ -76,7 +97,10 @@ export function installPolicy(
     done(null, null); // SUBACK 0x80 for this filter; the connection stays (as Mosquitto does)
   };
 
-  return { trust: (conn, principal) => void trusted.set(conn, principal) };
+  return {
+    trust: (conn, principal) => void trusted.set(conn, principal),
+    from: (conn, address) => void sources.set(conn, address),
+  };
 }
 
 interface PacketParser {

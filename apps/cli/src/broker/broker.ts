@@ -14,6 +14,7 @@ import { MqttClient, type IClientOptions } from 'mqtt';
 import { WebSocketServer, createWebSocketStream } from 'ws';
 import type { Principal } from '../auth/roles.ts';
 import type { Users } from '../auth/users.ts';
+import { LoginThrottle } from '../auth/throttle.ts';
 import { duplexPair, installPolicy, limitPacketSize, type AuthCounters } from './auth.ts';
 
 export interface BrokerTls {
@@ -63,6 +64,11 @@ export interface Broker {
   /** Whether clients must log in (a users file was given). */
   authenticated: boolean;
   counters: AuthCounters;
+  /**
+   * The users file behind the log-in throttle (null in the anonymous demo): `armtwin up` checks
+   * HTTP Basic log-ins with it too, so one lockout covers MQTT and `/api`.
+   */
+  logins: LoginThrottle | null;
   /** Serves MQTT over WebSockets on this HTTP(S) server at `wsPath`. */
   attach(server: http.Server | https.Server): void;
   /**
@@ -96,12 +102,16 @@ export async function startBroker(options: Partial<BrokerOptions> = {}): Promise
   const aedes = await Aedes.createBroker();
   const counters: AuthCounters = {
     refusedLogins: 0,
+    lockedOutLogins: 0,
     deniedPublish: 0,
     deniedSubscribe: 0,
     oversizePackets: 0,
   };
-  const policy = installPolicy(aedes, o.users, counters, o.onDenied);
+  const logins = o.users ? new LoginThrottle(o.users) : null;
+  const policy = installPolicy(aedes, logins, counters, o.onDenied);
   const handle = (conn: Parameters<Aedes['handle']>[0], req?: http.IncomingMessage): Client => {
+    const address = req?.socket.remoteAddress ?? (conn as Partial<net.Socket>).remoteAddress;
+    if (address) policy.from(conn, address);
     const client = aedes.handle(conn, req as never);
     limitPacketSize(client, o.maxPacketBytes, () => {
       counters.oversizePackets++;
@@ -139,6 +149,7 @@ export async function startBroker(options: Partial<BrokerOptions> = {}): Promise
     fellBack,
     authenticated: o.users !== null,
     counters,
+    logins,
     attach(server) {
       // A WebSocket message carries one MQTT packet or a few; the exact bound is the parser's.
       const wss = new WebSocketServer({ server, path: o.wsPath, maxPayload: 4 * o.maxPacketBytes });

@@ -2,7 +2,10 @@ import type { Command } from 'commander';
 import { createReader, type Frame, type ReaderError } from '@armtwin/protocol';
 
 /** One JSON line per frame; a group's frames carry `group` (1, 2, …) to show they belong together. */
-export function decodeStream(input: NodeJS.ReadableStream, write: (line: string) => void): Promise<void> {
+export function decodeStream(
+  input: NodeJS.ReadableStream,
+  write: (line: string) => void,
+): Promise<void> {
   let groups = 0;
   const print = (frame: Frame, group?: number) =>
     write(JSON.stringify(group === undefined ? frame : { ...frame, group }) + '\n');
@@ -13,10 +16,19 @@ export function decodeStream(input: NodeJS.ReadableStream, write: (line: string)
       for (const frame of group.frames) print(frame, groups);
     },
     onError: (error: ReaderError) =>
-      write(JSON.stringify({ type: 'error', kind: error.kind, reason: error.message, text: error.text }) + '\n'),
+      write(
+        JSON.stringify({
+          type: 'error',
+          kind: error.kind,
+          reason: error.message,
+          text: error.text,
+        }) + '\n',
+      ),
   });
   return new Promise((resolve, reject) => {
-    input.on('data', (chunk: Buffer | string) => reader.feed(typeof chunk === 'string' ? chunk : new Uint8Array(chunk)));
+    input.on('data', (chunk: Buffer | string) =>
+      reader.feed(typeof chunk === 'string' ? chunk : new Uint8Array(chunk)),
+    );
     input.on('end', () => {
       reader.flush();
       resolve();
@@ -28,7 +40,9 @@ export function decodeStream(input: NodeJS.ReadableStream, write: (line: string)
 export function registerDecode(program: Command): void {
   program
     .command('decode')
-    .description('decode raw frames from stdin into one JSON object per line (streams as frames arrive)')
+    .description(
+      'decode raw frames from stdin into one JSON object per line (streams as frames arrive)',
+    )
     .addHelpText(
       'after',
       `

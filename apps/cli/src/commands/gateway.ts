@@ -3,7 +3,7 @@ import { loadCliConfig } from '../config.ts';
 import { startGateway } from '../gateway/start-gateway.ts';
 import { createLogger, firstOnly } from '../log.ts';
 import { untilSignal } from './signals.ts';
-import { armId, number } from './sim.ts';
+import { armId, number, operatorLeaseOption } from './sim.ts';
 
 interface GatewayFlags {
   serial: string;
@@ -12,6 +12,7 @@ interface GatewayFlags {
   arm: string;
   username?: string;
   password?: string;
+  operatorLease: number;
 }
 
 export function registerGateway(program: Command): void {
@@ -26,6 +27,7 @@ export function registerGateway(program: Command): void {
     .option('--arm <id>', 'arm id', armId, 'arm1')
     .option('--username <name>', 'broker user name (env MQTT_USERNAME)')
     .option('--password <secret>', 'broker password (env MQTT_PASSWORD)')
+    .addOption(operatorLeaseOption())
     .addHelpText(
       'after',
       `
@@ -33,7 +35,8 @@ Serial bytes are cut into frames, re-encoded and published on arm/{id}/status, o
 serial read, stamped $TIM (the device's own $TIM frames are dropped). Payloads on arm/{id}/control
 are written to the line verbatim; while the line is down they are dropped and answered with
 $ERR:gateway: serial line down! on status. arm/{id}/online is 1 (retained) while the line is open
-and the broker connected, 0 otherwise (also the last will). The port is reopened with back-off
+and the broker connected, 0 otherwise (also the last will). Deadman: a 0 on arm/{id}/operator, or an
+operator that repeated 1 and then fell silent for --operator-lease ms, writes #255PDST! to the line. The port is reopened with back-off
 (250 ms doubling to 5 s) and the broker reconnected every second.`,
     )
     .action(async (flags: GatewayFlags) => {
@@ -45,6 +48,7 @@ and the broker connected, 0 otherwise (also the last will). The port is reopened
         baudRate: flags.baud,
         mqttUrl: flags.mqtt ?? env.mqttUrl,
         armId: flags.arm,
+        operatorLeaseMs: flags.operatorLease,
         ...(username ? { username, password: flags.password ?? env.mqttPassword } : {}),
         onFirst: firstOnly(log),
         onSerial: (open, reason) =>

@@ -18,7 +18,11 @@ export function registerIk(program: Command): void {
     .argument('<x>', 'target x, mm', finite('x'))
     .argument('<y>', 'target y, mm', finite('y'))
     .argument('<z>', 'target z, mm', finite('z'))
-    .argument('[alpha]', 'gripper pitch from horizontal, degrees (omit to search −90…90)', finite('alpha'))
+    .argument(
+      '[alpha]',
+      'gripper pitch from horizontal, degrees (omit to search −90…90)',
+      finite('alpha'),
+    )
     .addHelpText(
       'after',
       `

@@ -1,6 +1,6 @@
 import { InvalidArgumentError, Option, type Command } from 'commander';
 import mqtt from 'mqtt';
-import { isValidArmId } from '@armtwin/protocol';
+import { isValidArmId, OPERATOR_LEASE_MS } from '@armtwin/protocol';
 import { loadCliConfig } from '../config.ts';
 import { createLogger, firstOnly } from '../log.ts';
 import type { Fault } from '../sim/faults.ts';
@@ -62,7 +62,17 @@ interface SimFlags {
   undervolt?: number;
   drop?: number;
   latency?: number;
+  operatorLease: number;
 }
+
+/** `--operator-lease <ms>`, shared by sim and gateway. */
+export const operatorLeaseOption = () =>
+  new Option(
+    '--operator-lease <ms>',
+    'let a beating operator go after this long without a 1 on arm/{id}/operator (0 = only its 0)',
+  )
+    .argParser(number('operator lease', 0, 600_000, true))
+    .default(OPERATOR_LEASE_MS);
 
 export const FAULT_HELP = `
 Fault injection (flags at start; at runtime publish JSON on arm/{id}/sim, one object or an array;
@@ -124,6 +134,7 @@ export function registerSim(program: Command): void {
       'delay every payload and command by this many ms',
       number('latency', 0, 60000, true),
     )
+    .addOption(operatorLeaseOption())
     .addHelpText('after', FAULT_HELP + MOTION_HELP)
     .action(async (flags: SimFlags) => {
       const env = loadCliConfig();
@@ -180,7 +191,12 @@ export function registerSim(program: Command): void {
         log.info({ url, arm: flags.arm }, 'connected');
       });
       client.on('error', (err) => log.warn({ err: err.message }, 'mqtt error'));
-      const sim = startMqttSim(client, { ...runnerOptions, armId: flags.arm, profile });
+      const sim = startMqttSim(client, {
+        ...runnerOptions,
+        armId: flags.arm,
+        profile,
+        operatorLeaseMs: flags.operatorLease,
+      });
       log.info(
         {
           arm: flags.arm,

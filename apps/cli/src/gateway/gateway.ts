@@ -2,7 +2,9 @@
  * The edge gateway's logic, without sockets: serial bytes → protocol reader → frames
  * re-encoded into one `$TIM`-stamped status payload per serial chunk (groups stay groups);
  * control payloads → the serial line verbatim; presence `1` only while the serial line is open
- * and the broker connected. The publish and write functions and the clock are injected.
+ * and the broker connected. The deadman: the operator's `0`, or a beating operator whose lease
+ * ran out (`OperatorWatch`), writes `#255PDST!`. The publish and write functions, the clock and
+ * the timers are injected.
  */
 import {
   armTopics,
@@ -10,10 +12,13 @@ import {
   encodeControllerError,
   encodeFrame,
   encodeTime,
+  OPERATOR_LEASE_MS,
+  OperatorWatch,
   type Frame,
+  type OperatorTimers,
 } from '@armtwin/protocol';
 
-export interface GatewayIo {
+export interface GatewayIo extends OperatorTimers {
   publish(topic: string, payload: Buffer | string, opts: { qos: 0 | 1; retain: boolean }): void;
   /** Writes to the serial line; false when it is not open. */
   write(data: Buffer): boolean;
@@ -33,9 +38,10 @@ export class GatewayCore {
     rejected: {} as Record<string, number>,
     controlWritten: 0,
     controlDropped: 0,
-    /** `#255PDST!` written because the operator's presence went to 0 (the deadman). */
+    /** `#255PDST!` written because the operator let go or its lease lapsed (the deadman). */
     deadmanStops: 0,
   };
+  readonly operator: OperatorWatch;
   private readonly topics;
   private readonly pieces: string[] = [];
   private readonly reader;
@@ -45,8 +51,19 @@ export class GatewayCore {
   constructor(
     armId: string,
     private readonly io: GatewayIo,
+    operatorLeaseMs = OPERATOR_LEASE_MS,
   ) {
     this.topics = armTopics(armId);
+    this.operator = new OperatorWatch(
+      io,
+      (reason) => {
+        if (!this.io.write(Buffer.from('#255PDST!'))) return;
+        this.counters.deadmanStops++;
+        if (reason === 'lapsed')
+          io.onFirst('deadman:lapsed', 'operator stopped beating: #255PDST! written');
+      },
+      operatorLeaseMs,
+    );
     this.reader = createReader({
       onFrame: (frame) => {
         // The device's own `$TIM` (if any) is not epoch time we trust: the gateway stamps.
@@ -99,13 +116,12 @@ export class GatewayCore {
 
   /**
    * The deadman: a `0` on `arm/{id}/operator` — the operator let go or its last will fired, or
-   * no operator holds the arm when the gateway (re)connects — writes `#255PDST!` to the
-   * controller. The gateway cannot tell whether the arm moves, so it always stops it; a stop
-   * at rest changes nothing.
+   * no operator holds the arm when the gateway (re)connects — or a beating operator's lease
+   * running out writes `#255PDST!` to the controller. The gateway cannot tell whether the arm
+   * moves, so it always stops it; a stop at rest changes nothing.
    */
   fromOperator(payload: Buffer): void {
-    if (payload.toString('latin1').trim() !== '0') return;
-    if (this.io.write(Buffer.from('#255PDST!'))) this.counters.deadmanStops++;
+    this.operator.receive(payload);
   }
 
   /** A control payload: written verbatim, or refused with `$ERR` on status when the line is down. */

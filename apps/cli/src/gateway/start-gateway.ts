@@ -3,7 +3,7 @@
  * every `reconnectMs`, last will `0` retained on `arm/{id}/online`), both kept up on their own.
  */
 import mqtt, { type MqttClient } from 'mqtt';
-import { armTopics } from '@armtwin/protocol';
+import { armTopics, OPERATOR_LEASE_MS } from '@armtwin/protocol';
 import { SYSTEM_CLOCK } from '../sim/clock.ts';
 import { GatewayCore } from './gateway.ts';
 import { SerialLink, type SerialLinkOptions } from './serial-link.ts';
@@ -19,6 +19,8 @@ export interface GatewayOptions {
   reconnectMs: number;
   /** MQTT keep-alive, s. */
   keepaliveS: number;
+  /** A beating operator is let go after this long without a `1`, ms (0 = only a `0`). */
+  operatorLeaseMs: number;
   serial: Partial<Omit<SerialLinkOptions, 'path' | 'baudRate'>>;
   onFirst: (kind: string, message: string) => void;
   /** Told when the serial line opens or closes. */
@@ -29,6 +31,7 @@ export const DEFAULT_GATEWAY_OPTIONS = {
   baudRate: 115200,
   reconnectMs: 1000,
   keepaliveS: 60,
+  operatorLeaseMs: OPERATOR_LEASE_MS,
   serial: {},
   onFirst: () => {},
   onSerial: () => {},
@@ -55,7 +58,9 @@ export function startGateway(
     queueQoSZero: false,
   });
   // Frames are small: don't let Nagle's algorithm hold them back (~40 ms tails otherwise).
-  client.on('connect', () => (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true));
+  client.on('connect', () =>
+    (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true),
+  );
   const link: SerialLink = new SerialLink(
     { ...o.serial, path: o.serialPath, baudRate: o.baudRate },
     {
@@ -70,14 +75,18 @@ export function startGateway(
       onData: (chunk) => core.fromSerial(chunk),
     },
   );
-  const core = new GatewayCore(o.armId, {
-    publish: (topic, payload, opts) => {
-      if (client.connected) client.publish(topic, payload, opts); // presence is re-sent on connect
+  const core = new GatewayCore(
+    o.armId,
+    {
+      ...SYSTEM_CLOCK,
+      publish: (topic, payload, opts) => {
+        if (client.connected) client.publish(topic, payload, opts); // presence is re-sent on connect
+      },
+      write: (data) => link.write(data),
+      onFirst: o.onFirst,
     },
-    write: (data) => link.write(data),
-    now: SYSTEM_CLOCK.now,
-    onFirst: o.onFirst,
-  });
+    o.operatorLeaseMs,
+  );
   client.on('connect', () => {
     core.brokerConnected(true);
     client.subscribe(
@@ -98,6 +107,7 @@ export function startGateway(
     client,
     link,
     async stop() {
+      core.operator.reset();
       if (client.connected)
         await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
       await client.endAsync().catch(() => {});

@@ -4,12 +4,13 @@
  * the faults in force are published retained on `arm/{id}/sim/faults`. Presence: retained `1`
  * on `arm/{id}/online` at every (re)connect; the client must be created with the retained `0`
  * will (see `simWill`), and `stop()` publishes `0` itself before disconnecting.
- * Deadman: `arm/{id}/operator` is watched; a `0` there (the operator let go, or the broker
- * published its last will because its page dropped) stops a moving arm (`runner.operatorLeft`).
+ * Deadman: `arm/{id}/operator` is watched (`OperatorWatch`): a `0` there (the operator let go,
+ * or the broker published its last will because its page dropped), or a beating operator whose
+ * lease ran out, stops a moving arm (`runner.operatorLeft`).
  * The MQTT client is injected.
  */
 import type { IClientOptions, MqttClient } from 'mqtt';
-import { armTopics } from '@armtwin/protocol';
+import { armTopics, OPERATOR_LEASE_MS, OperatorWatch } from '@armtwin/protocol';
 import { SYSTEM_CLOCK, type Clock } from './clock.ts';
 import { parseFaults } from './faults.ts';
 import { startMotionService } from './motion-service.ts';
@@ -22,10 +23,13 @@ export interface MqttSimOptions extends Partial<SimRunnerOptions> {
   clock?: Clock;
   /** The arm's profile: announced on `arm/{id}/profile`, and motion requests served (motion-service.ts). */
   profile?: SimProfile;
+  /** A beating operator is let go after this long without a `1` (0 = only a `0` lets go). */
+  operatorLeaseMs?: number;
 }
 
 export interface MqttSim {
   runner: SimRunner;
+  operator: OperatorWatch;
   /** Publishes online `0` (retained), stops the loops, ends the client. */
   stop(): Promise<void>;
 }
@@ -46,6 +50,7 @@ export const simWill = (armId: string): IClientOptions['will'] => ({
 export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttSim {
   const topics = simTopics(options.armId);
   const onFirst = options.onFirst ?? (() => {});
+  const clock = options.clock ?? SYSTEM_CLOCK;
   let offlineDrops = 0;
   const runner = new SimRunner(
     {
@@ -59,8 +64,22 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
         client.publish(topics.status, payload, { qos: 0 });
       },
     },
-    options.clock ?? SYSTEM_CLOCK,
+    clock,
     options,
+  );
+
+  const operator = new OperatorWatch(
+    clock,
+    (reason) => {
+      if (!runner.operatorLeft()) return;
+      onFirst(
+        `deadman:${reason}`,
+        reason === 'lapsed'
+          ? 'operator stopped beating while the arm moved: every servo stopped'
+          : 'operator gone while the arm moved: every servo stopped',
+      );
+    },
+    options.operatorLeaseMs ?? OPERATOR_LEASE_MS,
   );
 
   const publishFaults = (error?: string) =>
@@ -82,11 +101,7 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
   };
   const onMessage = (topic: string, payload: Buffer) => {
     if (topic === topics.control) return runner.receive(payload);
-    if (topic === topics.operator) {
-      if (payload.toString('latin1').trim() === '0' && runner.operatorLeft())
-        onFirst('deadman', 'operator gone while the arm moved: every servo stopped');
-      return;
-    }
+    if (topic === topics.operator) return operator.receive(payload);
     if (topic !== topics.sim) return;
     try {
       runner.applyFaults(parseFaults(payload.toString('utf8')));
@@ -102,19 +117,14 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
   if (client.connected) onConnect();
   runner.start();
   const motion = options.profile
-    ? startMotionService(
-        client,
-        runner,
-        options.armId,
-        options.profile,
-        options.clock ?? SYSTEM_CLOCK,
-        onFirst,
-      )
+    ? startMotionService(client, runner, options.armId, options.profile, clock, onFirst)
     : undefined;
 
   return {
     runner,
+    operator,
     async stop() {
+      operator.reset();
       runner.stop();
       motion?.stop();
       client.removeListener('message', onMessage);

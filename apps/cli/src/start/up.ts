@@ -13,7 +13,7 @@
 import { randomBytes } from 'node:crypto';
 import http from 'node:http';
 import https from 'node:https';
-import type { Principal } from '../auth/roles.ts';
+import type { LoginResult, LoginThrottle } from '../auth/throttle.ts';
 import type { Users } from '../auth/users.ts';
 import { startBroker, type Broker, type BrokerTls } from '../broker/broker.ts';
 import { simWill, startMqttSim, type MqttSim } from '../sim/mqtt-sim.ts';
@@ -96,16 +96,22 @@ export async function startUp(o: UpOptions): Promise<Up> {
     WEB_DIST,
     'The HUD is not built: run `npm run build -w @armtwin/web`.\n',
   );
+  const api = async (req: http.IncomingMessage, res: http.ServerResponse) => {
+    if (req.url === '/api/whoami') return whoami(req, res, broker.logins);
+    if (broker.logins) await basicToBearer(req, broker.logins, apiToken);
+    if (mw?.middleware.handler(req, res)) return;
+    res.writeHead(mw ? 404 : 503, {
+      'content-type': 'application/json',
+      'cache-control': 'no-store',
+    });
+    res.end(mw ? JSON.stringify({ error: 'not found' }) : MIDDLEWARE_MISSING);
+  };
   const onRequest = (req: http.IncomingMessage, res: http.ServerResponse) => {
     if (req.url === '/api' || req.url?.startsWith('/api/')) {
-      if (req.url === '/api/whoami') return whoami(req, res, o.users);
-      if (o.users) basicToBearer(req, o.users, apiToken);
-      if (mw?.middleware.handler(req, res)) return;
-      res.writeHead(mw ? 404 : 503, {
-        'content-type': 'application/json',
-        'cache-control': 'no-store',
+      api(req, res).catch((err: unknown) => {
+        o.onFirst('api', `api request failed: ${(err as Error).message}`);
+        if (!res.headersSent) res.writeHead(500).end();
       });
-      res.end(mw ? JSON.stringify({ error: 'not found' }) : MIDDLEWARE_MISSING);
       return;
     }
     files(req, res);
@@ -202,34 +208,52 @@ export async function startUp(o: UpOptions): Promise<Up> {
  * HTTP Basic with a user's name and password (any role: a viewer may read the history) is
  * turned into the bearer token the middleware checks; anything else reaches it unchanged.
  */
-function basicToBearer(req: http.IncomingMessage, users: Users, token: string): void {
+async function basicToBearer(
+  req: http.IncomingMessage,
+  logins: LoginThrottle,
+  token: string,
+): Promise<void> {
   if (!/^Basic /i.test(req.headers.authorization ?? '')) return;
-  if (basicUser(req, users)) req.headers.authorization = `Bearer ${token}`;
+  if ((await basicUser(req, logins)).ok) req.headers.authorization = `Bearer ${token}`;
   else delete req.headers.authorization;
 }
 
-/** The principal named by an HTTP Basic header, or null. */
-function basicUser(req: http.IncomingMessage, users: Users): Principal | null {
+/** The log-in named by an HTTP Basic header, through the throttle the broker uses. */
+async function basicUser(req: http.IncomingMessage, logins: LoginThrottle): Promise<LoginResult> {
   const m = /^Basic +([A-Za-z0-9+/=]+) *$/i.exec(req.headers.authorization ?? '');
-  if (!m) return null;
-  const text = Buffer.from(m[1]!, 'base64').toString('utf8');
+  const text = m ? Buffer.from(m[1]!, 'base64').toString('utf8') : '';
   const colon = text.indexOf(':');
-  return colon < 0 ? null : users.authenticate(text.slice(0, colon), text.slice(colon + 1));
+  if (colon < 0) return { ok: false, lockedMs: 0 };
+  const address = req.socket.remoteAddress ?? 'unknown';
+  return logins.login(address, text.slice(0, colon), text.slice(colon + 1));
 }
 
 /**
  * `GET /api/whoami`, for the HUD: `{anonymous: true, role: 'operator'}` in the local demo;
- * with a users file, the role of the HTTP Basic credentials (`{name, role, arm?}`) or 401.
+ * with a users file, the role of the HTTP Basic credentials (`{name, role, arm?}`), 401, or
+ * 429 while the address is locked out after too many failed log-ins.
  * The broker enforces the role either way; this only lets the page say why a control is off.
  */
-function whoami(req: http.IncomingMessage, res: http.ServerResponse, users: Users | null): void {
-  const p: (Principal & { anonymous?: boolean }) | null = users
-    ? basicUser(req, users)
-    : { name: '', role: 'operator', anonymous: true };
+async function whoami(
+  req: http.IncomingMessage,
+  res: http.ServerResponse,
+  logins: LoginThrottle | null,
+): Promise<void> {
   const headers = { 'content-type': 'application/json', 'cache-control': 'no-store' };
-  if (!p) {
+  const r: LoginResult = logins
+    ? await basicUser(req, logins)
+    : { ok: true, principal: { name: '', role: 'operator' } };
+  if (!r.ok && r.lockedMs > 0) {
+    const retry = Math.ceil(r.lockedMs / 1000);
+    res
+      .writeHead(429, { ...headers, 'retry-after': String(retry) })
+      .end(JSON.stringify({ error: `too many failed log-ins: try again in ${retry} s` }));
+    return;
+  }
+  if (!r.ok) {
     res.writeHead(401, headers).end(JSON.stringify({ error: 'log in: HTTP Basic with a user' }));
     return;
   }
+  const p = logins ? r.principal : { ...r.principal, anonymous: true };
   res.writeHead(200, headers).end(JSON.stringify(p));
 }

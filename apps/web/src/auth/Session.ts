@@ -46,6 +46,14 @@ export class Session {
     this.dispatch({ type: 'start', username: s.username });
     const who = await this.deps.whoami(s);
     if (gen !== this.generation) return;
+    if (who.kind === 'locked') {
+      // Connecting now would only be refused: say why, and let the user try again later.
+      this.dispatch({
+        type: 'refused',
+        message: `too many failed log-ins from this address; try again in ${who.retryS} s`,
+      });
+      return;
+    }
     const access = resolveAccess(who, s.roleHint, s.username);
     this.permissions = permissionsFor(access);
     this.dispatch({ type: 'role', access });

@@ -10,6 +10,8 @@ export type Whoami =
   | { kind: 'user'; name: string; role: Access['role']; anonymous: boolean }
   /** 401: the server has users and these credentials (or none) are not one of them. */
   | { kind: 'unauthorized' }
+  /** 429: too many failed log-ins from this address; the server checks nothing for `retryS`. */
+  | { kind: 'locked'; retryS: number }
   /** No answer we can use: not served (404, a static server, Mosquitto only), network, junk. */
   | { kind: 'unavailable'; reason: string };
 
@@ -28,9 +30,13 @@ export function authHeaders(s: { username: string; password: string }): Record<s
   return s.username ? { authorization: basicAuth(s.username, s.password) } : {};
 }
 
-/** A response → Whoami. */
-export function parseWhoami(status: number, body: unknown): Whoami {
+/** A response → Whoami (`retryAfter`: the Retry-After header of a 429). */
+export function parseWhoami(status: number, body: unknown, retryAfter?: string | null): Whoami {
   if (status === 401) return { kind: 'unauthorized' };
+  if (status === 429) {
+    const s = Number(retryAfter);
+    return { kind: 'locked', retryS: Number.isFinite(s) && s > 0 ? Math.ceil(s) : 60 };
+  }
   if (status !== 200) return { kind: 'unavailable', reason: `HTTP ${status}` };
   const b = body as { name?: unknown; role?: unknown; anonymous?: unknown } | null;
   if (!b || typeof b !== 'object' || typeof b.name !== 'string' || !isHudRole(b.role))
@@ -52,7 +58,7 @@ export async function fetchWhoami(
       signal: AbortSignal.timeout(timeoutMs),
     });
     const body: unknown = res.status === 200 ? await res.json().catch(() => null) : null;
-    return parseWhoami(res.status, body);
+    return parseWhoami(res.status, body, res.headers.get('retry-after'));
   } catch (err) {
     return { kind: 'unavailable', reason: err instanceof Error ? err.message : String(err) };
   }

@@ -9,6 +9,7 @@ import {
   encodeKms,
   encodeMove,
   encodePing,
+  OPERATOR_BEAT_MS,
   type ArmTopics,
 } from '@armtwin/protocol';
 import { isWithinLimits } from '@armtwin/ik';
@@ -57,6 +58,19 @@ export const UNCHECKED_PERMISSIONS: LinkPermissions = { command: true, stop: tru
 
 export type MqttConnect = (url: string, opts: ConnectOptions) => MqttLike;
 
+/**
+ * Interval timers for the deadman's beat. The page passes worker-timers (as mqtt.js does for
+ * its keep-alive), so a hidden tab keeps beating while a frozen one does not.
+ */
+export interface IntervalTimers {
+  setInterval(fn: () => void, ms: number): number;
+  clearInterval(id: number): void;
+}
+const NATIVE_INTERVALS: IntervalTimers = {
+  setInterval: (fn, ms) => setInterval(fn, ms) as unknown as number,
+  clearInterval: (id) => clearInterval(id),
+};
+
 /** Contract §6: keep-alive 60 s, reconnect every 1000 ms. */
 const KEEPALIVE_S = 60;
 const RECONNECT_MS = 1000;
@@ -68,6 +82,7 @@ export class ArmLink {
   private client: MqttLike | null = null;
   private readonly coalescer: MoveCoalescer;
   private pingTimer: ReturnType<typeof setInterval> | undefined;
+  private beatTimer: number | undefined;
   /** Bumped by every `$KMS` sent, so the Cartesian panel can match the reply. */
   kmsSent = 0;
   lastPublishError = '';
@@ -82,6 +97,7 @@ export class ArmLink {
     private readonly store: ArmStore,
     readonly settings: HudSettings,
     private readonly connect: MqttConnect,
+    private readonly intervals: IntervalTimers = NATIVE_INTERVALS,
   ) {
     this.topics = armTopics(settings.armId);
     this.coalescer = new MoveCoalescer((id, pwm) => this.sendMove(id, pwm), {
@@ -92,7 +108,8 @@ export class ArmLink {
   /**
    * Connects. `permissions` (from the page's role, src/auth/roles.ts) decide what may be
    * published; with `deadman` the page holds `arm/{id}/operator`: a short keep-alive
-   * (settings.deadmanKeepAliveS), a retained `1` at every connect and a last will `0`.
+   * (settings.deadmanKeepAliveS), a retained `1` at every connect and every OPERATOR_BEAT_MS
+   * after (the lease a controller watches, docs/protocol.md), and a last will `0`.
    */
   start(permissions: LinkPermissions = UNCHECKED_PERMISSIONS, events: LinkEvents = {}): void {
     const s = this.settings;
@@ -118,7 +135,7 @@ export class ArmLink {
       this.store.connectionError = '';
       this.connected = true;
       this.gap.restored(Date.now());
-      if (deadman) client.publish(this.topics.operator, '1', { qos: 1, retain: true });
+      if (deadman) this.holdOperator(client);
       this.events.connected?.();
       client.subscribe([this.topics.status, this.topics.online], { qos: 0 }, (err) => {
         if (err) this.store.connectionError = `subscribe failed: ${err.message}`;
@@ -151,6 +168,21 @@ export class ArmLink {
     });
     client.on('message', (topic, payload) => this.onMessage(topic, payload));
     this.pingTimer = setInterval(() => this.ping(), s.pingIntervalMs);
+    if (deadman)
+      this.beatTimer = this.intervals.setInterval(() => {
+        if (this.connected && current()) this.holdOperator(client);
+      }, OPERATOR_BEAT_MS);
+  }
+
+  /** The deadman's `1`: retained, QoS 1 (at connect, then as the beat). */
+  private holdOperator(client: MqttLike): void {
+    client.publish(this.topics.operator, '1', { qos: 1, retain: true });
+  }
+
+  private stopTimers(): void {
+    clearInterval(this.pingTimer);
+    if (this.beatTimer !== undefined) this.intervals.clearInterval(this.beatTimer);
+    this.beatTimer = undefined;
   }
 
   private onMessage(topic: string, payload: Uint8Array): void {
@@ -234,7 +266,7 @@ export class ArmLink {
    * stops at once, as the will would make it), then a clean DISCONNECT. For pagehide.
    */
   release(): void {
-    clearInterval(this.pingTimer);
+    this.stopTimers();
     this.coalescer.cancelAll();
     const client = this.client;
     this.client = null;
@@ -247,7 +279,7 @@ export class ArmLink {
 
   stop(): void {
     if (this.permissions.deadman && this.connected) return this.release();
-    clearInterval(this.pingTimer);
+    this.stopTimers();
     this.coalescer.cancelAll();
     this.client?.end(true);
     this.client = null;
