@@ -176,6 +176,38 @@ describe('armtwin sim over Mosquitto', () => {
     expect(w.positions(5, after).every(([, p]) => p === 1500)).toBe(true);
   });
 
+  test('rate limit: of 300 moves at once the first 100 (the burst) run, the rest are dropped with one $ERR:rate limit!', async () => {
+    const from = w.items.length;
+    const moves = Array.from({ length: 300 }, (_, i) => `#000P${1000 + i}T0000!`).join('');
+    await w.send(moves);
+    await w.frame((f) => f.type === 'controllerError' && f.text === 'rate limit', from);
+    await w.until(
+      () => (w.positions(0, from).at(-1)?.[1] === 1099 ? true : undefined),
+      5000,
+      'the 100th move (P1099)',
+    );
+    await new Promise((r) => setTimeout(r, 300));
+    const seen = w.positions(0, from).map(([, p]) => p);
+    expect(seen.slice(seen.indexOf(1099))).toEqual(seen.slice(seen.indexOf(1099)).map(() => 1099));
+    // Had the other 200 run, the arm would have settled on P1299, never P1099.
+    const errors = w.items
+      .slice(from)
+      .filter((it) => 'frame' in it && it.frame.type === 'controllerError');
+    expect(errors).toHaveLength(1);
+  });
+
+  test('rate limit: a stop behind a flood of moves is never dropped, and overrides them all', async () => {
+    await new Promise((r) => setTimeout(r, 2500)); // the bucket refills
+    const before = w.positions(0).at(-1)![1];
+    const { from } = await sendStamped('');
+    const moves = Array.from({ length: 300 }, (_, i) => `#000P${2000 + i}T0500!`).join('');
+    await w.send(`${moves}#255PDST!`);
+    await w.frame((f) => f.type === 'controllerError' && f.text === 'rate limit', from);
+    await new Promise((r) => setTimeout(r, 800));
+    expect(new Set(w.positions(0, from).map(([, p]) => p))).toEqual(new Set([before]));
+    await new Promise((r) => setTimeout(r, 2500)); // leave a full bucket for the next test
+  });
+
   test('fault injection at runtime: overheat passes 60 °C; stall freezes a servo; clear restores', async () => {
     await w.client.publishAsync(
       `arm/${ARM}/sim`,
