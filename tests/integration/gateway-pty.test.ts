@@ -8,6 +8,8 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+import { OPERATOR_BEAT_MS } from '@armtwin/protocol';
+import { rawOperator } from '../helpers/raw-operator.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
 
@@ -131,6 +133,46 @@ describe('armtwin gateway over a pty pair', () => {
     await w.until(() => w.health(0), 5000, 'a health group');
     const stamps = w.positions(0, from).map(([t]) => t);
     expect(stamps.every((t) => t > 1.7e12)).toBe(true);
+  });
+
+  test('deadman: a beating operator goes silent mid-move; the gateway writes #255PDST! on its lease, before the will', async () => {
+    const operatorTopic = `arm/${ARM}/operator`;
+    await w.client.subscribeAsync(operatorTopic, { qos: 1 });
+    const start = w.items.length;
+    await w.send('#000P1000T0300!');
+    await w.until(() => w.positions(0, start).find(([, p]) => p === 1000), 5000, 'P1000');
+    const raw = await rawOperator({
+      port: broker().port,
+      armId: ARM,
+      keepaliveS: 2,
+      beatMs: OPERATOR_BEAT_MS,
+    });
+    try {
+      await new Promise((r) => setTimeout(r, 3 * OPERATOR_BEAT_MS));
+      const from = w.items.length;
+      await w.send('#000P2500T9000!'); // 9 s
+      await w.until(() => w.positions(0, from).find(([, p]) => p > 1100), 5000, 'the base moving');
+      const willFrom = w.history.length;
+      const will = () =>
+        w.history.slice(willFrom).some((m) => m.topic === operatorTopic && m.payload === '0');
+      raw.silence();
+      // Stopped: the last half second of samples holds one pulse, well short of the target.
+      const still = await w.until(
+        () => {
+          const recent = w.positions(0, from).slice(-10);
+          return recent.length === 10 && new Set(recent.map(([, p]) => p)).size === 1
+            ? recent[0]![1]
+            : undefined;
+        },
+        15_000,
+        'the base to stop',
+      );
+      expect(will(), 'stopped by the lease, not by the broker’s will').toBe(false);
+      expect(still).toBeLessThan(2400);
+      await w.until(() => (will() ? true : undefined), 15_000, 'the will, in the end');
+    } finally {
+      raw.close();
+    }
   });
 
   test('survives the port disappearing and coming back', async () => {
