@@ -1,8 +1,9 @@
 /**
- * The embedded broker's policy: authentication from the users file (through the log-in throttle), authorisation from
- * ROLE_RULES (../auth/roles.ts), the packet-size bound, and in-process clients. Without a
- * users file (the local demo) every client is anonymous and may do anything but publish to
- * `$SYS/`, and the broker must then listen on loopback only (enforced by the caller).
+ * The embedded broker's policy: authentication from the users file (through the log-in
+ * throttle), authorisation from ROLE_RULES (../auth/roles.ts), the packet-size bound, and
+ * in-process clients. Without a users file (the local demo) every client is anonymous and may
+ * do anything but publish to `$SYS/`, and the broker must then listen on loopback only
+ * (enforced by the caller).
  */
 import { Duplex } from 'node:stream';
 import type { Aedes, Client, Connection } from 'aedes';
