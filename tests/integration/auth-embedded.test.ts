@@ -7,7 +7,7 @@ import https from 'node:https';
 import mqtt from 'mqtt';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { startBroker, type Broker } from '../../apps/cli/src/broker/broker.ts';
-import { loadUsers } from '../../apps/cli/src/auth/users.ts';
+import { loadUsers } from '@armtwin/auth';
 import { makeTestCa, type TestCa } from '../helpers/tls.ts';
 import {
   checkLogins,

@@ -54,6 +54,12 @@ export interface MiddlewareConfig {
    * stays open (it says only up or down). Required outside the local demo (SECURITY.md).
    */
   apiToken: string;
+  /**
+   * ARMTWIN_USERS: the users-and-roles file (SECURITY.md). With it `/whoami` tells the HUD its
+   * role, and a user's name and password (HTTP Basic) also open /metrics and /history, which
+   * then need a log-in even without API_TOKEN. Failed log-ins are throttled.
+   */
+  usersFile: string;
   /** MAX_PAYLOAD_BYTES: a bigger MQTT message is refused whole (counted as `oversize`). */
   maxPayloadBytes: number;
   /** LOG_LEVEL: pino level. */
@@ -84,6 +90,7 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   port: 8090,
   host: '127.0.0.1',
   apiToken: '',
+  usersFile: '',
   maxPayloadBytes: 65536,
   logLevel: 'info',
 };
@@ -113,6 +120,7 @@ export const CONFIG_ENV: Record<keyof MiddlewareConfig, string> = {
   port: 'PORT',
   host: 'HOST',
   apiToken: 'API_TOKEN',
+  usersFile: 'ARMTWIN_USERS',
   maxPayloadBytes: 'MAX_PAYLOAD_BYTES',
   logLevel: 'LOG_LEVEL',
 };
@@ -156,6 +164,7 @@ const SCHEMA = z.object({
   port: int(0, 65535),
   host: z.string().min(1),
   apiToken: z.string().regex(/^[\x21-\x7e]*$/, 'printable ASCII, no spaces'),
+  usersFile: z.string(),
   maxPayloadBytes: int(64, 268_435_455),
   logLevel: z.enum(['fatal', 'error', 'warn', 'info', 'debug', 'trace', 'silent']),
 });

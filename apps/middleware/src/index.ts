@@ -4,7 +4,8 @@
  */
 import http from 'node:http';
 import type { MqttClient } from 'mqtt';
-import type { MiddlewareConfig } from './config.ts';
+import { LoginThrottle, loadUsers } from '@armtwin/auth';
+import { ConfigError, type MiddlewareConfig } from './config.ts';
 import { InfluxDB } from '@influxdata/influxdb-client';
 import { createHistoryHandler } from './history/index.ts';
 import { createHttpHandler, type HealthReport, type HttpHandler } from './http.ts';
@@ -58,6 +59,7 @@ export async function startMiddleware(
   deps: MiddlewareDeps = {},
 ): Promise<Middleware> {
   const log = deps.logger ?? createLogger(config.logLevel);
+  const logins = config.usersFile ? new LoginThrottle(usersFrom(config.usersFile)) : null;
   const once = new LogOnce(log);
   const clock = deps.clock ?? SYSTEM_CLOCK;
   const now = deps.now ?? Date.now;
@@ -179,10 +181,20 @@ export async function startMiddleware(
         }).getQueryApi(config.influxOrg),
         bucket: config.influxBucket,
         onError: (err) =>
-          once.warn('history-query-failed', { err: (err as Error).message }, 'history query failed'),
+          once.warn(
+            'history-query-failed',
+            { err: (err as Error).message },
+            'history query failed',
+          ),
       })
     : null;
-  const handler = createHttpHandler({ metrics, health, history, apiToken: config.apiToken });
+  const handler = createHttpHandler({
+    metrics,
+    health,
+    history,
+    apiToken: config.apiToken,
+    logins,
+  });
   let server: http.Server | null = null;
   let httpPort: number | null = null;
   if (deps.listen !== false) {
@@ -198,7 +210,11 @@ export async function startMiddleware(
     httpPort = typeof addr === 'object' && addr ? addr.port : null;
     server = srv;
     log.info(
-      { url: `http://${config.host}:${httpPort}`, apiToken: config.apiToken ? 'required' : 'none' },
+      {
+        url: `http://${config.host}:${httpPort}`,
+        apiToken: config.apiToken ? 'required' : 'none',
+        logIns: logins ? 'users file' : 'none',
+      },
       'HTTP: /healthz and /metrics',
     );
   }
@@ -233,4 +249,13 @@ export async function startMiddleware(
       );
     },
   };
+}
+
+/** The users file, or a ConfigError naming ARMTWIN_USERS (start-up stops with exit code 2). */
+function usersFrom(file: string) {
+  try {
+    return loadUsers(file);
+  } catch (err) {
+    throw new ConfigError(`ARMTWIN_USERS: ${(err as Error).message}`, { cause: err });
+  }
 }

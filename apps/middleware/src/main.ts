@@ -5,10 +5,8 @@
  */
 import { ConfigError, loadConfig, startMiddleware } from './index.ts';
 
-let config;
-try {
-  config = loadConfig();
-} catch (err) {
+/** A configuration problem (a bad variable, an unreadable users file): say it, exit 2. */
+function configProblem(err: unknown): never {
   if (err instanceof ConfigError) {
     console.error(`armtwin middleware: ${err.message}`);
     process.exit(2);
@@ -16,7 +14,14 @@ try {
   throw err;
 }
 
-const mw = await startMiddleware(config);
+let config;
+try {
+  config = loadConfig();
+} catch (err) {
+  configProblem(err);
+}
+
+const mw = await startMiddleware(config).catch(configProblem);
 let stopping = false;
 for (const signal of ['SIGINT', 'SIGTERM'] as const) {
   process.on(signal, () => {

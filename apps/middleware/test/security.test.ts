@@ -5,6 +5,7 @@
 import { EventEmitter } from 'node:events';
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import { describe, expect, test } from 'vitest';
+import { hashPassword, LoginThrottle, parseUsers } from '@armtwin/auth';
 import { loadConfig } from '../src/config.ts';
 import { createHttpHandler, type HealthReport } from '../src/http.ts';
 import { Ingest } from '../src/ingest.ts';
@@ -60,6 +61,104 @@ describe('API token', () => {
     expect([c.apiToken, c.maxPayloadBytes]).toEqual(['abc', 1024]);
     expect(loadConfig({}).maxPayloadBytes).toBe(65536);
     expect(() => loadConfig({ API_TOKEN: 'a b' })).toThrow(/API_TOKEN/);
+  });
+});
+
+/** Like `call`, for answers that come after an (async) log-in check: status and body. */
+function answer(handler: ReturnType<typeof createHttpHandler>, url: string, auth?: string) {
+  return new Promise<{ status: number; body: string; headers: Record<string, string> }>(
+    (resolve) => {
+      const req = {
+        url,
+        method: 'GET',
+        headers: auth ? { authorization: auth } : {},
+        socket: { remoteAddress: '10.0.0.5' },
+      } as unknown as IncomingMessage;
+      const out = { status: 0, body: '', headers: {} as Record<string, string> };
+      const res = Object.assign(new EventEmitter(), {
+        headersSent: false,
+        writeHead(status: number, headers: Record<string, string> = {}) {
+          out.status = status;
+          out.headers = headers;
+          return res;
+        },
+        end(body?: string) {
+          out.body = body ?? '';
+          resolve(out);
+          return res;
+        },
+      });
+      handler(req, res as unknown as ServerResponse);
+    },
+  );
+}
+
+describe('users file (ARMTWIN_USERS): the HUD logs in against the middleware', () => {
+  const health = () => ({ ok: true }) as HealthReport;
+  const history = async (_req: IncomingMessage, res: ServerResponse) => (
+    res.writeHead(200).end('history'),
+    true
+  );
+  const users = parseUsers(
+    JSON.stringify({
+      users: [
+        { name: 'ana', role: 'operator', password: hashPassword('pw-ana', { iterations: 10 }) },
+        { name: 'vic', role: 'viewer', password: hashPassword('pw-vic', { iterations: 10 }) },
+      ],
+    }),
+  );
+  const basic = (u: string, p: string) => `Basic ${Buffer.from(`${u}:${p}`).toString('base64')}`;
+  const handler = (apiToken = '') =>
+    createHttpHandler({
+      metrics: new Metrics(),
+      health,
+      history,
+      apiToken,
+      logins: new LoginThrottle(users, { perUser: 2, perAddress: 10, windowS: 60, lockoutS: 300 }),
+    });
+
+  test('/whoami: the role for a log-in, 401 without one', async () => {
+    const h = handler();
+    expect(await answer(h, '/api/whoami', basic('ana', 'pw-ana'))).toMatchObject({
+      status: 200,
+      body: JSON.stringify({ name: 'ana', role: 'operator' }),
+    });
+    expect((await answer(h, '/whoami', basic('vic', 'pw-vic'))).body).toContain('"viewer"');
+    expect((await answer(h, '/whoami')).status).toBe(401);
+    expect((await answer(h, '/whoami', basic('ana', 'nope'))).status).toBe(401);
+  });
+
+  test('a user’s log-in opens /history and /metrics, as the token does; nothing else does', async () => {
+    const h = handler('s3cret');
+    expect(await answer(h, '/api/history/series?arm=arm1', basic('vic', 'pw-vic'))).toMatchObject({
+      status: 200,
+      body: 'history',
+    });
+    expect((await answer(h, '/metrics', basic('vic', 'pw-vic'))).status).toBe(200);
+    expect((await answer(h, '/metrics', 'Bearer s3cret')).status).toBe(200);
+    expect((await answer(h, '/metrics', basic('vic', 'wrong'))).status).toBe(401);
+    expect((await answer(h, '/metrics')).status).toBe(401);
+  });
+
+  test('with users and no token, /history still needs a log-in; /healthz stays open', async () => {
+    const h = handler();
+    expect((await answer(h, '/history/series?arm=arm1')).status).toBe(401);
+    expect(call(h, '/healthz')).toBe(200);
+  });
+
+  test('failed log-ins lock the address out: 429 with Retry-After, even for the right password', async () => {
+    const h = handler();
+    for (let i = 0; i < 3; i++) await answer(h, '/whoami', basic('ana', 'guess'));
+    const locked = await answer(h, '/whoami', basic('ana', 'pw-ana'));
+    expect(locked.status).toBe(429);
+    expect(Number(locked.headers['retry-after'])).toBeGreaterThan(290);
+    expect((await answer(h, '/history/series?arm=arm1', basic('ana', 'pw-ana'))).status).toBe(429);
+  });
+
+  test('ARMTWIN_USERS comes from the environment', () => {
+    expect(loadConfig({ ARMTWIN_USERS: '/etc/armtwin/users.json' }).usersFile).toBe(
+      '/etc/armtwin/users.json',
+    );
   });
 });
 

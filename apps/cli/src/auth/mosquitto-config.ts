@@ -4,8 +4,7 @@
  * ROLE_RULES (./roles.ts) written out per user, so Mosquitto and the embedded broker enforce
  * the same policy (tests/integration/auth-*.test.ts replays one table of cases on both).
  */
-import { ROLE_RULES, rulesFor, type Role } from './roles.ts';
-import type { UserEntry } from './users.ts';
+import { ROLE_RULES, rulesFor, type Role, type UserEntry } from '@armtwin/auth';
 
 export interface MosquittoDeployOptions {
   /** Absolute directory where `passwd` and `acl` will live on the broker host. */

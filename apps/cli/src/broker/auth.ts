@@ -7,8 +7,7 @@
  */
 import { Duplex } from 'node:stream';
 import type { Aedes, Client, Connection } from 'aedes';
-import { canPublish, canSubscribe, type Principal } from '../auth/roles.ts';
-import type { LoginThrottle } from '../auth/throttle.ts';
+import { canPublish, canSubscribe, type LoginThrottle, type Principal } from '@armtwin/auth';
 
 export interface BrokerPolicy {
   /** Gives an in-process connection (no socket, no password) the rights of `principal`. */

@@ -12,9 +12,7 @@ import tls from 'node:tls';
 import { Aedes, type Client } from 'aedes';
 import { MqttClient, type IClientOptions } from 'mqtt';
 import { WebSocketServer, createWebSocketStream } from 'ws';
-import type { Principal } from '../auth/roles.ts';
-import type { Users } from '../auth/users.ts';
-import { LoginThrottle } from '../auth/throttle.ts';
+import { LoginThrottle, type Principal, type Users } from '@armtwin/auth';
 import { duplexPair, installPolicy, limitPacketSize, type AuthCounters } from './auth.ts';
 
 export interface BrokerTls {

@@ -3,7 +3,7 @@
  * TLS certificate (ARMTWIN_TLS_CERT / ARMTWIN_TLS_KEY), read from disk once at start-up.
  */
 import fs from 'node:fs';
-import { loadUsers, type Users } from '../auth/users.ts';
+import { loadUsers, type Users } from '@armtwin/auth';
 import type { CliConfig } from '../config.ts';
 import type { BrokerTls } from './broker.ts';
 

@@ -10,9 +10,13 @@ import {
   mosquittoFiles,
   type MosquittoDeployOptions,
 } from '../auth/mosquitto-config.ts';
-import { DEFAULT_HASH_OPTIONS, hashPassword } from '../auth/password.ts';
-import { ROLES } from '../auth/roles.ts';
-import { loadUsers, USER_NAME_PATTERN } from '../auth/users.ts';
+import {
+  DEFAULT_HASH_OPTIONS,
+  hashPassword,
+  loadUsers,
+  ROLES,
+  USER_NAME_PATTERN,
+} from '@armtwin/auth';
 import { armId, number } from './sim.ts';
 
 async function readStdin(): Promise<string> {

@@ -13,8 +13,13 @@
 import { randomBytes } from 'node:crypto';
 import http from 'node:http';
 import https from 'node:https';
-import type { LoginResult, LoginThrottle } from '../auth/throttle.ts';
-import type { Users } from '../auth/users.ts';
+import {
+  basicCredentials,
+  whoamiAnswer,
+  type LoginResult,
+  type LoginThrottle,
+  type Users,
+} from '@armtwin/auth';
 import { startBroker, type Broker, type BrokerTls } from '../broker/broker.ts';
 import { simWill, startMqttSim, type MqttSim } from '../sim/mqtt-sim.ts';
 import { DEFAULT_PROFILE, loadSimProfile } from '../sim/profile.ts';
@@ -220,40 +225,17 @@ async function basicToBearer(
 
 /** The log-in named by an HTTP Basic header, through the throttle the broker uses. */
 async function basicUser(req: http.IncomingMessage, logins: LoginThrottle): Promise<LoginResult> {
-  const m = /^Basic +([A-Za-z0-9+/=]+) *$/i.exec(req.headers.authorization ?? '');
-  const text = m ? Buffer.from(m[1]!, 'base64').toString('utf8') : '';
-  const colon = text.indexOf(':');
-  if (colon < 0) return { ok: false, lockedMs: 0 };
-  const address = req.socket.remoteAddress ?? 'unknown';
-  return logins.login(address, text.slice(0, colon), text.slice(colon + 1));
+  const creds = basicCredentials(req.headers.authorization);
+  if (!creds) return { ok: false, lockedMs: 0 };
+  return logins.login(req.socket.remoteAddress ?? 'unknown', creds.name, creds.password);
 }
 
-/**
- * `GET /api/whoami`, for the HUD: `{anonymous: true, role: 'operator'}` in the local demo;
- * with a users file, the role of the HTTP Basic credentials (`{name, role, arm?}`), 401, or
- * 429 while the address is locked out after too many failed log-ins.
- * The broker enforces the role either way; this only lets the page say why a control is off.
- */
+/** `GET /api/whoami`, for the HUD (`whoamiAnswer`): the anonymous demo is an operator. */
 async function whoami(
   req: http.IncomingMessage,
   res: http.ServerResponse,
   logins: LoginThrottle | null,
 ): Promise<void> {
-  const headers = { 'content-type': 'application/json', 'cache-control': 'no-store' };
-  const r: LoginResult = logins
-    ? await basicUser(req, logins)
-    : { ok: true, principal: { name: '', role: 'operator' } };
-  if (!r.ok && r.lockedMs > 0) {
-    const retry = Math.ceil(r.lockedMs / 1000);
-    res
-      .writeHead(429, { ...headers, 'retry-after': String(retry) })
-      .end(JSON.stringify({ error: `too many failed log-ins: try again in ${retry} s` }));
-    return;
-  }
-  if (!r.ok) {
-    res.writeHead(401, headers).end(JSON.stringify({ error: 'log in: HTTP Basic with a user' }));
-    return;
-  }
-  const p = logins ? r.principal : { ...r.principal, anonymous: true };
-  res.writeHead(200, headers).end(JSON.stringify(p));
+  const a = whoamiAnswer(logins ? await basicUser(req, logins) : 'anonymous-demo');
+  res.writeHead(a.status, a.headers).end(a.body);
 }

@@ -1,7 +1,7 @@
 import { afterEach, beforeEach, describe, expect, test, vi } from 'vitest';
-import { hashPassword } from '../src/auth/password.ts';
-import { LoginThrottle } from '../src/auth/throttle.ts';
-import { parseUsers, type Users } from '../src/auth/users.ts';
+import { hashPassword } from '../src/password.ts';
+import { LoginThrottle } from '../src/throttle.ts';
+import { parseUsers, type Users } from '../src/users.ts';
 
 const OPTS = { perUser: 3, perAddress: 5, windowS: 60, lockoutS: 300 };
 

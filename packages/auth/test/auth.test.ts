@@ -1,19 +1,17 @@
 /**
- * The users-and-roles file, Mosquitto-compatible password hashes, the role rules and the
- * generated Mosquitto configuration. Pure; the brokers themselves are tested in
- * tests/integration/auth-*.test.ts with the same role table.
+ * The users-and-roles file, Mosquitto-compatible password hashes and the role rules. Pure; the
+ * brokers themselves are tested in tests/integration/auth-*.test.ts with the same role table.
  */
 import { describe, expect, test } from 'vitest';
-import { mosquittoAcl, mosquittoConf, mosquittoPasswd } from '../src/auth/mosquitto-config.ts';
-import { hashPassword, isPasswordHash, verifyPassword } from '../src/auth/password.ts';
+import { hashPassword, isPasswordHash, verifyPassword } from '../src/password.ts';
 import {
   canPublish,
   canSubscribe,
   filterWithin,
   topicMatches,
   type Principal,
-} from '../src/auth/roles.ts';
-import { parseUsers } from '../src/auth/users.ts';
+} from '../src/roles.ts';
+import { parseUsers } from '../src/users.ts';
 
 /** Written by `mosquitto_passwd -b -c f alice 'correct horse'` (Mosquitto 2.0.11). */
 const MOSQUITTO_HASH =
@@ -123,51 +121,4 @@ describe('users file', () => {
       /unique/,
     ],
   ])('refuses %s', (_name, users, msg) => expect(() => parseUsers(file(users))).toThrow(msg));
-});
-
-describe('Mosquitto configuration', () => {
-  const h = hashPassword('pw', { iterations: 10 });
-  const users = parseUsers(
-    JSON.stringify({
-      users: [
-        { name: 'op', role: 'operator', password: h },
-        { name: 'arm9', role: 'device', arm: 'arm9', password: h },
-      ],
-    }),
-  ).list;
-
-  test('no anonymous access, password and ACL files, packet bound, TLS listeners', () => {
-    const conf = mosquittoConf({
-      confDir: '/etc/x',
-      certfile: '/c.pem',
-      keyfile: '/k.pem',
-      cafile: '/ca.pem',
-    });
-    for (const line of [
-      'per_listener_settings false',
-      'allow_anonymous false',
-      'password_file /etc/x/passwd',
-      'acl_file /etc/x/acl',
-      'max_packet_size 65536',
-      'listener 1883 127.0.0.1',
-      'listener 8883',
-      'protocol websockets',
-      'certfile /c.pem',
-      'keyfile /k.pem',
-      'cafile /ca.pem',
-    ])
-      expect(conf.split('\n')).toContain(line);
-    expect(conf).not.toMatch(/allow_anonymous true/);
-  });
-
-  test('passwd holds name:hash; acl a user block per user with the role filled in', () => {
-    expect(mosquittoPasswd(users)).toBe(`op:${h}\narm9:${h}\n`);
-    const acl = mosquittoAcl(users);
-    expect(acl).toContain('user op\ntopic read arm/+/status');
-    expect(acl).toContain('topic readwrite arm/+/operator');
-    expect(acl).toContain('topic write arm/+/control');
-    expect(acl).toContain('user arm9\ntopic read arm/arm9/control');
-    expect(acl).toContain('topic write arm/arm9/status');
-    expect(acl).not.toMatch(/^pattern/m);
-  });
 });

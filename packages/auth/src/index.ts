@@ -1,0 +1,5 @@
+export * from './password.ts';
+export * from './roles.ts';
+export * from './users.ts';
+export * from './throttle.ts';
+export * from './whoami.ts';
