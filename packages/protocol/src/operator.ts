@@ -20,9 +20,11 @@ export const OPERATOR_LEASE_MS = 2500;
 
 export type OperatorSignal = 'hold' | 'release';
 
+const decoder = new TextDecoder();
+
 /** `1` → hold, `0` → release (surrounding whitespace ignored); anything else → null. */
 export function parseOperator(payload: Uint8Array | string): OperatorSignal | null {
-  const text = (typeof payload === 'string' ? payload : new TextDecoder().decode(payload)).trim();
+  const text = (typeof payload === 'string' ? payload : decoder.decode(payload)).trim();
   return text === '1' ? 'hold' : text === '0' ? 'release' : null;
 }
 

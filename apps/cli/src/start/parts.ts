@@ -104,6 +104,9 @@ export async function startMiddlewarePart(
     mqttUrl: link.mqttUrl,
     apiToken: link.apiToken,
     spoolDir: env.SPOOL_DIR || MIDDLEWARE_SPOOL,
+    // `armtwin up` checks log-ins itself (the broker's throttle, one lockout for MQTT and /api)
+    // and hands the middleware its token: a second users file and throttle would go unused.
+    usersFile: '',
   };
   if (influxUrl) {
     overrides.influxUrl = influxUrl;
