@@ -1,5 +1,5 @@
 /**
- * Section: the deadman (issue 7). An operator holding `arm/{id}/operator` (will `0`, keep-alive
+ * Section: the deadman. An operator holding `arm/{id}/operator` (will `0`, keep-alive
  * 2 s) starts a 10 s move of servo 000 and goes silent with its TCP connection open (a frozen
  * page; tests/helpers/raw-operator.ts). Figure: ms from its last packet to the simulator's
  * `$ERR:deadman stop!` when it beats as the HUD does (retained `1` every OPERATOR_BEAT_MS, the
@@ -105,7 +105,7 @@ const ms = (s: Summary) => `p50 ${fmt(s.p50, 0)} ms, max ${fmt(s.max, 0)} ms (n 
 
 export const deadmanSection: Section = {
   id: 'deadman',
-  title: 'Deadman: operator silent → arm stopped, lease vs broker will (issue 7)',
+  title: 'Deadman: operator silent → arm stopped, lease vs broker will',
   async run(ctx): Promise<SectionOutput> {
     const reps = ctx.quick ? 3 : 8;
     ctx.log(`deadman: ${reps} drops each way on Mosquitto`);

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what the tests need, only when it is missing; idempotent, never asks.
-#   - Debian packages: mosquitto, mosquitto-clients, chromium, socat (and golang-go if no Go)
-#   - influxd 1.8.10, built with `go install` into .tools/bin (git-ignored)
+#   - Debian packages: mosquitto, mosquitto-clients, chromium, socat, ffmpeg (and golang-go if no Go)
+#   - influxd 1.8.10 (scripts/build-influxd.sh: built once per machine, linked into .tools/bin)
+#   - a Python venv with the servo vendors' SDKs (dynamixel-sdk, feetech-servo-sdk), cached outside the clone
 #   - node_modules (`npm ci`) when missing or older than package-lock.json
 # Tests never use port 1883; the system Mosquitto service that the Debian package starts is
 # stopped and disabled right after installing it anyway.
@@ -32,8 +33,9 @@ command -v mosquitto >/dev/null || missing+=(mosquitto)
 command -v mosquitto_pub >/dev/null || missing+=(mosquitto-clients)
 [ -x /usr/bin/chromium ] || missing+=(chromium)
 command -v socat >/dev/null || missing+=(socat)
+command -v ffmpeg >/dev/null || missing+=(ffmpeg)
 if [ "${#missing[@]}" -eq 0 ]; then
-  say "apt packages: present (mosquitto, mosquitto-clients, chromium, socat)"
+  say "apt packages: present (mosquitto, mosquitto-clients, chromium, socat, ffmpeg)"
 else
   say "apt packages: installing ${missing[*]}"
   apt_install "${missing[@]}"
@@ -49,22 +51,41 @@ else
 fi
 
 # --- influxd 1.8.10 --------------------------------------------------------------------
-INFLUXD="$ROOT/.tools/bin/influxd"
-if [ -x "$INFLUXD" ]; then
-  say "influxd: present ($INFLUXD)"
+# Built once per machine into a cache outside the clone, linked into .tools/bin.
+if ! bash "$ROOT/scripts/build-influxd.sh"; then
+  say "influxd: installing golang-go"
+  apt_install golang-go ca-certificates
+  bash "$ROOT/scripts/build-influxd.sh"
+fi
+
+# --- Python venv for the servo-bus SDK tests -------------------------------------------
+# tests/integration/servo-bus-sdk.test.ts drives the emulated servo buses with the vendors'
+# own Python SDKs: ROBOTIS `dynamixel-sdk` and Feetech `feetech-servo-sdk` (both need only
+# pyserial). They live in a venv cached outside the clone, like influxd; a stamp file holds
+# the pinned requirements, so a changed pin rebuilds the venv and an unchanged one is kept.
+# tests/helpers/servo-sdk-python.ts finds it at the same path.
+PYENV_DIR="${ARMTWIN_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/armtwin}/pyenv"
+PYENV_REQS="dynamixel-sdk==4.1.0 feetech-servo-sdk==1.0.0 pyserial==3.5"
+PYENV_STAMP="$PYENV_DIR/.armtwin-requirements"
+if [ -x "$PYENV_DIR/bin/python" ] && [ "$(cat "$PYENV_STAMP" 2>/dev/null)" = "$PYENV_REQS" ] \
+  && "$PYENV_DIR/bin/python" -c 'import dynamixel_sdk, scservo_sdk, serial' 2>/dev/null; then
+  say "python venv: present ($PYENV_DIR: $PYENV_REQS)"
 else
-  if ! command -v go >/dev/null; then
-    say "influxd: installing golang-go"
-    apt_install golang-go ca-certificates
+  if ! command -v python3 >/dev/null; then
+    say "python venv: installing python3, python3-venv"
+    apt_install python3 python3-venv
+  elif ! python3 -c 'import ensurepip, venv' 2>/dev/null; then
+    say "python venv: installing python3-venv"
+    apt_install python3-venv
   fi
-  say "influxd: building v1.8.10 with $(go version | cut -d' ' -f3) (several minutes)"
-  mkdir -p "$ROOT/.tools/bin"
-  tmp="$(mktemp -d)"
-  # Build outside the repo so go never reads or writes our files.
-  (cd "$tmp" && GOBIN="$ROOT/.tools/bin" GOFLAGS="-mod=mod -buildvcs=false" GO111MODULE=on \
-    go install github.com/influxdata/influxdb/cmd/influxd@v1.8.10)
-  rm -rf "$tmp"
-  say "influxd: built $INFLUXD"
+  say "python venv: creating $PYENV_DIR with $PYENV_REQS"
+  rm -rf "$PYENV_DIR"
+  mkdir -p "$(dirname "$PYENV_DIR")"
+  python3 -m venv "$PYENV_DIR"
+  "$PYENV_DIR/bin/python" -m pip install --quiet --disable-pip-version-check --no-input $PYENV_REQS
+  "$PYENV_DIR/bin/python" -c 'import dynamixel_sdk, scservo_sdk, serial'
+  printf '%s\n' "$PYENV_REQS" >"$PYENV_STAMP"
+  say "python venv: ready ($PYENV_DIR)"
 fi
 
 # --- node_modules ----------------------------------------------------------------------

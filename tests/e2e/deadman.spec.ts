@@ -1,6 +1,6 @@
 /// <reference lib="dom" />
 /**
- * The deadman on the production broker (issue 7): an operator's page on Mosquitto 2.0 jogs the
+ * The deadman on the production broker: an operator's page on Mosquitto 2.0 jogs the
  * simulated arm, then its connection stalls (a proxy stops forwarding: no FIN, no DISCONNECT,
  * what a frozen page or a pulled cable looks like). Mosquitto notices the dead connection only
  * seconds after 1.5 × keep-alive, so the arm must be stopped by the controller's lease on the

@@ -1,6 +1,6 @@
 /// <reference lib="dom" />
 /**
- * Issue 7, "malformed flood", the HUD's part: 10,000 malformed frames per second for 10 s on
+ * "Malformed flood", the HUD's part: 10,000 malformed frames per second for 10 s on
  * the arm's status topic (100 messages of 100 frames a second, from mqtt.js in this process)
  * while the simulator streams real state on the same topic. The page stays responsive (a jog
  * made mid-flood reaches the arm, the twin keeps following, data stays live), its JS heap stays

@@ -197,6 +197,7 @@ test.describe('emergency stop', () => {
   }, testInfo) => {
     const { page } = hud;
     const target = pwmFromAngle(120, 1);
+    const jogAt = Date.now();
     await page.getByRole('slider', { name: 'Base', exact: true }).fill('120');
     await until(() => (arm.observer.pwm[0] ?? 0) > 1560, 10_000, 'the base to start moving');
     const since = Date.now();
@@ -207,9 +208,11 @@ test.describe('emergency stop', () => {
       '#255PDST! on the control topic',
     );
     expect(arm.observer.controlMessages(since).find((m) => m.text === '#255PDST!')?.qos).toBe(1);
-    await page.waitForTimeout(300);
+    // Judged once the 6 s jog would have ended, so a late status report cannot pass for a stop:
+    // an arm that was not stopped is at the target by then; a stopped one stands still, short.
+    await page.waitForTimeout(Math.max(0, jogAt + 6500 - Date.now()));
     const stoppedAt = arm.observer.pwm[0]!;
-    await page.waitForTimeout(1500);
+    await page.waitForTimeout(1000);
     expect(Math.abs(arm.observer.pwm[0]! - stoppedAt)).toBeLessThanOrEqual(1);
     expect(arm.observer.pwm[0]!).toBeLessThan(target - 50);
     await shot(page, testInfo, 'estop');

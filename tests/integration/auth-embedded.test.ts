@@ -1,12 +1,12 @@
 /**
- * Issue 7 on the embedded broker (`armtwin broker` / `npm start`): with the users file, every
+ * Roles and log-ins on the embedded broker (`armtwin broker` / `npm start`): with the users file, every
  * client logs in and the roles are enforced by Aedes' hooks; MQTTS and WSS with a throwaway CA;
  * oversize packets refused; anonymous only on loopback.
  */
 import https from 'node:https';
 import mqtt from 'mqtt';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { startBroker, type Broker } from '../../apps/cli/src/broker/broker.ts';
+import { startBroker, type Broker } from '@armtwin/broker';
 import { loadUsers } from '@armtwin/auth';
 import { makeTestCa, type TestCa } from '../helpers/tls.ts';
 import {

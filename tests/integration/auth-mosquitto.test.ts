@@ -1,5 +1,5 @@
 /**
- * Issue 7 on Mosquitto 2.0: `armtwin deploy-mosquitto` turns deploy/users.example.json into
+ * Roles and log-ins on Mosquitto 2.0: `armtwin deploy-mosquitto` turns deploy/users.example.json into
  * mosquitto.conf, passwd and acl; a real Mosquitto runs that configuration (with a throwaway
  * CA's certificate) and enforces the same role table as the embedded broker. Also: the sample
  * in deploy/mosquitto is what the generator writes, our `$7$` hashes are accepted by Mosquitto,

@@ -6,11 +6,18 @@ import { describe, expect, it } from 'vitest';
 const BIN = fileURLToPath(new URL('../../apps/cli/bin/armtwin.mjs', import.meta.url));
 const armtwin = (args: string[], input?: string) =>
   spawnSync(process.execPath, [BIN, ...args], { input, encoding: 'utf8' });
-const lines = (text: string) => text.trim().split('\n').map((l) => JSON.parse(l));
+const lines = (text: string) =>
+  text
+    .trim()
+    .split('\n')
+    .map((l) => JSON.parse(l));
 
 describe('armtwin decode', () => {
   it('prints one JSON object per frame, errors included', () => {
-    const run = armtwin(['decode'], '$TIM:1700000000000!{#000P1500!#001P1612!}#001T045V7400!xx#000P2600!');
+    const run = armtwin(
+      ['decode'],
+      '$TIM:1700000000000!{#000P1500!#001P1612!}#001T045V7400!xx#000P2600!',
+    );
     expect(run.status).toBe(0);
     expect(lines(run.stdout)).toEqual([
       { type: 'time', ms: 1700000000000 },
@@ -18,7 +25,12 @@ describe('armtwin decode', () => {
       { type: 'position', id: 1, pwm: 1612, time: 1700000000000, group: 1 },
       { type: 'health', id: 1, temp: 45, mv: 7400, time: 1700000000000 },
       { type: 'error', kind: 'junk', reason: expect.any(String), text: 'xx' },
-      { type: 'error', kind: 'out-of-range', reason: 'pwm 2600 outside 500–2500', text: '#000P2600!' },
+      {
+        type: 'error',
+        kind: 'out-of-range',
+        reason: 'pwm 2600 outside 500–2500',
+        text: '#000P2600!',
+      },
     ]);
   });
 
@@ -39,7 +51,11 @@ describe('armtwin ik', () => {
   it('solves the home pose', () => {
     const run = armtwin(['ik', '0', '0', '453', '90']);
     expect(run.status).toBe(0);
-    expect(JSON.parse(run.stdout)).toMatchObject({ code: 0, alpha: 90, pwm: [1500, 1500, 1500, 1500] });
+    expect(JSON.parse(run.stdout)).toMatchObject({
+      code: 0,
+      alpha: 90,
+      pwm: [1500, 1500, 1500, 1500],
+    });
   });
 
   it('searches the pitch when it is omitted and accepts negative numbers', () => {

@@ -1,5 +1,5 @@
 /**
- * Issue 7's faults around the arm, on real Mosquitto with `armtwin sim` as a child process:
+ * Faults around the arm, on real Mosquitto with `armtwin sim` as a child process:
  * - broker restart: the simulated arm and the middleware reconnect by themselves, and the arm
  *   says `online 1` again;
  * - simulator killed (SIGKILL): the retained `online` becomes `0` from its last will;
@@ -7,35 +7,24 @@
  *   stops where it is: by the controller's lease when the operator beats (as the HUD does), by
  *   the broker's will when it held with a single `1`.
  */
-import fs from 'node:fs';
-import path from 'node:path';
 import mqtt from 'mqtt';
 import { afterAll, describe, expect, test } from 'vitest';
-import { freePort } from '../helpers/ports.ts';
 import { rawOperator } from '../helpers/raw-operator.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
-import {
-  middlewareEnv,
-  spawnMiddleware,
-  tempDir,
-  type MiddlewareProcess,
-} from '../../apps/middleware/test/support/harness.ts';
+import { useMiddlewares } from '../helpers/use-middlewares.ts';
 import { OPERATOR_BEAT_MS } from '@armtwin/protocol';
-import { startBroker } from '../../apps/cli/src/broker/broker.ts';
+import { startBroker } from '@armtwin/broker';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
 
 const broker = useMosquitto();
+const mws = useMiddlewares('mw-faults', () => ({ mqttUrl: broker().url }));
 const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
 const children: Child[] = [];
 const watchers: StatusWatcher[] = [];
-let dir = '';
-let mw: MiddlewareProcess | undefined;
 
 afterAll(async () => {
   await Promise.all(watchers.map((w) => w.close()));
   await Promise.all(children.map((c) => c.stop('SIGKILL')));
-  await mw?.stop();
-  if (dir) fs.rmSync(dir, { recursive: true, force: true });
 });
 
 async function startSim(arm: string): Promise<{ sim: Child; w: StatusWatcher }> {
@@ -63,12 +52,7 @@ describe('faults', () => {
     'broker restart: the arm and the middleware reconnect by themselves',
     { timeout: 90_000 },
     async () => {
-      dir = tempDir('faults-arm');
-      mw = await spawnMiddleware(
-        middlewareEnv({ mqttUrl: broker().url }, 'mw-faults', dir),
-        await freePort(),
-        path.join(dir, 'middleware.log'),
-      );
+      const mw = await mws.spawn();
       const { w } = await startSim('br1');
       let statusBefore = 0;
       for (let i = 0; i < 40 && statusBefore === 0; i++) {

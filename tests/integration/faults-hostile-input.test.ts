@@ -1,33 +1,20 @@
 /**
- * Issue 7, hostile input, against the real middleware, Mosquitto and influxd: arm ids (topics)
+ * Hostile input, against the real middleware, Mosquitto and influxd: arm ids (topics)
  * and frame texts with quotes, commas, spaces, newlines, backslashes and `=` never reach line
  * protocol or Flux: nothing is stored under a forged series, bad topics are dropped and
  * counted, oversize messages are refused and counted, the history API refuses a hostile arm.
  */
 import fs from 'node:fs';
-import path from 'node:path';
 import mqtt from 'mqtt';
-import { afterAll, expect, test } from 'vitest';
-import { freePort } from '../helpers/ports.ts';
+import { expect, test } from 'vitest';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
-import {
-  select,
-  middlewareEnv,
-  spawnMiddleware,
-  tempDir,
-  type MiddlewareProcess,
-} from '../../apps/middleware/test/support/harness.ts';
+import { useMiddlewares } from '../helpers/use-middlewares.ts';
+import { select } from '../../apps/middleware/test/support/harness.ts';
 
 const broker = useMosquitto();
 const influx = useInflux();
+const mws = useMiddlewares('mw-hostile', () => ({ mqttUrl: broker().url, influx: influx() }));
 const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
-let dir = '';
-let mw: MiddlewareProcess | undefined;
-
-afterAll(async () => {
-  await mw?.stop();
-  if (dir) fs.rmSync(dir, { recursive: true, force: true });
-});
 
 const T = Date.UTC(2026, 4, 1);
 const HOSTILE_ARMS = [
@@ -61,15 +48,12 @@ test(
   'hostile arm ids and frame texts: nothing stored under a forged series, all counted',
   { timeout: 90_000 },
   async () => {
-    dir = tempDir('hostile');
-    mw = await spawnMiddleware(
-      middlewareEnv({ mqttUrl: broker().url, influx: influx() }, 'mw-hostile', dir, {
+    const mw = await mws.spawn({
+      env: {
         FLUSH_INTERVAL_MS: '200',
         MAX_PAYLOAD_BYTES: '4096',
-      }),
-      await freePort(),
-      path.join(dir, 'middleware.log'),
-    );
+      },
+    });
     // Mosquitto itself refuses some topics (a control character is a malformed packet: it
     // closes the connection); the rest reach the middleware.
     const refusedByBroker: string[] = [];
@@ -132,6 +116,6 @@ test(
       expect(res.status).toBe(400);
       expect(((await res.json()) as { parameter: string }).parameter).toBe('arm');
     }
-    expect(fs.readFileSync(path.join(dir, 'middleware.log'), 'utf8')).toContain('bad-topic');
+    expect(fs.readFileSync(mws.log(), 'utf8')).toContain('bad-topic');
   },
 );

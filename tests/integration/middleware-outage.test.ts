@@ -1,50 +1,35 @@
 /**
- * Issue 4, "nothing is lost while InfluxDB is down": influxd stopped for 30 s in the middle of
+ * "Nothing is lost while InfluxDB is down": influxd stopped for 30 s in the middle of
  * a stream, then started again: the middleware spools, retries with back-off, replays, and
  * InfluxDB ends with exactly N points.
  */
-import fs from 'node:fs';
-import path from 'node:path';
-import { afterAll, expect, test } from 'vitest';
-import { freePort } from '../helpers/ports.ts';
+import { expect, test } from 'vitest';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
+import { useMiddlewares } from '../helpers/use-middlewares.ts';
 import {
   countPoints,
-  middlewareEnv,
-  spawnMiddleware,
   startPublisher,
   statePayloads,
-  tempDir,
   waitForValue,
-  type MiddlewareProcess,
 } from '../../apps/middleware/test/support/harness.ts';
 
 const broker = useMosquitto();
 const influx = useInflux();
+const mws = useMiddlewares('mw-outage', () => ({ mqttUrl: broker().url, influx: influx() }));
 const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
-let dir = '';
-let mw: MiddlewareProcess | undefined;
-
-afterAll(async () => {
-  await mw?.stop();
-  if (dir) fs.rmSync(dir, { recursive: true, force: true });
-});
 
 test(
   'influxd stopped 30 s mid-stream, then restarted: still exactly N points',
   { timeout: 120_000 },
   async () => {
-    dir = tempDir('mw-outage');
-    mw = await spawnMiddleware(
-      middlewareEnv({ mqttUrl: broker().url, influx: influx() }, 'mw-outage', dir, {
+    const mw = await mws.spawn({
+      env: {
         FLUSH_INTERVAL_MS: '250',
         BATCH_SIZE: '300',
         MIN_RETRY_DELAY_MS: '250',
         MAX_RETRY_DELAY_MS: '2000',
-      }),
-      await freePort(),
-      path.join(dir, 'middleware.log'),
-    );
+      },
+    });
     const inf = { url: influx().url, db: influx().db };
     const messages = statePayloads(3600, 6, Date.UTC(2026, 1, 1)); // 21 600 points
     const pub = startPublisher(broker().port, 'arm/arm1/status', 1);

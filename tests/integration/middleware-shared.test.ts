@@ -1,52 +1,34 @@
 /**
- * Issue 4, "it scales out": two middleware instances (own client ids, own spools) on one
+ * "It scales out": two middleware instances (own client ids, own spools) on one
  * shared subscription `$share/armtwin/arm/+/status`: the broker splits the stream, InfluxDB
  * gets exactly N points, and no point is written twice.
  */
-import fs from 'node:fs';
-import path from 'node:path';
-import { afterAll, expect, test } from 'vitest';
-import { freePort } from '../helpers/ports.ts';
+import { expect, test } from 'vitest';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
+import { useMiddlewares } from '../helpers/use-middlewares.ts';
 import {
   countPoints,
   publishAll,
-  middlewareEnv,
-  spawnMiddleware,
   statePayloads,
-  tempDir,
   waitForValue,
   type MiddlewareProcess,
 } from '../../apps/middleware/test/support/harness.ts';
 
 const broker = useMosquitto();
 const influx = useInflux();
-let dir = '';
+const mws = useMiddlewares('mw-shared', () => ({ mqttUrl: broker().url, influx: influx() }));
 const instances: MiddlewareProcess[] = [];
-
-afterAll(async () => {
-  await Promise.all(instances.map((m) => m.stop()));
-  if (dir) fs.rmSync(dir, { recursive: true, force: true });
-});
 
 test(
   'two instances on a shared subscription: exactly N points, no duplicates',
   { timeout: 60_000 },
   async () => {
-    dir = tempDir('mw-shared');
     for (const name of ['a', 'b']) {
       instances.push(
-        await spawnMiddleware(
-          middlewareEnv(
-            { mqttUrl: broker().url, influx: influx() },
-            `mw-shared-${name}`,
-            dir,
-            { MQTT_SHARE_GROUP: 'armtwin', FLUSH_INTERVAL_MS: '200' },
-            `spool-${name}`,
-          ),
-          await freePort(),
-          path.join(dir, `middleware-${name}.log`),
-        ),
+        await mws.spawn({
+          clientId: `mw-shared-${name}`,
+          env: { MQTT_SHARE_GROUP: 'armtwin', FLUSH_INTERVAL_MS: '200' },
+        }),
       );
     }
     const n = 2000;

@@ -1,22 +1,17 @@
 /**
- * Issue 4 on the real Mosquitto and influxd: N frames published with mosquitto_pub become
+ * Storage on the real Mosquitto and influxd: N frames published with mosquitto_pub become
  * exactly N points with the right tags, fields and times; malformed input is counted in
  * /metrics, never written, and does not crash the middleware.
  */
-import fs from 'node:fs';
-import path from 'node:path';
-import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+import { beforeAll, describe, expect, test } from 'vitest';
 import { angleFromPwm } from '@armtwin/protocol';
-import { freePort } from '../helpers/ports.ts';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
+import { useMiddlewares } from '../helpers/use-middlewares.ts';
 import {
   countPoints,
   publishAll,
   select,
-  middlewareEnv,
-  spawnMiddleware,
   statePayloads,
-  tempDir,
   waitForValue,
   type MiddlewareProcess,
 } from '../../apps/middleware/test/support/harness.ts';
@@ -24,24 +19,11 @@ import {
 const broker = useMosquitto();
 const influx = useInflux();
 const T0 = Date.UTC(2026, 0, 1); // ms; $TIM of the first payload
-let dir = '';
+const mws = useMiddlewares('mw-store', () => ({ mqttUrl: broker().url, influx: influx() }));
 let mw: MiddlewareProcess;
 
 beforeAll(async () => {
-  dir = tempDir('mw-store');
-  mw = await spawnMiddleware(
-    middlewareEnv({ mqttUrl: broker().url, influx: influx() }, 'mw-store', dir, {
-      FLUSH_INTERVAL_MS: '200',
-      BATCH_SIZE: '500',
-    }),
-    await freePort(),
-    path.join(dir, 'middleware.log'),
-  );
-});
-
-afterAll(async () => {
-  await mw?.stop();
-  fs.rmSync(dir, { recursive: true, force: true });
+  mw = await mws.spawn({ env: { FLUSH_INTERVAL_MS: '200', BATCH_SIZE: '500' } });
 });
 
 describe('middleware → InfluxDB', () => {

@@ -8,42 +8,27 @@
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
-import { afterAll, expect, test } from 'vitest';
-import { freePort } from '../helpers/ports.ts';
+import { expect, test } from 'vitest';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
-import {
-  middlewareEnv,
-  REPO,
-  spawnMiddleware,
-  tempDir,
-  type MiddlewareProcess,
-} from '../../apps/middleware/test/support/harness.ts';
+import { useMiddlewares } from '../helpers/use-middlewares.ts';
+import { REPO, tempDir } from '../../apps/middleware/test/support/harness.ts';
 import { password, USERS_FILE } from './auth-cases.ts';
 
 const broker = useMosquitto();
 const influx = useInflux();
+const mws = useMiddlewares('mw-users', () => ({ mqttUrl: broker().url, influx: influx() }));
 const TOKEN = 'mw-users-token-42';
-let dir = '';
-let mw: MiddlewareProcess | undefined;
-
-afterAll(async () => {
-  await mw?.stop();
-  if (dir) fs.rmSync(dir, { recursive: true, force: true });
-});
 
 const basic = (u: string, p = password(u)) =>
   `Basic ${Buffer.from(`${u}:${p}`).toString('base64')}`;
 
 test('the middleware answers /whoami and takes a user’s log-in for /history and /metrics', async () => {
-  dir = tempDir('mw-users');
-  mw = await spawnMiddleware(
-    middlewareEnv({ mqttUrl: broker().url, influx: influx() }, 'mw-users', dir, {
+  const mw = await mws.spawn({
+    env: {
       ARMTWIN_USERS: USERS_FILE,
       API_TOKEN: TOKEN,
-    }),
-    await freePort(),
-    path.join(dir, 'middleware.log'),
-  );
+    },
+  });
   const base = `http://127.0.0.1:${mw.port}`;
   const get = (p: string, auth?: string) =>
     fetch(`${base}${p}`, { headers: auth ? { authorization: auth } : {} });

@@ -1,5 +1,5 @@
 /**
- * Issue 9, points 4–6, on a real Mosquitto with two simulated arms as child processes
+ * Motion requests (plans, poses, commands) on a real Mosquitto with two simulated arms as child processes
  * (`armtwin sim --profile armtwin5` and `--profile track6`): motion requests sent with the real
  * `mosquitto_pub` are planned and executed by the simulator, answered on `arm/{id}/feedback`,
  * and the status stream shows the target reached; plan-only moves nothing; unreachable and

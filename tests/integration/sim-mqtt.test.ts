@@ -2,6 +2,7 @@
  * `armtwin sim` through a real Mosquitto: the commands of PROTOCOL.md §1 answered as the
  * firmware would, motion timed by the sim's own `$TIM` stamps, presence, fault injection.
  */
+import { execFileSync } from 'node:child_process';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { solveIk } from '@armtwin/ik';
 import { useMosquitto } from '../helpers/use-services.ts';
@@ -174,6 +175,17 @@ describe('armtwin sim over Mosquitto', () => {
     await new Promise((r) => setTimeout(r, 200));
     expect(w.positions(0, after).every(([, p]) => p !== 1600)).toBe(true);
     expect(w.positions(5, after).every(([, p]) => p === 1500)).toBe(true);
+  });
+
+  test('a payload that ends in "!" but is no frame gets its $ERR at once, before anything else is sent', async () => {
+    const from = w.items.length;
+    // An outside client, as an operator would type it: nothing follows it on the topic.
+    execFileSync('mosquitto_pub', [
+      ...['-h', '127.0.0.1', '-p', String(broker().port)],
+      ...['-t', `arm/${ARM}/control`, '-q', '1', '-m', 'hello world!'],
+    ]);
+    const { frame } = await w.frame((f) => f.type === 'controllerError', from);
+    expect(frame).toMatchObject({ type: 'controllerError', text: 'junk hello world' });
   });
 
   test('rate limit: of 300 moves at once the first 100 (the burst) run, the rest are dropped with one $ERR:rate limit!', async () => {

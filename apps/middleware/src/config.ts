@@ -3,6 +3,7 @@
  * `DEFAULT_MIDDLEWARE_CONFIG` is the one copy of the defaults; the README quotes it.
  */
 import { z } from 'zod';
+import { MAX_PAYLOAD_BYTES, MQTT_KEEPALIVE_S, MQTT_RECONNECT_MS } from '@armtwin/protocol';
 
 /** Every setting, with the environment variable it comes from. */
 export interface MiddlewareConfig {
@@ -72,8 +73,8 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   mqttPassword: '',
   mqttClientId: 'armtwin-middleware',
   mqttQos: 1,
-  mqttKeepaliveS: 60,
-  mqttReconnectMs: 1000,
+  mqttKeepaliveS: MQTT_KEEPALIVE_S,
+  mqttReconnectMs: MQTT_RECONNECT_MS,
   mqttShareGroup: '',
   influxUrl: '',
   influxToken: '',
@@ -91,7 +92,7 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   host: '127.0.0.1',
   apiToken: '',
   usersFile: '',
-  maxPayloadBytes: 65536,
+  maxPayloadBytes: MAX_PAYLOAD_BYTES,
   logLevel: 'info',
 };
 

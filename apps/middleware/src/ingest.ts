@@ -12,7 +12,10 @@
  */
 import {
   createReader,
+  FRAME_TOPICS,
+  MAX_PAYLOAD_BYTES,
   parseTopic,
+  unhandled,
   type Frame,
   type KmsFrame,
   type Reader,
@@ -20,6 +23,8 @@ import {
 import type { Metrics } from './metrics.ts';
 import type { LogOnce } from './log.ts';
 import {
+  angleCommandLine,
+  angleLine,
   commandLine,
   commandSeries,
   healthLine,
@@ -29,24 +34,6 @@ import {
   servoSeries,
   SeriesClock,
 } from './points.ts';
-
-const STATUS_KINDS = new Set([
-  'position',
-  'health',
-  'kmsResult',
-  'ping',
-  'time',
-  'controllerError',
-]);
-const CONTROL_KINDS = new Set([
-  'move',
-  'kms',
-  'readPosition',
-  'readHealth',
-  'stop',
-  'ping',
-  'time',
-]);
 
 export interface IngestOptions {
   /** A bigger message is refused whole and counted once as `oversize`. */
@@ -58,7 +45,10 @@ export interface IngestOptions {
   maxReaders: number;
 }
 
-export const DEFAULT_INGEST_OPTIONS: IngestOptions = { maxPayloadBytes: 65536, maxReaders: 4096 };
+export const DEFAULT_INGEST_OPTIONS: IngestOptions = {
+  maxPayloadBytes: MAX_PAYLOAD_BYTES,
+  maxReaders: 4096,
+};
 
 export class Ingest {
   private readonly readers = new Map<string, Reader>();
@@ -147,8 +137,8 @@ export class Ingest {
 
   private frame(f: Frame, executed: boolean): void {
     this.metrics.count(this.metrics.frames, f.type);
-    const allowed = this.onControl ? CONTROL_KINDS : STATUS_KINDS;
-    if (!allowed.has(f.type)) {
+    const allowed = FRAME_TOPICS[f.type];
+    if (!(this.onControl ? allowed.control : allowed.status)) {
       this.reject(
         'wrong-direction',
         f.type,
@@ -164,6 +154,11 @@ export class Ingest {
         this.out.push(positionLine(s, f, this.clock.next(s, ms * 1000)));
         return;
       }
+      case 'angle': {
+        const s = servoSeries(arm, f.id);
+        this.out.push(angleLine(s, f, this.clock.next(s, ms * 1000)));
+        return;
+      }
       case 'health': {
         const s = servoSeries(arm, f.id);
         this.out.push(healthLine(s, f, this.clock.next(s, ms * 1000)));
@@ -173,6 +168,12 @@ export class Ingest {
         if (!executed) return void this.metrics.count(this.metrics.rejected, 'group-not-executed');
         const s = commandSeries(arm, f.id);
         this.out.push(commandLine(s, f, this.clock.next(s, ms * 1000)));
+        return;
+      }
+      case 'angleMove': {
+        if (!executed) return void this.metrics.count(this.metrics.rejected, 'group-not-executed');
+        const s = commandSeries(arm, f.id);
+        this.out.push(angleCommandLine(s, f, this.clock.next(s, ms * 1000)));
         return;
       }
       case 'kms': {
@@ -187,8 +188,15 @@ export class Ingest {
         this.out.push(ikLine(s, f.code, req, this.clock.next(s, ms * 1000)));
         return;
       }
+      case 'ping':
+      case 'time':
+      case 'controllerError':
+      case 'readPosition':
+      case 'readHealth':
+      case 'stop':
+        return; // counted only
       default:
-        return; // counted only: ping, time, controllerError, read/stop requests
+        return unhandled(f);
     }
   }
 

@@ -1,12 +1,11 @@
 /**
  * `startLocalInflux({ dataDir })`: the project's own influxd 1.8 for `npm start` when no
- * INFLUX_URL is given. Builds `.tools/bin/influxd` with Go first when it is missing and Go is
+ * INFLUX_URL is given. Makes `.tools/bin/influxd` (scripts/build-influxd.sh) first when it is missing and Go is
  * on PATH; runs it on 127.0.0.1 with Flux on and usage reporting off; returns null (and why)
  * when that is impossible.
  */
 import { spawn, spawnSync, type ChildProcess } from 'node:child_process';
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -48,23 +47,20 @@ function hasGo(): boolean {
   return spawnSync('go', ['version'], { stdio: 'ignore' }).status === 0;
 }
 
-/** Builds influxd into .tools/bin with `go install` (minutes); returns an error text or null. */
+/**
+ * Makes `.tools/bin/influxd` with scripts/build-influxd.sh (built once per machine with
+ * `go install` into ~/.cache/armtwin, minutes; linked after); returns an error text or null.
+ */
 export function buildInfluxd(log: (m: string) => void): string | null {
   if (!hasGo()) return 'Go is not on PATH, so influxd cannot be built';
-  log(
-    `building influxd (${INFLUXD_MODULE}) into ${path.dirname(LOCAL_INFLUXD)}; this takes a few minutes`,
-  );
-  const cwd = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-influxd-build-'));
-  const r = spawnSync('go', ['install', INFLUXD_MODULE], {
-    cwd,
-    env: { ...process.env, GOBIN: path.dirname(LOCAL_INFLUXD), GOFLAGS: '-mod=mod' },
+  log(`making ${LOCAL_INFLUXD} (${INFLUXD_MODULE}); a first build takes a few minutes`);
+  const r = spawnSync('bash', [path.join(REPO_ROOT, 'scripts', 'build-influxd.sh')], {
     stdio: ['ignore', 'ignore', 'pipe'],
     encoding: 'utf8',
   });
-  fs.rmSync(cwd, { recursive: true, force: true });
   if (r.status !== 0)
-    return `go install failed: ${(r.stderr ?? '').trim().split('\n').slice(-3).join(' / ')}`;
-  return fs.existsSync(LOCAL_INFLUXD) ? null : 'go install finished but produced no influxd';
+    return `building influxd failed: ${(r.stderr ?? '').trim().split('\n').slice(-3).join(' / ')}`;
+  return fs.existsSync(LOCAL_INFLUXD) ? null : 'the build finished but produced no influxd';
 }
 
 /**

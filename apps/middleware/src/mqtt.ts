@@ -10,7 +10,7 @@
  * and the broker keeps the messages queued in the session.
  */
 import { connect, type IClientOptions, type MqttClient } from 'mqtt';
-import { allArmsTopic } from '@armtwin/protocol';
+import { allArmsTopic, linkOptions } from '@armtwin/protocol';
 
 export interface MqttOptions {
   url: string;
@@ -49,9 +49,7 @@ export function startMqtt(
   const client = connectFn(o.url, {
     clientId: o.clientId,
     clean: false,
-    keepalive: o.keepaliveS,
-    reconnectPeriod: o.reconnectMs,
-    connectTimeout: 10_000,
+    ...linkOptions({ keepalive: o.keepaliveS, reconnectPeriod: o.reconnectMs }),
     protocolVersion: 4,
     ...(o.username ? { username: o.username, password: o.password } : {}),
   });

@@ -4,7 +4,9 @@
  *
  *   servo,arm=<arm>,id=<III> pwm=<int>i,angle=<deg>          from a position frame
  *   servo,arm=<arm>,id=<III> temp=<°C>,volt=<V>              from a health frame
+ *   servo,arm=<arm>,id=<III> angle=<deg>                     from an angle frame (§8, no pwm)
  *   command,arm=<arm>,id=<III> pwm=<int>i,angle=<deg>,ms=<int>i   from a move on …/control
+ *   command,arm=<arm>,id=<III> angle=<deg>,ms=<int>i         from an angle move on …/control
  *   ik,arm=<arm> code=<int>i,x=…,y=…,z=…[,a=…]               a $KMS request and its result
  *
  * Arm ids match `[a-z0-9-]{1,32}` and servo ids are three digits, so tag values never need
@@ -12,6 +14,8 @@
  */
 import {
   angleFromPwm,
+  type AngleFrame,
+  type AngleMoveFrame,
   type HealthFrame,
   type KmsFrame,
   type MoveFrame,
@@ -36,12 +40,22 @@ export function positionLine(series: string, f: PositionFrame, t: Micros): strin
   return `${series} pwm=${f.pwm}i,angle=${float(angleFromPwm(f.pwm))} ${t}`;
 }
 
+/** A bus servo's report (§8): the angle as it came, and no `pwm`. */
+export function angleLine(series: string, f: AngleFrame, t: Micros): string {
+  return `${series} angle=${float(f.deg)} ${t}`;
+}
+
 export function healthLine(series: string, f: HealthFrame, t: Micros): string {
   return `${series} temp=${float(f.temp)},volt=${float(f.mv / 1000)} ${t}`;
 }
 
 export function commandLine(series: string, f: MoveFrame, t: Micros): string {
   return `${series} pwm=${f.pwm}i,angle=${float(angleFromPwm(f.pwm))},ms=${f.ms}i ${t}`;
+}
+
+/** A bus servo's command (§8): the target angle and time, and no `pwm`. */
+export function angleCommandLine(series: string, f: AngleMoveFrame, t: Micros): string {
+  return `${series} angle=${float(f.deg)},ms=${f.ms}i ${t}`;
 }
 
 /**

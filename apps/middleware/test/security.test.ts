@@ -1,5 +1,5 @@
 /**
- * Issue 7 in the middleware: the API token on /metrics and /history (not /healthz), oversize
+ * Security in the middleware: the API token on /metrics and /history (not /healthz), oversize
  * messages refused and counted, hostile topics dropped and counted, the readers map bounded.
  */
 import { EventEmitter } from 'node:events';

@@ -1,7 +1,9 @@
 import { afterEach, beforeEach, describe, expect, it, vi } from 'vitest';
 import { encodeGroup, encodePosition, pwmFromAngle } from '@armtwin/protocol';
 import { ArmStore } from '../src/store/ArmStore.ts';
-import { ArmLink, type ConnectOptions, type MqttLike } from '../src/mqtt/ArmLink.ts';
+import { ArmLink } from '../src/mqtt/ArmLink.ts';
+import type { ConnectOptions } from '../src/mqtt/connectOptions.ts';
+import type { MqttLike } from '../src/mqtt/MqttLike.ts';
 import { defaultSettings } from '../src/config/settings.ts';
 
 /** A stand-in for mqtt.js's client: records publishes, lets the test emit events. */
@@ -122,6 +124,21 @@ describe('ArmLink', () => {
     expect(store.ping.echoed).toBe(1);
     expect(store.ping.rttMs).toBeGreaterThanOrEqual(0);
     link.stop();
+  });
+
+  it('ignores what a stopped client still delivers: the previous arm never shows as the next', () => {
+    const { store, client, link } = setup();
+    link.stop();
+    store.resetArm();
+    // Bytes already in the old socket arrive after the page switched arms.
+    client.emit(
+      'message',
+      'arm/arm1/status',
+      new TextEncoder().encode(encodeGroup([encodePosition(0, 1500)])),
+    );
+    client.emit('error', new Error('late'));
+    expect(Number.isNaN(store.pwm[0])).toBe(true);
+    expect(store.connection).toBe('idle');
   });
 
   it('sends $KMS with the commanded pose', () => {

@@ -6,7 +6,9 @@
 import { afterEach, beforeEach, describe, expect, it, vi } from 'vitest';
 import { OPERATOR_BEAT_MS } from '@armtwin/protocol';
 import { ArmStore } from '../src/store/ArmStore.ts';
-import { ArmLink, type ConnectOptions, type MqttLike } from '../src/mqtt/ArmLink.ts';
+import { ArmLink } from '../src/mqtt/ArmLink.ts';
+import type { ConnectOptions } from '../src/mqtt/connectOptions.ts';
+import type { MqttLike } from '../src/mqtt/MqttLike.ts';
 import { defaultSettings, type HudSettings } from '../src/config/settings.ts';
 import { Session } from '../src/auth/Session.ts';
 import type { Whoami } from '../src/auth/whoami.ts';

@@ -137,4 +137,28 @@ describe('ReplayPlayer', () => {
     expect(p.update(1)).toBe(true); // one more frame to hide it
     expect(p.update(2)).toBe(false);
   });
+
+  it('configure: sized for another robot (7 servos, track6) whose record replays; the old record closes', () => {
+    const p = new ReplayPlayer([1, 1, -1, 1, 1, 1]);
+    p.load(record);
+    p.update(0);
+    p.configure([1, 1, 1, 1, 1, 1, 1]);
+    expect(p.record).toBeNull(); // it was the other robot's
+    expect(p.angles).toHaveLength(7);
+    p.load({
+      ids: ['000', '006'],
+      times: [0, 1000],
+      angles: [
+        [-135, 0],
+        [0, 90],
+      ],
+      start: 0,
+      stop: 1000,
+    });
+    p.seek(1000);
+    expect(p.update(1)).toBe(true);
+    expect(p.angles[0]).toBeCloseTo(0);
+    expect(p.angles[6]).toBeCloseTo(90); // servo 006 exists only on the 7-servo robot
+    expect(p.angles[2]).toBeNaN();
+  });
 });

@@ -11,7 +11,12 @@ import * as THREE from 'three';
 import { Window } from 'happy-dom';
 import URDFLoader, { type URDFRobot } from 'urdf-loader';
 import { DEMO_ARM, forwardKinematics, jointsFromServoAngles, type Quad } from '@armtwin/ik';
-import { SERVO_JOINTS, TIP_LINK, jointValueFromAngle } from '../src/model/armModel.ts';
+
+/** The URDF joint each servo 000–005 drives (its value: the servo angle s of §2, in radians). */
+const SERVO_JOINTS = ['base_yaw', 'shoulder', 'elbow', 'wrist_pitch', 'wrist_roll', 'gripper'];
+/** The link whose origin is the gripper tip (tool centre point). */
+const TIP_LINK = 'tip';
+const jointValueFromAngle = (deg: number): number => (deg * Math.PI) / 180;
 
 const URDF_FILE = path.resolve(
   fileURLToPath(import.meta.url),

@@ -3,3 +3,5 @@ export * from './roles.ts';
 export * from './users.ts';
 export * from './throttle.ts';
 export * from './whoami.ts';
+export * from './mosquitto-config.ts';
+export * from './mosquitto-deploy.ts';

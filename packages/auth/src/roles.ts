@@ -1,5 +1,5 @@
 /**
- * Who may do what on the broker: the four roles of issue 7 as topic rules, and the matching
+ * Who may do what on the broker: the four roles as topic rules, and the matching
  * used by the embedded broker's hooks. The same table is written out as Mosquitto's ACL file
  * (./mosquitto-config.ts), so both brokers enforce one policy. Pure, no I/O.
  *

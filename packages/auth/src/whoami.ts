@@ -3,6 +3,7 @@
  * the answer to `GET …/whoami` (served by `armtwin up` and by the middleware when it has a
  * users file), which tells the HUD its role. Pure: the HTTP server writes what this returns.
  */
+import type { WhoamiBody } from '@armtwin/api';
 import type { LoginResult } from './throttle.ts';
 
 /** `name:password` of an HTTP Basic header (UTF-8), or null when there is none or it is bad. */
@@ -33,20 +34,23 @@ export function whoamiAnswer(result: LoginResult | 'anonymous-demo'): WhoamiAnsw
     return {
       status: 200,
       headers,
-      body: JSON.stringify({ name: '', role: 'operator', anonymous: true }),
+      body: JSON.stringify({ name: '', role: 'operator', anonymous: true } satisfies WhoamiBody),
     };
-  if (result.ok) return { status: 200, headers, body: JSON.stringify(result.principal) };
+  if (result.ok)
+    return { status: 200, headers, body: JSON.stringify(result.principal satisfies WhoamiBody) };
   if (result.lockedMs > 0) {
     const retry = Math.ceil(result.lockedMs / 1000);
     return {
       status: 429,
       headers: { ...headers, 'retry-after': String(retry) },
-      body: JSON.stringify({ error: `too many failed log-ins: try again in ${retry} s` }),
+      body: JSON.stringify({
+        error: `too many failed log-ins: try again in ${retry} s`,
+      } satisfies WhoamiBody),
     };
   }
   return {
     status: 401,
     headers,
-    body: JSON.stringify({ error: 'log in: HTTP Basic with a user' }),
+    body: JSON.stringify({ error: 'log in: HTTP Basic with a user' } satisfies WhoamiBody),
   };
 }

@@ -24,6 +24,11 @@ export interface ServoSpec {
   readonly jointOffsetDeg: number;
   /** Fastest the servo turns, degrees per second. */
   readonly maxSpeedDegPerS: number;
+  /**
+   * `angle` when the servo speaks §8 angle frames (a bus servo): its positions are servo
+   * angles as they are, never rounded to a pulse. Absent: pulse widths.
+   */
+  readonly units?: 'angle';
 }
 
 /** Link lengths in mm (§4). */
@@ -99,6 +104,15 @@ export function servoLimitsPwm(spec: ServoSpec): PwmRange {
 }
 
 /** The servo with this id (number, or the three-digit wire string), or undefined. */
+/** Whether the servo speaks §8 angle frames (`units: 'angle'`). */
+export const speaksAngle = (spec: ServoSpec | undefined): boolean => spec?.units === 'angle';
+
+/** Whether a servo angle is one the servo may be sent: finite and within its limits. */
+export function isAngleWithinLimits(id: number, deg: number, arm: ArmProfile = DEMO_ARM): boolean {
+  const spec = findServo(id, arm);
+  return spec !== undefined && Number.isFinite(deg) && deg >= spec.minDeg && deg <= spec.maxDeg;
+}
+
 export function findServo(id: number | string, arm: ArmProfile = DEMO_ARM): ServoSpec | undefined {
   if (typeof id === 'string' && !/^\d{3}$/.test(id)) return undefined;
   const n = Number(id);

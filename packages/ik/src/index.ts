@@ -2,8 +2,10 @@
 export {
   DEMO_ARM,
   findServo,
+  isAngleWithinLimits,
   isWithinLimits,
   servoLimitsPwm,
+  speaksAngle,
   type ArmLinks,
   type ArmProfile,
   type PwmRange,

@@ -206,6 +206,8 @@ describe('servo ↔ joint ↔ pulse', () => {
       key: '000',
       name: 'Track',
       type: 'prismatic',
+      units: 'pulse',
+      polarity: 1,
       minPwm: 500,
       maxPwm: 2500,
       maxSpeedPwmPerS: 2000 / 3,

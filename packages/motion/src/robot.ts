@@ -23,7 +23,7 @@ import {
   type ProfileServo,
   type ServoTableEntry,
 } from '@armtwin/ik';
-import { PWM_CENTRE, PWM_MAX, PWM_MIN, SERVO_RANGE_DEG } from '@armtwin/protocol';
+import { PWM_CENTRE, US_PER_DEG } from '@armtwin/protocol';
 
 /** A tip target: position in mm (base frame, z up) and, optionally, the tool's pitch from horizontal (deg, −90 = down). */
 export interface TipTarget {
@@ -62,7 +62,6 @@ export interface TipSolution {
 }
 
 const DEG = Math.PI / 180;
-const US_PER_DEG = (PWM_MAX - PWM_MIN) / SERVO_RANGE_DEG;
 
 /**
  * The planner's view of a parsed profile. A `numeric` profile needs its chain

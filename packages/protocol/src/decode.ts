@@ -3,6 +3,7 @@ import type { ReaderError } from './errors.ts';
 import {
   KMS_CODE_MAX,
   KMS_COORD_MAX,
+  ANGLE_DEG_MAX,
   MAX_FRAME_LENGTH,
   MOVE_MS_MAX,
   MV_MAX,
@@ -22,6 +23,8 @@ const NUM = '(-?\\d{1,6}(?:\\.\\d{1,6})?)';
 export const FRAME_PATTERNS = {
   move: /^#(\d{3})P(\d{1,5})T(\d{1,5})!$/,
   position: /^#(\d{3})P(\d{1,5})!$/,
+  angleMove: /^#(\d{3})A([+-]?\d{1,6}(?:\.\d{1,6})?)T(\d{1,5})!$/,
+  angle: /^#(\d{3})A([+-]?\d{1,6}(?:\.\d{1,6})?)!$/,
   readPosition: /^#(\d{3})PRAD!$/,
   readHealth: /^#(\d{3})PRTV!$/,
   stop: /^#(\d{3})PDST!$/,
@@ -78,6 +81,27 @@ function decodeServoFrame(text: string): DecodeResult {
       rangeError(text, 'ms', ms, 0, MOVE_MS_MAX) ?? { ok: true, frame: { type: 'move', id, pwm, ms } }
     );
   }
+  if ((m = FRAME_PATTERNS.angle.exec(text))) {
+    const id = Number(m[1]);
+    const deg = Number(m[2]);
+    return (
+      rangeError(text, 'id', id, 0, SERVO_ID_ALL - 1) ??
+      rangeError(text, 'angle', deg, -ANGLE_DEG_MAX, ANGLE_DEG_MAX) ?? {
+        ok: true,
+        frame: { type: 'angle', id, deg: deg + 0 },
+      }
+    );
+  }
+  if ((m = FRAME_PATTERNS.angleMove.exec(text))) {
+    const id = Number(m[1]);
+    const deg = Number(m[2]);
+    const ms = Number(m[3]);
+    return (
+      rangeError(text, 'id', id, 0, SERVO_ID_ALL) ??
+      rangeError(text, 'angle', deg, -ANGLE_DEG_MAX, ANGLE_DEG_MAX) ??
+      rangeError(text, 'ms', ms, 0, MOVE_MS_MAX) ?? { ok: true, frame: { type: 'angleMove', id, deg: deg + 0, ms } }
+    );
+  }
   if ((m = FRAME_PATTERNS.health.exec(text))) {
     const id = Number(m[1]);
     const temp = Number(m[2]);
@@ -94,7 +118,7 @@ function decodeServoFrame(text: string): DecodeResult {
       return rangeError(text, 'id', id, 0, SERVO_ID_ALL) ?? { ok: true, frame: { type, id } };
     }
   }
-  return fail('malformed', 'not a servo frame (#IIIP…, #IIIT…V…)', text);
+  return fail('malformed', 'not a servo frame (#IIIP…, #IIIA…, #IIIT…V…)', text);
 }
 
 function decodeDollarFrame(text: string): DecodeResult {

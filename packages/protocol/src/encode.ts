@@ -3,6 +3,7 @@ import { ProtocolError } from './errors.ts';
 import {
   KMS_CODE_MAX,
   KMS_COORD_MAX,
+  ANGLE_DEG_MAX,
   MAX_FRAME_LENGTH,
   MOVE_MS_MAX,
   MV_MAX,
@@ -36,6 +37,25 @@ function decimal(value: number): string {
   const text = value.toFixed(3).replace(/\.?0+$/, '');
   return text === '-0' ? '0' : text;
 }
+
+/**
+ * `±ddd.dd`: an angle rounded half away from zero to two decimals (−0.004 → `+000.00`),
+ * then checked against ±ANGLE_DEG_MAX, so a value that rounds out of range is refused.
+ */
+function angleText(deg: number): string {
+  checkNum('angle', deg, -Infinity, Infinity);
+  const hundredths = Math.sign(deg) * Math.round(Math.abs(deg) * 100);
+  checkNum('angle', hundredths / 100, -ANGLE_DEG_MAX, ANGLE_DEG_MAX);
+  const abs = Math.abs(hundredths);
+  const sign = hundredths < 0 ? '-' : '+';
+  return `${sign}${pad(Math.trunc(abs / 100), 3)}.${pad(abs % 100, 2)}`;
+}
+
+/** `#IIIA±ddd.ddTtttt!` (§8): servo `id` (255 = every servo) to `deg` degrees in `ms`. */
+export const encodeAngleMove = (id: number, deg: number, ms: number) =>
+  `#${servoId(id)}A${angleText(deg)}T${pad(checkInt('ms', ms, 0, MOVE_MS_MAX), 4)}!`;
+/** `#IIIA±ddd.dd!` (§8): servo `id` is at `deg` degrees. */
+export const encodeAngle = (id: number, deg: number) => `#${servoId(id, false)}A${angleText(deg)}!`;
 
 export const encodeMove = (id: number, pwm: number, ms: number) =>
   `#${servoId(id)}P${pad(checkInt('pwm', pwm, PWM_MIN, PWM_MAX), 4)}T${pad(checkInt('ms', ms, 0, MOVE_MS_MAX), 4)}!`;
@@ -74,6 +94,8 @@ export function encodeFrame(frame: Frame): string {
   switch (frame.type) {
     case 'move':
       return encodeMove(frame.id, frame.pwm, frame.ms);
+    case 'angleMove':
+      return encodeAngleMove(frame.id, frame.deg, frame.ms);
     case 'readPosition':
       return encodeReadPosition(frame.id);
     case 'readHealth':
@@ -86,6 +108,8 @@ export function encodeFrame(frame: Frame): string {
       return encodePing(frame.seq);
     case 'position':
       return encodePosition(frame.id, frame.pwm);
+    case 'angle':
+      return encodeAngle(frame.id, frame.deg);
     case 'health':
       return encodeHealth(frame.id, frame.temp, frame.mv);
     case 'kmsResult':

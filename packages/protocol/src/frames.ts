@@ -13,6 +13,17 @@ export interface MoveFrame {
   ms: number;
   time?: number;
 }
+/**
+ * `#IIIA±ddd.ddTtttt!` (§8): move servo `id` to servo angle `deg` (degrees, −999.99 …
+ * +999.99) in `ms` milliseconds. For servos that are not pulse-width servos (bus servos).
+ */
+export interface AngleMoveFrame {
+  type: 'angleMove';
+  id: number;
+  deg: number;
+  ms: number;
+  time?: number;
+}
 /** `#IIIPRAD!`: read position. */
 export interface ReadPositionFrame {
   type: 'readPosition';
@@ -54,6 +65,13 @@ export interface PositionFrame {
   pwm: number;
   time?: number;
 }
+/** `#IIIA±ddd.dd!` (§8): servo `id` is at servo angle `deg` (degrees, −999.99 … +999.99). */
+export interface AngleFrame {
+  type: 'angle';
+  id: number;
+  deg: number;
+  time?: number;
+}
 /** `#IIITtttVvvvv!`: health report; `temp` in °C, `mv` supply voltage in millivolts. */
 export interface HealthFrame {
   type: 'health';
@@ -83,6 +101,7 @@ export interface ControllerErrorFrame {
 
 export type ControlFrame =
   | MoveFrame
+  | AngleMoveFrame
   | ReadPositionFrame
   | ReadHealthFrame
   | StopFrame
@@ -90,6 +109,7 @@ export type ControlFrame =
   | PingFrame;
 export type StatusFrame =
   | PositionFrame
+  | AngleFrame
   | HealthFrame
   | KmsResultFrame
   | PingFrame
@@ -108,4 +128,33 @@ export interface Group {
   frames: Frame[];
   invalid: number;
   time?: number;
+}
+
+/**
+ * Which topic each frame kind may travel on (§1): `control` (host → arm), `status`
+ * (arm → host). A Record over FrameType, so a new frame kind fails to compile until it is
+ * placed here. `$TIM` may stamp either direction; `$PNG` travels both ways.
+ */
+export const FRAME_TOPICS: Readonly<Record<FrameType, { control: boolean; status: boolean }>> = {
+  move: { control: true, status: false },
+  angleMove: { control: true, status: false },
+  readPosition: { control: true, status: false },
+  readHealth: { control: true, status: false },
+  stop: { control: true, status: false },
+  kms: { control: true, status: false },
+  ping: { control: true, status: true },
+  position: { control: false, status: true },
+  angle: { control: false, status: true },
+  health: { control: false, status: true },
+  kmsResult: { control: false, status: true },
+  time: { control: true, status: true },
+  controllerError: { control: false, status: true },
+};
+
+/**
+ * Ends an exhaustive `switch` over a union: `default: return unhandled(x)` compiles only
+ * while every member has its case.
+ */
+export function unhandled(value: never): never {
+  throw new Error(`unhandled case: ${JSON.stringify(value)}`);
 }

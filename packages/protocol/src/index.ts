@@ -8,3 +8,5 @@ export * from './pulse.ts';
 export * from './topics.ts';
 export * from './health.ts';
 export * from './operator.ts';
+export * from './link.ts';
+export * from './clock.ts';

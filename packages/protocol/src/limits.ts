@@ -4,6 +4,10 @@ export const PWM_MAX = 2500;
 export const PWM_CENTRE = 1500;
 /** Degrees a servo turns over PWM_MIN…PWM_MAX. */
 export const SERVO_RANGE_DEG = 270;
+/** Pulse-width microseconds per degree of servo angle (2000 / 270 ≈ 7.407, §2). */
+export const US_PER_DEG = (PWM_MAX - PWM_MIN) / SERVO_RANGE_DEG;
+/** Largest |angle| in an angle frame `#IIIA±ddd.dd…!` (§8), degrees. */
+export const ANGLE_DEG_MAX = 999.99;
 export const SERVO_ID_MAX = 254;
 /** `#255…` addresses every servo. */
 export const SERVO_ID_ALL = 255;

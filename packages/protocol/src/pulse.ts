@@ -1,9 +1,7 @@
-import { PWM_CENTRE, PWM_MAX, PWM_MIN, SERVO_RANGE_DEG } from './limits.ts';
+import { PWM_CENTRE, PWM_MAX, PWM_MIN, US_PER_DEG } from './limits.ts';
 
 /** Mounting polarity of a servo: +1 or −1. */
 export type Polarity = 1 | -1;
-
-const US_PER_DEG = (PWM_MAX - PWM_MIN) / SERVO_RANGE_DEG;
 
 /** Pulse width (µs, rounded) for servo angle `deg` relative to centre. Not clamped. */
 export const pwmFromAngle = (deg: number, polarity: Polarity = 1): number =>

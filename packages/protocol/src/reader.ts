@@ -53,8 +53,8 @@ function latin1(bytes: Uint8Array): string {
 
 /**
  * The streaming frame reader: cuts on `!` across any chunk boundary, unpacks `{…}` groups,
- * stamps frames with the preceding `$TIM`, drops and reports junk, resynchronises on the
- * next `#`, `$`, `{` or `}`. Whitespace between frames is ignored. No timers, no I/O.
+ * stamps frames with the preceding `$TIM`, drops and reports junk (at its `!`, or at the next
+ * frame start), resynchronises on the next `#`, `$`, `{` or `}`. Whitespace between frames is ignored. No timers, no I/O.
  */
 export function createReader(options: ReaderOptions = {}): Reader {
   const opts = { ...DEFAULT_READER_OPTIONS, ...options };
@@ -164,13 +164,25 @@ export function createReader(options: ReaderOptions = {}): Reader {
       } else if (!inJunk && !skipping && isSpace(c)) {
         i++;
       } else {
-        let j = i + 1;
-        while (j < n && !isStart(s.charCodeAt(j))) j++;
+        // Junk runs to the next frame start, or through a `!`: the contract cuts on `!`, so
+        // `hello world!` is reported when its `!` arrives, not when the next frame does.
+        let j = c === BANG ? i + 1 : i;
+        if (c !== BANG) {
+          while (++j < n) {
+            const d = s.charCodeAt(j);
+            if (isStart(d)) break;
+            if (d === BANG) {
+              j++;
+              break;
+            }
+          }
+        }
         if (!skipping) {
           if (junk.length < maxLen) junk += s.slice(i, Math.min(j, i + maxLen - junk.length));
           inJunk = true;
         }
         i = j;
+        if (s.charCodeAt(j - 1) === BANG) endJunk();
       }
     }
   }

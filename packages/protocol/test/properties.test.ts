@@ -4,6 +4,8 @@ import {
   createReader,
   decodeFrame,
   encodeFrame,
+  encodeAngle,
+  encodeAngleMove,
   encodeMove,
   encodePosition,
   MAX_FRAME_LENGTH,
@@ -69,6 +71,40 @@ describe('reader properties', () => {
       fc.property(fc.integer({ min: 0, max: 254 }), fc.integer({ min: 500, max: 2500 }), (id, pwm) => {
         expect(decodeFrame(encodePosition(id, pwm))).toEqual({ ok: true, frame: { type: 'position', id, pwm } });
         expect(encodeFrame({ type: 'position', id, pwm })).toBe(encodePosition(id, pwm));
+      }),
+    );
+  });
+
+  it('angle frames beside pulse frames survive any junk around them and any chunking', () => {
+    const frame = fc.oneof(
+      fc.record({ type: fc.constant('angle' as const), id: fc.integer({ min: 0, max: 254 }), deg: fc.integer({ min: -99_999, max: 99_999 }).map((h) => h / 100 + 0) }),
+      fc.record({ type: fc.constant('angleMove' as const), id: fc.integer({ min: 0, max: 255 }), deg: fc.integer({ min: -99_999, max: 99_999 }).map((h) => h / 100 + 0), ms: fc.integer({ min: 0, max: 9999 }) }),
+      fc.record({ type: fc.constant('position' as const), id: fc.integer({ min: 0, max: 254 }), pwm: fc.integer({ min: 500, max: 2500 }) }),
+    );
+    const junk = fc.stringMatching(/^[a-zA-Z0-9 %&*]{0,10}$/);
+    fc.assert(
+      fc.property(fc.array(fc.tuple(junk, frame), { minLength: 1, maxLength: 20 }), fc.array(fc.nat(), { maxLength: 10 }), (items, cuts) => {
+        const text = items.map(([j, f]) => j + encodeFrame(f)).join('');
+        const got: Frame[] = [];
+        const reader = createReader({ onFrame: (f) => got.push(f) });
+        const points = [...new Set(cuts.map((c) => c % (text.length + 1)))].sort((a, b) => a - b);
+        let at = 0;
+        for (const p of [...points, text.length]) {
+          reader.feed(text.slice(at, p));
+          at = p;
+        }
+        expect(got).toEqual(items.map(([, f]) => f));
+      }),
+      { numRuns: 300 },
+    );
+  });
+
+  it('decodeFrame(encodeFrame(f)) is f for valid angle reports and moves', () => {
+    fc.assert(
+      fc.property(fc.integer({ min: 0, max: 254 }), fc.integer({ min: -99_999, max: 99_999 }), fc.integer({ min: 0, max: 9999 }), (id, h, ms) => {
+        const deg = h / 100 + 0;
+        expect(decodeFrame(encodeAngle(id, deg))).toEqual({ ok: true, frame: { type: 'angle', id, deg } });
+        expect(decodeFrame(encodeAngleMove(id, deg, ms))).toEqual({ ok: true, frame: { type: 'angleMove', id, deg, ms } });
       }),
     );
   });

@@ -45,6 +45,17 @@ describe('reader test vectors', () => {
 });
 
 describe('reader API', () => {
+  it('reports junk ending in "!" at its "!", before any later input arrives', () => {
+    const errors: ReaderError[] = [];
+    const reader = createReader({ onError: (e) => errors.push(e) });
+    reader.feed('hello ');
+    expect(errors).toEqual([]);
+    reader.feed('world!');
+    expect(errors).toEqual([
+      { kind: 'junk', message: 'bytes between frames that are not a frame', text: 'hello world!' },
+    ]);
+  });
+
   it('accepts Uint8Array chunks', () => {
     const frames: Frame[] = [];
     const reader = createReader({ onFrame: (f) => frames.push(f) });

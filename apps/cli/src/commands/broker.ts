@@ -1,12 +1,9 @@
-import http from 'node:http';
-import https from 'node:https';
 import type { Command } from 'commander';
-import { startBroker } from '../broker/broker.ts';
-import { describeSecurity, loadBrokerSecurity } from '../broker/security.ts';
+import { loadBrokerSecurity, serveBroker } from '@armtwin/broker';
 import { loadCliConfig } from '../config.ts';
 import { createLogger, firstOnly } from '../log.ts';
+import { number } from './options.ts';
 import { untilSignal } from './signals.ts';
-import { number } from './sim.ts';
 
 export function registerBroker(program: Command): void {
   program
@@ -39,41 +36,16 @@ port wss://. Roles and the users file: SECURITY.md.`,
       const host = flags.host ?? env.host;
       const security = loadBrokerSecurity({ ...env, usersFile: flags.users ?? env.usersFile });
       const denied = firstOnly(log);
-      const broker = await startBroker({
+      const served = await serveBroker({
         host,
         port: flags.port ?? env.mqttPort,
+        wsPort: flags.wsPort,
         ...security,
+        log,
         onDenied: (what, detail) =>
           denied(`denied:${what}`, `${what} refused ${JSON.stringify(detail)}`),
       });
-      let server: http.Server | https.Server | undefined;
-      if (flags.wsPort !== undefined) {
-        const notFound = (_req: http.IncomingMessage, res: http.ServerResponse) =>
-          res.writeHead(404).end();
-        server = security.tls
-          ? https.createServer({ ...security.tls, minVersion: 'TLSv1.2' }, notFound)
-          : http.createServer(notFound);
-        broker.attach(server);
-        await new Promise<void>((resolve, reject) =>
-          server!.once('error', reject).listen(flags.wsPort, host, resolve),
-        );
-        const a = server.address();
-        log.info(
-          {
-            url: `${security.tls ? 'wss' : 'ws'}://${host}:${typeof a === 'object' && a ? a.port : flags.wsPort}/mqtt`,
-          },
-          'MQTT over WebSockets',
-        );
-      }
-      broker.aedes.on('client', (c) => log.debug({ id: c.id }, 'client connected'));
-      log.info(
-        { url: broker.url, security: describeSecurity(security, host) },
-        'MQTT broker listening',
-      );
       await untilSignal(log);
-      server?.closeAllConnections();
-      await broker.close();
-      server?.close();
-      log.info({ counters: broker.counters }, 'broker stopped');
+      await served.stop();
     });
 }

@@ -1,13 +1,26 @@
-import type { Command } from 'commander';
+import { Option, type Command } from 'commander';
+import {
+  BUS_MODELS_DIR,
+  DEFAULT_BUS_GATEWAY_OPTIONS,
+  DEFAULT_GATEWAY_OPTIONS,
+  startBusGateway,
+  startGateway,
+} from '@armtwin/gateway';
+import { BUS_PROTOCOLS, type BusProtocol } from '@armtwin/servo-bus';
+import { DEFAULT_PROFILE } from '@armtwin/sim';
 import { loadCliConfig } from '../config.ts';
-import { startGateway } from '../gateway/start-gateway.ts';
 import { createLogger, firstOnly } from '../log.ts';
+import { armId, number, operatorLeaseOption } from './options.ts';
 import { untilSignal } from './signals.ts';
-import { armId, number, operatorLeaseOption } from './sim.ts';
 
 interface GatewayFlags {
   serial: string;
-  baud: number;
+  baud?: number;
+  bus: 'lsc' | BusProtocol;
+  profile: string;
+  models: string;
+  rate: number;
+  healthRate: number;
   mqtt?: string;
   arm: string;
   username?: string;
@@ -22,7 +35,37 @@ export function registerGateway(program: Command): void {
       'bridge a real controller on a serial line to MQTT (status ← serial, control → serial)',
     )
     .requiredOption('--serial <path>', 'serial device, e.g. /dev/ttyUSB0')
-    .option('--baud <rate>', 'baud rate', number('baud', 300, 4_000_000, true), 115200)
+    .option(
+      '--baud <rate>',
+      `baud rate (default ${DEFAULT_GATEWAY_OPTIONS.baudRate}; on a servo bus ${DEFAULT_BUS_GATEWAY_OPTIONS.baudRate})`,
+      number('baud', 300, 4_000_000, true),
+    )
+    .addOption(
+      new Option(
+        '--bus <kind>',
+        'what is on the line: lsc (a controller speaking frames) or a servo bus',
+      )
+        .choices(['lsc', ...BUS_PROTOCOLS])
+        .default('lsc'),
+    )
+    .option(
+      '--profile <name>',
+      'servo bus: robot profile (ids, limits, speeds, IK)',
+      DEFAULT_PROFILE,
+    )
+    .option('--models <dir>', 'servo bus: the folder of robot profiles', BUS_MODELS_DIR)
+    .option(
+      '--rate <hz>',
+      'servo bus: positions read per second',
+      number('rate', 1, 1000),
+      DEFAULT_BUS_GATEWAY_OPTIONS.stateRate,
+    )
+    .option(
+      '--health-rate <hz>',
+      'servo bus: temperatures and voltages read per second',
+      number('health rate', 0.1, 100),
+      DEFAULT_BUS_GATEWAY_OPTIONS.healthRate,
+    )
     .option('--mqtt <url>', 'broker URL (env MQTT_URL)')
     .option('--arm <id>', 'arm id', armId, 'arm1')
     .option('--username <name>', 'broker user name (env MQTT_USERNAME)')
@@ -37,29 +80,50 @@ are written to the line verbatim; while the line is down they are dropped and an
 $ERR:gateway: serial line down! on status. arm/{id}/online is 1 (retained) while the line is open
 and the broker connected, 0 otherwise (also the last will). Deadman: a 0 on arm/{id}/operator, or an
 operator that repeated 1 and then fell silent for --operator-lease ms, writes #255PDST! to the line. The port is reopened with back-off
-(250 ms doubling to 5 s) and the broker reconnected every second.`,
+(250 ms doubling to 5 s) and the broker reconnected every second.
+
+With --bus dynamixel|feetech the gateway drives the profile's servos itself (docs/arm-side.md):
+it pings their ids at start ($ERR for missing ones), reads positions by sync read at --rate and
+publishes them as angle frames #IIIA±ddd.dd!, temperature and voltage at --health-rate as
+#IIITtttVvvvv!; pulse and angle moves are checked against the profile's limits and written by
+sync write at the speed their T asks; #IIIPDST!/#255PDST! and the deadman hold position. Torque
+is on at start; 0 on arm/{id}/torque turns it off, 1 back on. $KMS goes through the profile's IK.`,
     )
     .action(async (flags: GatewayFlags) => {
       const env = loadCliConfig();
       const log = createLogger('gateway', env.logLevel);
       const username = flags.username ?? env.mqttUsername;
+      if (flags.bus !== 'lsc') {
+        const bus = startBusGateway({
+          bus: flags.bus,
+          profile: flags.profile,
+          modelsDir: flags.models,
+          stateRate: flags.rate,
+          healthRate: flags.healthRate,
+          serialPath: flags.serial,
+          baudRate: flags.baud ?? DEFAULT_BUS_GATEWAY_OPTIONS.baudRate,
+          mqttUrl: flags.mqtt ?? env.mqttUrl,
+          armId: flags.arm,
+          operatorLeaseMs: flags.operatorLease,
+          ...(username ? { username, password: flags.password ?? env.mqttPassword } : {}),
+          onFirst: firstOnly(log),
+          log,
+        });
+        await untilSignal(log);
+        await bus.stop();
+        return;
+      }
       const gw = startGateway({
         serialPath: flags.serial,
-        baudRate: flags.baud,
+        baudRate: flags.baud ?? DEFAULT_GATEWAY_OPTIONS.baudRate,
         mqttUrl: flags.mqtt ?? env.mqttUrl,
         armId: flags.arm,
         operatorLeaseMs: flags.operatorLease,
         ...(username ? { username, password: flags.password ?? env.mqttPassword } : {}),
         onFirst: firstOnly(log),
-        onSerial: (open, reason) =>
-          open
-            ? log.info({ serial: flags.serial }, 'serial line open')
-            : log.warn({ reason }, 'serial line closed; reopening'),
+        log,
       });
-      gw.client.on('connect', () => log.info({ arm: flags.arm }, 'broker connected'));
-      gw.client.on('offline', () => log.warn('broker unreachable; reconnecting'));
       await untilSignal(log);
       await gw.stop();
-      log.info({ counters: gw.core.counters, serial: gw.link.counters }, 'gateway stopped');
     });
 }

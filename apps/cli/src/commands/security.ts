@@ -2,22 +2,17 @@
  * `armtwin passwd` (a password → a `$7$` hash for the users file, Mosquitto-compatible) and
  * `armtwin deploy-mosquitto` (the users file → mosquitto.conf, passwd, acl).
  */
-import fs from 'node:fs';
 import path from 'node:path';
 import { InvalidArgumentError, Option, type Command } from 'commander';
 import {
-  DEFAULT_MOSQUITTO_DEPLOY_OPTIONS,
-  mosquittoFiles,
-  type MosquittoDeployOptions,
-} from '../auth/mosquitto-config.ts';
-import {
   DEFAULT_HASH_OPTIONS,
+  DEFAULT_MOSQUITTO_DEPLOY_OPTIONS,
+  deployMosquitto,
   hashPassword,
-  loadUsers,
   ROLES,
   USER_NAME_PATTERN,
 } from '@armtwin/auth';
-import { armId, number } from './sim.ts';
+import { armId, number } from './options.ts';
 
 async function readStdin(): Promise<string> {
   const chunks: Buffer[] = [];
@@ -126,10 +121,8 @@ export function registerDeployMosquitto(program: Command): void {
       d.maxPacketBytes,
     )
     .action((flags: DeployFlags) => {
-      const users = loadUsers(flags.users);
-      const out = path.resolve(flags.out);
-      const options: Partial<MosquittoDeployOptions> = {
-        confDir: flags.confDir ?? out,
+      const { dir, users } = deployMosquitto(flags.users, flags.out, {
+        confDir: flags.confDir,
         persistenceDir: flags.persistenceDir,
         localPort: flags.port,
         publicHost: flags.bind ?? '',
@@ -139,18 +132,10 @@ export function registerDeployMosquitto(program: Command): void {
         keyfile: flags.keyfile,
         cafile: flags.cafile,
         maxPacketBytes: flags.maxPacketSize,
-        source: path.basename(flags.users),
-      };
-      const files = mosquittoFiles(users.list, options);
-      fs.mkdirSync(out, { recursive: true });
-      for (const [name, text] of Object.entries(files)) {
-        // passwd holds hashes: readable by its owner only (chown it to the mosquitto user).
-        fs.writeFileSync(path.join(out, name), text, { mode: name === 'passwd' ? 0o600 : 0o644 });
-        if (name === 'passwd') fs.chmodSync(path.join(out, name), 0o600);
-      }
+      });
       process.stderr.write(
-        `armtwin: wrote mosquitto.conf, passwd, acl to ${out} for ${users.list.length} users\n` +
-          `  run: mosquitto -c ${path.join(out, 'mosquitto.conf')}\n`,
+        `armtwin: wrote mosquitto.conf, passwd, acl to ${dir} for ${users} users\n` +
+          `  run: mosquitto -c ${path.join(dir, 'mosquitto.conf')}\n`,
       );
     });
 }

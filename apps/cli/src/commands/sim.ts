@@ -1,37 +1,17 @@
-import { InvalidArgumentError, Option, type Command } from 'commander';
-import mqtt from 'mqtt';
-import { isValidArmId, OPERATOR_LEASE_MS } from '@armtwin/protocol';
+import { Option, type Command } from 'commander';
+import {
+  DEFAULT_SIM_OPTIONS,
+  MAX_STATE_RATE,
+  REPORT_UNITS,
+  startSim,
+  type Fault,
+  type ReportUnits,
+} from '@armtwin/sim';
+import { BUS_PROTOCOLS, type BusProtocol } from '@armtwin/servo-bus';
 import { loadCliConfig } from '../config.ts';
 import { createLogger, firstOnly } from '../log.ts';
-import type { Fault } from '../sim/faults.ts';
-import { simWill, startMqttSim } from '../sim/mqtt-sim.ts';
-import { DEFAULT_PROFILE, loadSimProfile } from '../sim/profile.ts';
-import { MAX_STATE_RATE } from '../sim/runner.ts';
-import { startSerialSim } from '../sim/serial-sim.ts';
+import { armId, number, operatorLeaseOption } from './options.ts';
 import { untilSignal } from './signals.ts';
-
-export const number =
-  (name: string, min: number, max: number, integer = false) =>
-  (value: string): number => {
-    const n = Number(value);
-    if (
-      value.trim() === '' ||
-      !Number.isFinite(n) ||
-      n < min ||
-      n > max ||
-      (integer && !Number.isInteger(n))
-    ) {
-      throw new InvalidArgumentError(
-        `${name} must be ${integer ? 'an integer' : 'a number'} in ${min}–${max}`,
-      );
-    }
-    return n;
-  };
-
-export const armId = (value: string): string => {
-  if (!isValidArmId(value)) throw new InvalidArgumentError('arm id must match [a-z0-9-]{1,32}');
-  return value;
-};
 
 const servo = number('servo id', 0, 254, true);
 const collect =
@@ -48,15 +28,18 @@ function overheat(value: string): Fault {
 }
 
 interface SimFlags {
-  mqtt: string;
+  mqtt?: string;
   arm: string;
   profile: string;
+  models: string;
+  report: ReportUnits;
   rate: number;
   healthRate: number;
   username?: string;
   password?: string;
   serial?: string;
   baud: number;
+  bus?: BusProtocol;
   stall?: number[];
   overheat?: Fault[];
   undervolt?: number;
@@ -65,16 +48,20 @@ interface SimFlags {
   operatorLease: number;
 }
 
-/** `--operator-lease <ms>`, shared by sim and gateway. */
-export const operatorLeaseOption = () =>
-  new Option(
-    '--operator-lease <ms>',
-    'let a beating operator go after this long without a 1 on arm/{id}/operator (0 = only its 0)',
-  )
-    .argParser(number('operator lease', 0, 600_000, true))
-    .default(OPERATOR_LEASE_MS);
+/** The fault flags, in the order the help lists them. */
+function faultsFrom(flags: SimFlags): Fault[] {
+  return [
+    ...(flags.stall ?? []).map((id): Fault => ({ fault: 'stall', id })),
+    ...(flags.overheat ?? []),
+    ...(flags.undervolt !== undefined
+      ? [{ fault: 'undervolt', mv: flags.undervolt } as Fault]
+      : []),
+    ...(flags.drop !== undefined ? [{ fault: 'drop', percent: flags.drop } as Fault] : []),
+    ...(flags.latency !== undefined ? [{ fault: 'latency', ms: flags.latency } as Fault] : []),
+  ];
+}
 
-export const FAULT_HELP = `
+const FAULT_HELP = `
 Fault injection (flags at start; at runtime publish JSON on arm/{id}/sim, one object or an array;
 the faults in force are published retained on arm/{id}/sim/faults):
   {"fault":"stall","id":1}                  servo 001 jams where it is, pushes and heats
@@ -86,13 +73,14 @@ the faults in force are published retained on arm/{id}/sim/faults):
   {"fault":"clear","id":2}  /  {"fault":"clear"}   clear one servo's faults / every fault
 Example: mosquitto_pub -t arm/arm1/sim -m '{"fault":"overheat","id":2}'`;
 
-export const MOTION_HELP = `
+const MOTION_HELP = `
 
 Motion requests (docs/protocol.md "Motion requests"): JSON on arm/{id}/request, answers on
 arm/{id}/feedback; the profile is announced retained on arm/{id}/profile.
 Example: mosquitto_pub -t arm/arm1/request -m '{"id":"r1","mode":"joint","targets":["ready"],"execute":true}'`;
 
 export function registerSim(program: Command): void {
+  const d = DEFAULT_SIM_OPTIONS;
   program
     .command('sim')
     .description(
@@ -103,15 +91,29 @@ export function registerSim(program: Command): void {
     .option(
       '--profile <name>',
       'robot profile: public/models/<name>/profile.json (announced on arm/{id}/profile)',
-      DEFAULT_PROFILE,
+      d.profile,
+    )
+    .addOption(
+      new Option('--models <dir>', 'the folder of robot profiles').default(
+        d.modelsDir,
+        'public/models',
+      ),
+    )
+    .addOption(
+      new Option(
+        '--report <units>',
+        'position reports: as the profile says, all angle frames #IIIA±ddd.dd! (PROTOCOL §8), or all pulse widths',
+      )
+        .choices(REPORT_UNITS)
+        .default(d.report),
     )
     .option(
       '--rate <hz>',
       `state rate, Hz (max ${MAX_STATE_RATE})`,
       number('rate', 1, MAX_STATE_RATE),
-      50,
+      d.rate,
     )
-    .option('--health-rate <hz>', 'health rate, Hz', number('health rate', 0.1, 100), 2)
+    .option('--health-rate <hz>', 'health rate, Hz', number('health rate', 0.1, 100), d.healthRate)
     .option('--username <name>', 'broker user name (env MQTT_USERNAME)')
     .option('--password <secret>', 'broker password (env MQTT_PASSWORD)')
     .addOption(
@@ -120,7 +122,13 @@ export function registerSim(program: Command): void {
         'speak on this serial line instead of MQTT (no $TIM, no presence)',
       ),
     )
-    .option('--baud <rate>', 'serial baud rate', number('baud', 300, 4_000_000, true), 115200)
+    .option('--baud <rate>', 'serial baud rate', number('baud', 300, 4_000_000, true), d.baudRate)
+    .addOption(
+      new Option(
+        '--bus <protocol>',
+        "with --serial: answer as a servo bus of the profile's servos (ids from the profile) instead of frames",
+      ).choices(BUS_PROTOCOLS),
+    )
     .option('--stall <id>', 'stall this servo (repeatable)', collect(servo))
     .option('--overheat <id[:celsius]>', 'overheat this servo (repeatable)', collect(overheat))
     .option(
@@ -137,78 +145,32 @@ export function registerSim(program: Command): void {
     .addOption(operatorLeaseOption())
     .addHelpText('after', FAULT_HELP + MOTION_HELP)
     .action(async (flags: SimFlags) => {
+      if (flags.bus && !flags.serial) program.error('--bus needs --serial <path>');
       const env = loadCliConfig();
       const log = createLogger('sim', env.logLevel);
-      const faults: Fault[] = [
-        ...(flags.stall ?? []).map((id): Fault => ({ fault: 'stall', id })),
-        ...(flags.overheat ?? []),
-        ...(flags.undervolt !== undefined
-          ? [{ fault: 'undervolt', mv: flags.undervolt } as Fault]
-          : []),
-        ...(flags.drop !== undefined ? [{ fault: 'drop', percent: flags.drop } as Fault] : []),
-        ...(flags.latency !== undefined ? [{ fault: 'latency', ms: flags.latency } as Fault] : []),
-      ];
-      const profile = loadSimProfile(flags.profile);
-      const runnerOptions = {
-        model: profile.model,
+      const sim = await startSim({
+        mqttUrl: flags.mqtt ?? env.mqttUrl,
+        username: flags.username ?? env.mqttUsername,
+        password: flags.password ?? env.mqttPassword,
+        armId: flags.arm,
+        profile: flags.profile,
+        modelsDir: flags.models,
+        report: flags.report,
         rate: flags.rate,
         healthRate: flags.healthRate,
-        faults,
-        onFirst: firstOnly(log),
-      };
-      if (flags.serial) {
-        const sim = await startSerialSim({
-          ...runnerOptions,
-          path: flags.serial,
-          baudRate: flags.baud,
-        });
-        log.info(
-          { serial: flags.serial, rate: flags.rate },
-          'simulated controller on the serial line',
-        );
-        const lost = await Promise.race([untilSignal(log).then(() => ''), sim.closed]);
-        await sim.stop();
-        if (lost) {
-          log.error({ reason: lost }, 'serial line closed');
-          process.exitCode = 1;
-        }
-        return;
-      }
-      const url = flags.mqtt ?? env.mqttUrl;
-      const username = flags.username ?? env.mqttUsername;
-      const password = flags.password ?? env.mqttPassword;
-      const client = mqtt.connect(url, {
-        clientId: `armtwin-sim-${flags.arm}-${process.pid}`,
-        ...(username ? { username, password } : {}),
-        will: simWill(flags.arm),
-        keepalive: 60,
-        reconnectPeriod: 1000,
-        queueQoSZero: false,
-      });
-      client.on('connect', () => {
-        // Frames are small: don't let Nagle's algorithm hold them back (~40 ms tails otherwise).
-        (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true);
-        log.info({ url, arm: flags.arm }, 'connected');
-      });
-      client.on('error', (err) => log.warn({ err: err.message }, 'mqtt error'));
-      const sim = startMqttSim(client, {
-        ...runnerOptions,
-        armId: flags.arm,
-        profile,
+        serialPath: flags.serial ?? '',
+        baudRate: flags.baud,
+        bus: flags.bus ?? '',
+        faults: faultsFrom(flags),
         operatorLeaseMs: flags.operatorLease,
+        log,
+        onFirst: firstOnly(log),
       });
-      log.info(
-        {
-          arm: flags.arm,
-          profile: flags.profile,
-          rate: flags.rate,
-          healthRate: flags.healthRate,
-          faults: sim.runner.faults,
-        },
-        'sim running',
-      );
-      await untilSignal(log);
+      const lost = await Promise.race([untilSignal(log).then(() => ''), sim.closed]);
       await sim.stop();
-      log.info({ counters: sim.runner.counters, model: sim.runner.model.counters }, 'sim stopped');
+      if (lost) {
+        log.error({ reason: lost }, 'serial line closed');
+        process.exitCode = 1;
+      }
     });
 }

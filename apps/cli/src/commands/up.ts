@@ -1,16 +1,15 @@
 import { InvalidArgumentError, type Command } from 'commander';
-import { describeSecurity, loadBrokerSecurity } from '../broker/security.ts';
+import { DEFAULT_PROFILE, PROFILE_NAME } from '@armtwin/sim';
+import { runUp } from '@armtwin/up';
 import { loadCliConfig } from '../config.ts';
 import { createLogger, firstOnly } from '../log.ts';
-import { startUp } from '../start/up.ts';
+import { armId, number } from './options.ts';
 import { untilSignal } from './signals.ts';
-import { armId, number } from './sim.ts';
-import { PROFILE_NAME } from '../sim/profile.ts';
 
-/** `arm1:armtwin5,arm2:track6` → arms and profiles (a bare id gets armtwin5). */
+/** `arm1:armtwin5,arm2:track6` → arms and profiles (a bare id gets the default, armtwin5). */
 export function parseArms(value: string): { id: string; profile: string }[] {
   const arms = value.split(',').map((part) => {
-    const [id = '', profile = 'armtwin5', extra] = part.trim().split(':');
+    const [id = '', profile = DEFAULT_PROFILE, extra] = part.trim().split(':');
     if (extra !== undefined || !PROFILE_NAME.test(profile))
       throw new InvalidArgumentError(`"${part}": expected id[:profile], profile [a-z0-9_-]{1,32}`);
     return { id: armId(id), profile };
@@ -79,16 +78,15 @@ Ctrl-C stops everything: the arm says offline, the middleware flushes, influxd s
       const env = loadCliConfig();
       const log = createLogger('up', env.logLevel);
       const say = (msg: string) => process.stderr.write(`armtwin: ${msg}\n`);
-      const host = flags.host ?? env.host;
-      const security = loadBrokerSecurity({ ...env, usersFile: flags.users ?? env.usersFile });
-      say(`security: ${describeSecurity(security, host)}`);
-      const up = await startUp({
-        ...security,
+      const up = await runUp({
+        usersFile: flags.users ?? env.usersFile,
+        tlsCert: env.tlsCert,
+        tlsKey: env.tlsKey,
         apiToken: env.apiToken,
         httpPort: flags.port ?? env.httpPort,
         mqttPort: flags.mqttPort ?? env.mqttPort,
         mqttPortFallback: flags.mqttPort === undefined && !process.env.ARMTWIN_MQTT_PORT,
-        host,
+        host: flags.host ?? env.host,
         armId: flags.arm,
         ...(flags.arms ? { arms: flags.arms } : {}),
         rate: flags.rate,
@@ -99,11 +97,6 @@ Ctrl-C stops everything: the arm says offline, the middleware flushes, influxd s
         say,
         onFirst: firstOnly(log),
       });
-      say(
-        `broker: MQTT on ${up.broker.url}, MQTT over WebSockets on ${up.url.replace(/^http/, 'ws')}mqtt`,
-      );
-      for (const a of flags.arms ?? [{ id: flags.arm, profile: 'armtwin5' }])
-        say(`simulated arm "${a.id}" (profile ${a.profile}) streaming at ${flags.rate} Hz`);
       process.stdout.write(`\n  armtwin is running: open ${up.url}\n  (Ctrl-C to stop)\n\n`);
       await untilSignal();
       say('stopping…');

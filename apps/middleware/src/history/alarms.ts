@@ -10,23 +10,15 @@
  * no longer does (the alarm cleared), `null` when the last sample still meets it. `peak` is
  * the worst value in the run: the highest temperature, the lowest voltage.
  */
+import type { AlarmEpisode, AlarmKind } from '@armtwin/api';
 import { THRESHOLDS } from './options.ts';
 
-export type AlarmKind = 'temp-warning' | 'temp-critical' | 'undervoltage';
+export type { AlarmEpisode, AlarmKind };
 
 export interface Sample {
   /** Epoch ms. */
   t: number;
   v: number;
-}
-
-export interface AlarmEpisode {
-  kind: AlarmKind;
-  arm: string;
-  id: string;
-  start: number;
-  end: number | null;
-  peak: number;
 }
 
 interface Rule {

@@ -3,6 +3,7 @@
  * The only I/O is `queryApi.collectRows`.
  */
 import type { QueryApi } from '@influxdata/influxdb-client';
+import type { AlarmsAnswer, PoseAnswer, SeriesAnswer, TrackingAnswer } from '@armtwin/api';
 import { alarmEpisodes, sortEpisodes, type AlarmEpisode } from './alarms.ts';
 import type { HistoryOptions } from './options.ts';
 import type { HistoryParams } from './params.ts';
@@ -29,19 +30,19 @@ const rows = (ctx: EndpointContext, q: Parameters<QueryApi['collectRows']>[0]): 
 
 const range = (p: HistoryParams) => ({ arm: p.arm, start: p.startMs, stop: p.stopMs });
 
-export async function series(ctx: EndpointContext, p: HistoryParams) {
+export async function series(ctx: EndpointContext, p: HistoryParams): Promise<SeriesAnswer> {
   const every = windowFor(p.startMs, p.stopMs, ctx.options.maxPoints);
   const result = toSeries(await rows(ctx, seriesQuery(ctx.bucket, p, every.text)));
   return { ...range(p), field: p.field, every: every.text, everyMs: every.ms, series: result };
 }
 
-export async function pose(ctx: EndpointContext, p: HistoryParams) {
+export async function pose(ctx: EndpointContext, p: HistoryParams): Promise<PoseAnswer> {
   const every = windowFor(p.startMs, p.stopMs, ctx.options.maxPoints);
   const result = toSeries(await rows(ctx, poseQuery(ctx.bucket, p, every.text)));
   return { ...range(p), every: every.text, everyMs: every.ms, ...toPoseFrames(result) };
 }
 
-export async function alarms(ctx: EndpointContext, p: HistoryParams) {
+export async function alarms(ctx: EndpointContext, p: HistoryParams): Promise<AlarmsAnswer> {
   const max = ctx.options.maxAlarmRows;
   const result = await rows(ctx, alarmsQuery(ctx.bucket, p, max));
   const byKey = samplesBy(
@@ -61,7 +62,7 @@ export async function alarms(ctx: EndpointContext, p: HistoryParams) {
   return { ...range(p), truncated, episodes: sortEpisodes(episodes) };
 }
 
-export async function tracking(ctx: EndpointContext, p: HistoryParams) {
+export async function tracking(ctx: EndpointContext, p: HistoryParams): Promise<TrackingAnswer> {
   const { maxTrackingSamples, commandLookbackMs, maxCommands } = ctx.options;
   const counts = await rows(ctx, actualCountQuery(ctx.bucket, p));
   const most = Math.max(0, ...counts.map((r) => Number(r._value)));

@@ -1,4 +1,4 @@
-/** The history API (issue 6): Flux builders, pure shaping, and the HTTP handler. */
+/** The history API: Flux builders, pure shaping, and the HTTP handler. */
 export { createHistoryHandler, type HistoryHandler, type HistoryHandlerDeps } from './handler.ts';
 export { DEFAULT_HISTORY_OPTIONS, THRESHOLDS, type HistoryOptions } from './options.ts';
 export { parseParams, FIELDS, type HistoryParams, type Field, type IdSet } from './params.ts';

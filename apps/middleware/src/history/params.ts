@@ -4,11 +4,11 @@
  * What passes here is still handed to Flux only through the client's `flux` template.
  */
 import { z } from 'zod';
+import { HISTORY_FIELDS, type HistoryField } from '@armtwin/api';
 import { parseTime } from './time.ts';
 
-/** `command` = the commanded angle (measurement `command`, field `angle`), for the HUD's chart. */
-export const FIELDS = ['pwm', 'angle', 'temp', 'volt', 'command'] as const;
-export type Field = (typeof FIELDS)[number];
+export const FIELDS = HISTORY_FIELDS;
+export type Field = HistoryField;
 export type Endpoint = 'series' | 'alarms' | 'tracking' | 'pose';
 
 /** `'all'` or a sorted list of distinct three-digit servo ids. */

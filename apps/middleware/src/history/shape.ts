@@ -2,18 +2,14 @@
  * Result shaping: rows as `collectRows` gives them → the JSON the endpoints answer with.
  * Pure. Times become epoch ms (Flux's RFC 3339 with up to ns digits, cut to the ms).
  */
+import type { Series } from '@armtwin/api';
 import type { Sample } from './alarms.ts';
 import { parseRfc3339 } from './time.ts';
 
 /** One row of a query result (only the columns we `keep`). */
 export type Row = Record<string, unknown>;
 
-export interface Series {
-  id: string;
-  /** Epoch ms, ascending. */
-  times: number[];
-  values: number[];
-}
+export type { Series };
 
 export function rowTime(row: Row): number {
   const t = parseRfc3339(String(row._time));

@@ -10,6 +10,7 @@
  * commanded trajectory interpolated at the sample's time; samples before the first known
  * command are not scored. Reported like seed 001's tables: mean and maximum absolute error.
  */
+import type { TrackingJoint } from '@armtwin/api';
 import type { Sample } from './alarms.ts';
 
 export interface Command {
@@ -21,16 +22,8 @@ export interface Command {
   ms: number;
 }
 
-export interface TrackingStats {
-  id: string;
-  /** Actual samples compared. */
-  samples: number;
-  /** Mean absolute error, degrees (null with no samples). */
-  meanAbsError: number | null;
-  /** Maximum absolute error, degrees, and the time (epoch ms) it happened. */
-  maxAbsError: number | null;
-  maxAt: number | null;
-}
+/** One joint's figures, as `/history/tracking` answers them. */
+export type TrackingStats = TrackingJoint;
 
 /** The commanded angle at `t`, moving from `from` at `cmd.t` to `cmd.angle` over `cmd.ms`. */
 export function commandedAt(cmd: Command, from: number, t: number): number {

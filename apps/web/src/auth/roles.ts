@@ -4,11 +4,7 @@
  * and, on the embedded broker, never publishes at all (a refused publish closes the
  * connection). Pure: no I/O.
  */
-
-/** The roles of the users file (apps/cli/src/auth/roles.ts). */
-export type HudRole = 'viewer' | 'operator' | 'device' | 'middleware';
-
-export const HUD_ROLES: readonly HudRole[] = ['viewer', 'operator', 'device', 'middleware'];
+import { ROLES, type Role } from '@armtwin/auth/roles';
 
 /**
  * Where the role came from: `server` = `/api/whoami` with our credentials; `demo` = the
@@ -18,7 +14,8 @@ export const HUD_ROLES: readonly HudRole[] = ['viewer', 'operator', 'device', 'm
 export type RoleSource = 'server' | 'demo' | 'hint' | 'default';
 
 export interface Access {
-  role: HudRole;
+  /** One of the users file's roles (`@armtwin/auth/roles`). */
+  role: Role;
   source: RoleSource;
   /** The user name ('' = anonymous). */
   name: string;
@@ -86,5 +83,5 @@ export function permissionsFor(a: Access): Permissions {
   };
 }
 
-export const isHudRole = (v: unknown): v is HudRole =>
-  typeof v === 'string' && (HUD_ROLES as readonly string[]).includes(v);
+export const isRole = (v: unknown): v is Role =>
+  typeof v === 'string' && (ROLES as readonly string[]).includes(v);

@@ -3,8 +3,8 @@
  * injected (`fetch`), parsing is pure. The broker enforces the role either way; the answer only
  * decides what the page offers.
  */
-import type { Access } from './roles.ts';
-import { isHudRole } from './roles.ts';
+import type { WhoamiUser } from '@armtwin/api';
+import { isRole, type Access } from './roles.ts';
 
 export type Whoami =
   | { kind: 'user'; name: string; role: Access['role']; anonymous: boolean }
@@ -38,8 +38,8 @@ export function parseWhoami(status: number, body: unknown, retryAfter?: string |
     return { kind: 'locked', retryS: Number.isFinite(s) && s > 0 ? Math.ceil(s) : 60 };
   }
   if (status !== 200) return { kind: 'unavailable', reason: `HTTP ${status}` };
-  const b = body as { name?: unknown; role?: unknown; anonymous?: unknown } | null;
-  if (!b || typeof b !== 'object' || typeof b.name !== 'string' || !isHudRole(b.role))
+  const b = body as { [K in keyof WhoamiUser]?: unknown } | null;
+  if (!b || typeof b !== 'object' || typeof b.name !== 'string' || !isRole(b.role))
     return { kind: 'unavailable', reason: 'not a whoami answer' };
   return { kind: 'user', name: b.name, role: b.role, anonymous: b.anonymous === true };
 }

@@ -1,4 +1,4 @@
-/** The plain objects every panel reads: created once in main.tsx, handed down by context. */
+/** The plain objects every panel reads: built once in ./createHud.ts, handed down by context. */
 import { createContext, useContext } from 'react';
 import type { ArmStore } from '../store/ArmStore.ts';
 import type { TargetPreview } from '../store/TargetPreview.ts';
@@ -7,6 +7,22 @@ import type { HudSettings } from '../config/settings.ts';
 import type { ReplayPlayer } from '../replay/ReplayPlayer.ts';
 import type { Session } from '../auth/Session.ts';
 import type { RobotsHub } from '../robots/RobotsHub.ts';
+import type { Waypoints } from '../panels/Plan/Waypoints.ts';
+import type { PlanPreview } from '../panels/Plan/PlanPreview.ts';
+import type { PlanRunner } from '../panels/Plan/PlanRunner.ts';
+import type { WaypointEditor } from '../panels/Plan/WaypointEditor.ts';
+import type { RequestLog } from '../panels/Command/RequestLog.ts';
+
+/** The Plan panel's plain objects. */
+export interface PlanTools {
+  readonly waypoints: Waypoints;
+  /** What the ghost runs along (the Viewer's ghost source). */
+  readonly preview: PlanPreview;
+  /** Streams a plan to the arm with pose checking. */
+  readonly runner: PlanRunner;
+  /** The waypoint spheres in 3D (once the 3D view has started). */
+  editor: WaypointEditor | null;
+}
 
 export interface Hud {
   store: ArmStore;
@@ -19,8 +35,11 @@ export interface Hud {
   /** Log-in state and the role's permissions (src/auth). */
   session: Session;
   reconnect(settings: HudSettings): void;
-  /** Fleet, the selected arm's robot profile, planning (issue 9, src/robots). */
+  /** The fleet and the selected arm's robot (profile, model, planner). */
   robots: RobotsHub;
+  plan: PlanTools;
+  /** Motion requests this page sent (Command box, Cartesian panel) and their feedback. */
+  requests: RequestLog;
   /** Controls another arm (the fleet list): saves it and reconnects. */
   selectArm(armId: string): void;
 }

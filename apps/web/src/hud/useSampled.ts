@@ -1,27 +1,13 @@
 /**
  * Samples plain (non-React) state a few times a second: the only way store data reaches React.
- * Re-renders only when the sampled value changes (shallow comparison of objects and arrays).
+ * Re-renders only when the sampled value changes (`sampleEqual`: plain objects and arrays
+ * compared member by member).
  */
 import { useEffect, useRef, useState } from 'react';
+import { sampleEqual } from './sampleEqual.ts';
 
 /** How often panels sample the store, ms. */
 export const SAMPLE_INTERVAL_MS = 250;
-
-export function shallowEqual(a: unknown, b: unknown): boolean {
-  if (Object.is(a, b)) return true;
-  if (typeof a !== 'object' || typeof b !== 'object' || a === null || b === null) return false;
-  if (Array.isArray(a) !== Array.isArray(b)) return false;
-  const ka = Object.keys(a);
-  const kb = Object.keys(b);
-  if (ka.length !== kb.length) return false;
-  for (const k of ka) {
-    const va = (a as Record<string, unknown>)[k];
-    const vb = (b as Record<string, unknown>)[k];
-    if (!Object.is(va, vb) && !(Array.isArray(va) && Array.isArray(vb) && shallowEqual(va, vb)))
-      return false;
-  }
-  return true;
-}
 
 export function useSampled<T>(read: () => T, intervalMs = SAMPLE_INTERVAL_MS): T {
   const readRef = useRef(read);
@@ -32,7 +18,7 @@ export function useSampled<T>(read: () => T, intervalMs = SAMPLE_INTERVAL_MS): T
   useEffect(() => {
     const id = setInterval(() => {
       const next = readRef.current();
-      setValue((prev) => (shallowEqual(prev, next) ? prev : next));
+      setValue((prev) => (sampleEqual(prev, next) ? prev : next));
     }, intervalMs);
     return () => clearInterval(id);
   }, [intervalMs]);

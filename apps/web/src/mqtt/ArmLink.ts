@@ -1,50 +1,27 @@
 /**
  * The HUD's MQTT edge: one mqtt.js client over WebSockets. Status messages go straight into
  * the store (no React); commands go out on `arm/{id}/control` at QoS 1. The client factory is
- * injected, so a unit test can hand in a fake and the page hands in mqtt.js.
+ * injected (./MqttLike.ts), so a unit test can hand in a fake and the page hands in mqtt.js.
  */
 import {
   armTopics,
   EMERGENCY_STOP,
+  angleFromPwm,
+  encodeAngleMove,
   encodeKms,
   encodeMove,
   encodePing,
   OPERATOR_BEAT_MS,
   type ArmTopics,
 } from '@armtwin/protocol';
-import { isWithinLimits } from '@armtwin/ik';
+import { findServo, isAngleWithinLimits, isWithinLimits, speaksAngle } from '@armtwin/ik';
 import type { ArmStore } from '../store/ArmStore.ts';
 import type { HudSettings } from '../config/settings.ts';
 import { MoveCoalescer } from './MoveCoalescer.ts';
 import { GapTracker } from './GapTracker.ts';
 import { NO_PERMISSIONS, type LinkPermissions } from '../auth/roles.ts';
-
-/** The part of mqtt.js's MqttClient this module uses. */
-export interface MqttLike {
-  on(event: 'connect' | 'reconnect' | 'close' | 'offline' | 'end', cb: () => void): unknown;
-  on(event: 'error', cb: (err: Error) => void): unknown;
-  on(event: 'message', cb: (topic: string, payload: Uint8Array) => void): unknown;
-  subscribe(topics: string[], opts: { qos: 0 | 1 }, cb?: (err: Error | null) => void): unknown;
-  publish(
-    topic: string,
-    payload: string,
-    opts: { qos: 0 | 1; retain?: boolean },
-    cb?: (err?: Error) => void,
-  ): unknown;
-  end(force?: boolean): unknown;
-}
-
-export interface ConnectOptions {
-  clientId: string;
-  username?: string;
-  password?: string;
-  keepalive: number;
-  reconnectPeriod: number;
-  connectTimeout: number;
-  clean: boolean;
-  /** The deadman's last will (operators only): retained `0` on `arm/{id}/operator`. */
-  will?: { topic: string; payload: string; qos: 1; retain: boolean };
-}
+import { connectOptions } from './connectOptions.ts';
+import type { MqttConnect, MqttLike } from './MqttLike.ts';
 
 /** What the page hears from the link besides data (src/auth/Session.ts listens). */
 export interface LinkEvents {
@@ -55,8 +32,6 @@ export interface LinkEvents {
 
 /** A link started without a role (unit tests, scripts): commands and stop, no deadman. */
 export const UNCHECKED_PERMISSIONS: LinkPermissions = { command: true, stop: true, deadman: false };
-
-export type MqttConnect = (url: string, opts: ConnectOptions) => MqttLike;
 
 /**
  * Interval timers for the deadman's beat. The page passes worker-timers (as mqtt.js does for
@@ -71,11 +46,8 @@ const NATIVE_INTERVALS: IntervalTimers = {
   clearInterval: (id) => clearInterval(id),
 };
 
-/** Contract §6: keep-alive 60 s, reconnect every 1000 ms. */
-const KEEPALIVE_S = 60;
-const RECONNECT_MS = 1000;
-
 const now = () => performance.now();
+const decoder = new TextDecoder();
 
 export class ArmLink {
   readonly topics: ArmTopics;
@@ -118,16 +90,14 @@ export class ArmLink {
     this.store.connection = 'connecting';
     const deadman = permissions.deadman;
     const client = this.connect(s.brokerUrl, {
-      clientId: `armtwin-hud-${Math.random().toString(16).slice(2, 10)}`,
-      ...(s.username ? { username: s.username } : {}),
-      ...(s.password ? { password: s.password } : {}),
-      keepalive: deadman ? Math.max(1, Math.round(s.deadmanKeepAliveS)) : KEEPALIVE_S,
+      ...connectOptions(
+        'hud',
+        s,
+        deadman ? { keepalive: Math.max(1, Math.round(s.deadmanKeepAliveS)) } : {},
+      ),
       ...(deadman
         ? { will: { topic: this.topics.operator, payload: '0', qos: 1, retain: true } }
         : {}),
-      reconnectPeriod: RECONNECT_MS,
-      connectTimeout: 10_000,
-      clean: true,
     });
     this.client = client;
     client.on('connect', () => {
@@ -157,6 +127,7 @@ export class ArmLink {
       this.lost();
     });
     client.on('error', (err) => {
+      if (!current()) return;
       this.store.connection = 'error';
       this.store.connectionError = err.message;
       const code = (err as Error & { code?: unknown }).code;
@@ -166,7 +137,9 @@ export class ArmLink {
         this.events.authRefused?.(err.message.replace(/^Connection refused: /, ''));
       }
     });
-    client.on('message', (topic, payload) => this.onMessage(topic, payload));
+    // A client let go of may still deliver what was already in its socket: that is the previous
+    // arm's data, and must not land in the store that now shows the next arm.
+    client.on('message', (topic, payload) => current() && this.onMessage(topic, payload));
     this.pingTimer = setInterval(() => this.ping(), s.pingIntervalMs);
     if (deadman)
       this.beatTimer = this.intervals.setInterval(() => {
@@ -189,7 +162,7 @@ export class ArmLink {
     if (topic === this.topics.status) {
       this.store.ingest(payload, now());
     } else if (topic === this.topics.online) {
-      const text = new TextDecoder().decode(payload).trim();
+      const text = decoder.decode(payload).trim();
       this.store.armOnline = text === '1' ? true : text === '0' ? false : null;
       this.store.armOnlineText = this.store.armOnline === null ? text.slice(0, 80) : '';
     }
@@ -211,14 +184,33 @@ export class ArmLink {
     return true;
   }
 
+  /**
+   * The servo angle to send instead of `pwm` when the servo speaks §8 angle frames (rounded to
+   * the wire's 0.01°), NaN when it speaks pulses. `pwm` is then an exact pulse-equivalent.
+   */
+  private wireAngle(id: number, pwm: number): number {
+    const spec = findServo(id, this.store.opts.arm);
+    if (!speaksAngle(spec)) return NaN;
+    return Math.round(angleFromPwm(pwm, spec!.polarity) * 100) / 100;
+  }
+
+  /** Whether a jog to `pwm` is within the servo's limits (in degrees for an angle servo). */
+  private allowed(id: number, pwm: number): boolean {
+    const arm = this.store.opts.arm;
+    const deg = this.wireAngle(id, pwm);
+    return Number.isNaN(deg) ? isWithinLimits(id, pwm, arm) : isAngleWithinLimits(id, deg, arm);
+  }
+
   private sendMove(id: number, pwm: number): void {
-    if (!isWithinLimits(id, pwm, this.store.opts.arm)) return; // never send an out-of-limit pulse
-    this.publish(encodeMove(id, pwm, Math.round(this.settings.jogMoveMs)));
+    if (!this.allowed(id, pwm)) return; // never send an out-of-limit pulse or angle
+    const ms = Math.round(this.settings.jogMoveMs);
+    const deg = this.wireAngle(id, pwm);
+    this.publish(Number.isNaN(deg) ? encodeMove(id, pwm, ms) : encodeAngleMove(id, deg, ms));
   }
 
   /** A slider moved: coalesced to at most one move per servo per jogIntervalMs. */
   jog(id: number, pwm: number): void {
-    if (!isWithinLimits(id, pwm, this.store.opts.arm)) return;
+    if (!this.allowed(id, pwm)) return;
     this.store.commandedPwm[id] = pwm;
     this.coalescer.request(id, pwm);
   }

@@ -1,8 +1,8 @@
 /**
  * The replay as a plain object: the loaded pose record, the clock, and the sibling arm's
- * current servo angles. The frame loop calls `update(now)` (no React, no allocation); the
- * panel calls `load`/`play`/`pause`/`seek`/`setSpeed` and samples the position a few times a
- * second. Exposed as `window.__armtwin.replay` (read-only by convention).
+ * current servo angles in the active robot's terms (`configure`, from its profile). The frame
+ * loop calls `update(now)` (no React, no allocation); the panel calls `load`/`play`/`pause`/
+ * `seek`/`setSpeed` and samples the position a few times a second. Exposed as `window.__armtwin.replay` (read-only by convention).
  */
 import { poseAt, slotsFor, type PoseRecord } from './poseAt.ts';
 import { ReplayClock, type ReplaySpeed } from './ReplayClock.ts';
@@ -16,8 +16,11 @@ export interface ReplayRecord extends PoseRecord {
 
 export class ReplayPlayer {
   readonly clock = new ReplayClock();
-  /** The sibling's servo angles now, degrees (NaN = no record for that servo yet). */
-  readonly angles: Float64Array;
+  /**
+   * The sibling's servo angles now, in the store's degrees of the active robot (NaN = no record
+   * for that servo yet). Replaced by `configure` (read it through the player each time).
+   */
+  angles: Float64Array;
   record: ReplayRecord | null = null;
   /** Whether the sibling arm is shown. */
   active = false;
@@ -25,15 +28,26 @@ export class ReplayPlayer {
   frame = -1;
   /** Bumped whenever `angles` is recomputed (for tests and the panel). */
   version = 0;
+  /** Each servo's mounting polarity k (§2) in the active robot's store profile. */
+  private polarities: readonly number[] = [];
   private slots: Int16Array = new Int16Array(0);
   private drawnAt = NaN;
   private dirty = false;
 
+  /** `polarities`: as `configure`'s (none until the active robot is known). */
+  constructor(polarities: readonly number[] = []) {
+    this.angles = new Float64Array(polarities.length).fill(NaN);
+    this.polarities = [...polarities];
+  }
+
   /**
-   * `polarities`: each servo's mounting polarity k (§2). The record's `angle` is the pulse's
-   * angle at k = 1, so the servo angle the model needs is k × that.
+   * A new active robot: its servos' mounting polarities k (§2) in the store's profile. The
+   * record's `angle` is the pulse's angle at k = 1, so the servo angle the store (and the joint
+   * map) counts in is k × that. A record loaded before belonged to the robot before: closed.
    */
-  constructor(private readonly polarities: readonly number[]) {
+  configure(polarities: readonly number[]): void {
+    if (this.record) this.close();
+    this.polarities = [...polarities];
     this.angles = new Float64Array(polarities.length).fill(NaN);
   }
 
@@ -85,7 +99,8 @@ export class ReplayPlayer {
     this.dirty = false;
     this.drawnAt = t;
     this.frame = poseAt(rec, this.slots, t, this.angles);
-    for (let i = 0; i < this.angles.length; i++) this.angles[i]! *= this.polarities[i] ?? 1;
+    const a = this.angles;
+    for (let i = 0; i < a.length; i++) a[i]! *= this.polarities[i] ?? 1;
     this.version++;
     return true;
   }

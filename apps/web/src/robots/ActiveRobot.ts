@@ -2,9 +2,9 @@
  * Which robot the HUD shows and controls: the selected arm's retained profile
  * (`arm/{id}/profile`, through the FleetLink), or armtwin5 when none has come within
  * `PROFILE_WAIT_MS` (an old arm, a real controller). A profile arriving later, or another arm
- * selected, switches again. Applying a robot: the store is sized for it, the 3D view loads its
- * URDF, and the planner's robot is built (a numeric profile needs its URDF's chain). Plain object;
- * `onChange` tells the page to re-render.
+ * selected, switches again. Applying a robot: the store is sized for it, the view shows it (the
+ * 3D model and the replay, posed through its joint map), and the planner's robot is built (a
+ * numeric profile needs its URDF's chain). Plain object; `onChange` tells the page to re-render.
  */
 import { chainFromUrdf, type Profile } from '@armtwin/ik';
 import { createMotionRobot, type MotionRobot } from '@armtwin/motion';
@@ -12,9 +12,13 @@ import type { ArmStore } from '../store/ArmStore.ts';
 import { DEFAULT_PROFILE, PROFILE_WAIT_MS } from './defaultProfile.ts';
 import { robotSpec, type RobotSpec } from './robotSpec.ts';
 
+/** Where a robot is shown: the 3D view and the replay (wired in src/hud/createHud.ts). */
 export interface RobotView {
-  /** Loads a URDF with the servo → joint map (replacing the robot shown). */
-  load(urdfUrl: string, joints: RobotSpec['joints']): Promise<void>;
+  /**
+   * Shows `spec`'s robot, replacing the one shown: its URDF (`urdfUrl`, absolute), posed
+   * through `spec.joints`. Resolves once its meshes have loaded.
+   */
+  show(spec: RobotSpec, urdfUrl: string): Promise<void>;
 }
 
 export type ProfileSource = 'announced' | 'assumed' | 'waiting';
@@ -94,7 +98,7 @@ export class ActiveRobot {
     this.version++;
     this.onChange();
     try {
-      await this.view.load(new URL(spec.urdfUrl, document.baseURI).href, spec.joints);
+      await this.view.show(spec, new URL(spec.urdfUrl, document.baseURI).href);
       const motion =
         profile.ik.kind === 'analytic5'
           ? createMotionRobot(profile)

@@ -5,10 +5,24 @@
  * through the store), and the selected arm's motion feedback; it publishes motion requests on
  * `arm/{id}/request`. Plain state, no React: panels sample `state` and `version`.
  */
-import { allArmsTopic, armTopics, createReader, isValidArmId, parseTopic } from '@armtwin/protocol';
+import {
+  allArmsTopic,
+  armTopics,
+  createReader,
+  isValidArmId,
+  parseTopic,
+  unhandled,
+} from '@armtwin/protocol';
 import type { Profile } from '@armtwin/ik';
 import type { MotionRequest } from '@armtwin/motion';
-import type { ConnectOptions, MqttLike } from '../mqtt/ArmLink.ts';
+import { connectOptions, type ConnectOptions } from '../mqtt/connectOptions.ts';
+import type { MqttLike } from '../mqtt/MqttLike.ts';
+import {
+  countDrop,
+  emptyDropCounters,
+  type DropCounters,
+  type FirstErrors,
+} from '../store/readerErrors.ts';
 import type { HudSettings } from '../config/settings.ts';
 import { parseAnnouncement } from './announcement.ts';
 import {
@@ -25,7 +39,8 @@ export interface FleetMqtt extends MqttLike {
 }
 export type FleetConnect = (url: string, opts: ConnectOptions) => FleetMqtt;
 
-export interface FleetCounters {
+/** `dropped`, `droppedByKind`: what the reader of the other arms' health reports dropped. */
+export interface FleetCounters extends DropCounters {
   messages: number;
   /** Announcements that failed `parseProfile` (the arm keeps its previous profile). */
   badProfiles: number;
@@ -42,7 +57,15 @@ export class FleetLink {
   version = 0;
   /** Parsed profile per arm id, from the retained announcements. */
   readonly profiles = new Map<string, Profile>();
-  readonly counters: FleetCounters = { messages: 0, badProfiles: 0, badFeedback: 0, requests: 0 };
+  readonly counters: FleetCounters = {
+    messages: 0,
+    ...emptyDropCounters(),
+    badProfiles: 0,
+    badFeedback: 0,
+    requests: 0,
+  };
+  /** First message per reader error kind (Status panel). */
+  readonly firstError: FirstErrors = {};
   connected = false;
   lastError = '';
   private client: FleetMqtt | null = null;
@@ -59,6 +82,7 @@ export class FleetLink {
       for (const f of g.frames)
         if (f.type === 'health') this.health.push({ id: f.id, temp: f.temp, mv: f.mv });
     },
+    onError: (e) => countDrop(this.counters, this.firstError, e),
   });
 
   constructor(
@@ -74,15 +98,7 @@ export class FleetLink {
 
   start(): void {
     const s = this.settings;
-    const client = this.connect(s.brokerUrl, {
-      clientId: `armtwin-fleet-${Math.random().toString(16).slice(2, 10)}`,
-      ...(s.username ? { username: s.username } : {}),
-      ...(s.password ? { password: s.password } : {}),
-      keepalive: 60,
-      reconnectPeriod: 1000,
-      connectTimeout: 10_000,
-      clean: true,
-    });
+    const client = this.connect(s.brokerUrl, connectOptions('fleet', s));
     this.client = client;
     client.on('connect', () => {
       this.connected = true;
@@ -198,8 +214,14 @@ export class FleetLink {
         for (const fn of this.feedbackListeners) fn(f);
         return;
       }
-      default:
+      // Not subscribed to: nothing of these comes.
+      case 'control':
+      case 'operator':
+      case 'request':
+      case 'sim':
         return;
+      default:
+        return unhandled(p.kind);
     }
   }
 }

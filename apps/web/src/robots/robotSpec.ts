@@ -43,9 +43,13 @@ export interface SliderSpec {
   readonly max: number;
   /** Slider step, joint units. */
   readonly step: number;
+  /** The servo speaks §8 angle frames: its pulses are exact, unrounded pulse-equivalents. */
+  readonly speaksAngle: boolean;
+  /** Joint value (deg or mm) of a store angle (`ArmStore.angle`); NaN for NaN. */
+  valueFromAngle(angle: number): number;
   /** Joint value (deg or mm) of a pulse; NaN for NaN. */
   valueFromPwm(pwm: number): number;
-  /** Pulse (integer µs) of a joint value. */
+  /** Pulse (integer µs; an angle servo's exact pulse-equivalent) of a joint value. */
   pwmFromValue(value: number): number;
 }
 
@@ -89,19 +93,33 @@ function jointUnits(s: ProfileServo, pwm: number): number {
   return s.type === 'revolute' ? v + s.offset : v;
 }
 
-export function sliderSpecs(profile: Profile): SliderSpec[] {
-  return profile.servos.map((s, index) => ({
-    index,
-    id: s.id,
-    name: s.name,
-    unit: s.type === 'revolute' ? 'deg' : 'mm',
-    min: s.min,
-    max: s.max,
-    step: s.type === 'revolute' ? 1 : PRISMATIC_STEP_MM,
-    valueFromPwm: (pwm: number) => jointUnits(s, pwm),
-    pwmFromValue: (value: number) =>
-      pwmFromServo(s, s.type === 'revolute' ? value - s.offset : value),
-  }));
+export function sliderSpecs(
+  profile: Profile,
+  arm: ArmProfile = storeArmFor(profile),
+): SliderSpec[] {
+  return profile.servos.map((s, index) => {
+    const k = arm.servos[index]?.polarity ?? 1;
+    const angle = s.units === 'angle';
+    return {
+      index,
+      id: s.id,
+      name: s.name,
+      unit: s.type === 'revolute' ? 'deg' : 'mm',
+      min: s.min,
+      max: s.max,
+      step: s.type === 'revolute' ? 1 : PRISMATIC_STEP_MM,
+      speaksAngle: angle,
+      // An angle servo's store angle is its servo angle: the joint is that plus the offset,
+      // with no pulse on the way (±360° stays ±360°).
+      valueFromAngle: angle
+        ? (a: number) => a + s.offset
+        : (a: number) => jointUnits(s, pwmOfStoreAngle(a, k)),
+      valueFromPwm: (pwm: number) => jointUnits(s, pwm),
+      pwmFromValue: angle
+        ? (value: number) => pwmOfStoreAngle(value - s.offset, k)
+        : (value: number) => pwmFromServo(s, s.type === 'revolute' ? value - s.offset : value),
+    };
+  });
 }
 
 /** The HUD's view of a parsed profile. */
@@ -114,6 +132,6 @@ export function robotSpec(profile: Profile): RobotSpec {
     urdfUrl: `models/${profile.name}/${profile.urdf}`,
     storeArm,
     joints: jointMap(profile, storeArm),
-    sliders: sliderSpecs(profile),
+    sliders: sliderSpecs(profile, storeArm),
   };
 }

@@ -1,29 +1,32 @@
 /**
- * The full-window 3D view: renderer, orbit camera, lights with shadows, floor and grid, the
- * live arm, the translucent ghost and the target marker. One requestAnimationFrame loop reads
- * the store by mutation (no React, no allocation per frame) and renders only when something
- * moved. The first frame is drawn after every mesh has loaded (`load()` resolves).
+ * The full-window 3D view and its one requestAnimationFrame loop: renderer, orbit camera, the
+ * stage (./stage.ts), the live arm, the ghost (./Ghost.ts), the replay's sibling and the target
+ * marker (./TargetMarker.ts), all posed through the active robot's joint map (./PosedRobot.ts).
+ * The loop reads the store by mutation (no React, no allocation per frame) and renders only when
+ * something moved. The first frame is drawn after every mesh has loaded (`load()` resolves).
  */
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import type { URDFJoint, URDFRobot } from 'urdf-loader';
 import type { ArmStore } from '../store/ArmStore.ts';
 import type { TargetPreview } from '../store/TargetPreview.ts';
-import { ghostPose } from '../store/ghostPose.ts';
-import { SERVO_JOINTS, jointValueFromAngle } from '../model/armModel.ts';
 import type { JointMap } from '../robots/robotSpec.ts';
 import { frameCamera, type GhostSource } from '../robots/sceneHooks.ts';
+import type { ReplayPlayer } from '../replay/ReplayPlayer.ts';
+import { ReplaySibling, siblingMaterial } from './ReplaySibling.ts';
 import { RobotModelLoader, solidMaterial } from './loadRobot.ts';
-import { createStage, ghostMaterial, type Stage } from './stage.ts';
+import { createStage, type Stage } from './stage.ts';
+import { Ghost, ghostMaterial } from './Ghost.ts';
+import { PosedRobot } from './PosedRobot.ts';
+import { TargetMarker } from './TargetMarker.ts';
+import { FloorPicker } from './FloorPicker.ts';
 import { ResolutionGovernor } from './ResolutionGovernor.ts';
 import { isSoftwareWebGL } from './webglInfo.ts';
-import type { ReplayPlayer } from '../replay/ReplayPlayer.ts';
-import { ReplaySibling, siblingMaterial } from '../replay/ReplaySibling.ts';
 
-const MM = 0.001;
-const GHOST_HIDDEN_LINKS = ['base_link', 'turret', 'rail'];
 /** Idle time after which a full-resolution frame is drawn, ms. */
 const REFINE_AFTER_MS = 300;
+
+/** Which of the drawn robots: the live arm, the ghost, the replay's sibling. */
+export type DrawnRobot = 'robot' | 'ghost' | 'sibling';
 
 export class Viewer {
   readonly renderer: THREE.WebGLRenderer;
@@ -31,15 +34,12 @@ export class Viewer {
   readonly camera: THREE.PerspectiveCamera;
   readonly controls: OrbitControls;
   private readonly stage: Stage;
-  private robot: URDFRobot | null = null;
-  private ghost: URDFRobot | null = null;
-  private robotJoints: (URDFJoint | undefined)[] = [];
-  private ghostJoints: (URDFJoint | undefined)[] = [];
+  private live: PosedRobot | null = null;
+  private ghost: Ghost | null = null;
   /** The replay's sibling arm (History panel), when a ReplayPlayer is given. */
   private sibling: ReplaySibling | null = null;
-  private ghostAngles: Float64Array;
-  /** Servo i's URDF joint and store angle → joint value (armtwin5's when none is given). */
-  private joints: JointMap | null = null;
+  private readonly marker: TargetMarker;
+  private readonly picker: FloorPicker;
   /** Drawn into the ghost instead of the target/commanded pose while active (the plan preview). */
   ghostSource: GhostSource | null = null;
   /** Called every frame (waypoint spheres, …); a hook returning true asks for a render. */
@@ -61,15 +61,6 @@ export class Viewer {
   readonly software: boolean;
   /** Called after each rendered frame with its `performance.now()` (bench probe, tests). */
   readonly renderHooks = new Set<(now: number) => void>();
-
-  /** The canvas's current pixel ratio (lowered while frames are slow). */
-  get pixelRatio(): number {
-    return this.governor.ratio;
-  }
-  private readonly raycaster = new THREE.Raycaster();
-  private readonly pointer = new THREE.Vector2();
-  private readonly hit = new THREE.Vector3();
-  private downAt: { x: number; y: number } | null = null;
   private readonly governor: ResolutionGovernor;
   /** When the previous tick rendered (NaN if it did not): frame cost while moving. */
   private lastRenderAt = NaN;
@@ -85,7 +76,6 @@ export class Viewer {
     private readonly target: TargetPreview,
     private readonly replay: ReplayPlayer | null = null,
   ) {
-    this.ghostAngles = new Float64Array(store.servoCount);
     // Software WebGL (SwiftShader, llvmpipe) pays for every multisampled pixel on the CPU, and
     // the page waits for it: no MSAA there (the resolution governor's scaling smooths edges).
     this.software = isSoftwareWebGL();
@@ -106,6 +96,13 @@ export class Viewer {
     this.controls.maxDistance = 4;
     this.controls.addEventListener('change', () => (this.needsRender = true));
     this.stage = createStage(this.scene);
+    this.marker = new TargetMarker(this.stage, target);
+    this.picker = new FloorPicker(this.renderer.domElement, this.camera, this.stage, target);
+  }
+
+  /** The canvas's current pixel ratio (lowered while frames are slow). */
+  get pixelRatio(): number {
+    return this.governor.ratio;
   }
 
   /** The arm's z-up frame (metres), the camera and the canvas, for the scene's add-ons. */
@@ -116,49 +113,37 @@ export class Viewer {
     return this.renderer.domElement;
   }
 
-  /** The URDF joint values drawn now (rad or m), live arm or ghost, in servo order. */
-  jointValues(which: 'robot' | 'ghost' = 'robot'): number[] {
-    const joints = which === 'robot' ? this.robotJoints : this.ghostJoints;
-    return joints.map((j) => (j ? j.angle : NaN));
+  /** The URDF joint values drawn now (rad or m), in servo order ([] before a robot loads). */
+  jointValues(which: DrawnRobot = 'robot'): number[] {
+    const posed =
+      which === 'robot' ? this.live : which === 'ghost' ? this.ghost?.posed : this.sibling?.posed;
+    return posed?.values() ?? [];
   }
 
   /**
-   * Loads the live arm and the ghost (replacing any loaded before); rejects with a readable
-   * message. `joints` maps servos to URDF joints (default: armtwin5's, one degree = one degree).
+   * Loads a robot's URDF as the live arm, the ghost and (with a ReplayPlayer) the replay's
+   * sibling, replacing any loaded before, all three posed through `joints` (the active robot's
+   * profile); rejects with a readable message.
    */
-  async load(urdfUrl: string, joints?: JointMap): Promise<void> {
+  async load(urdfUrl: string, joints: JointMap): Promise<void> {
     const loader = new RobotModelLoader(urdfUrl);
-    const [robot, ghost] = await Promise.all([
+    const [robot, ghost, sibling] = await Promise.all([
       loader.build(solidMaterial),
       loader.build(ghostMaterial),
+      this.replay ? loader.build(siblingMaterial) : null,
     ]);
-    ghost.traverse((o) => {
-      o.castShadow = false;
-      o.renderOrder = 1;
-    });
-    // The fixed pedestal and the turntable only ever differ from the live arm's by yaw: leave
-    // them out, so the ghost never flickers inside the live base.
-    for (const name of GHOST_HIDDEN_LINKS) {
-      for (const child of ghost.links[name]?.children ?? [])
-        if ((child as { isURDFVisual?: boolean }).isURDFVisual) child.visible = false;
-    }
-    ghost.visible = false;
-    const sibling = this.replay
-      ? new ReplaySibling(await loader.build(siblingMaterial), this.replay)
-      : null;
-    for (const old of [this.robot, this.ghost, this.sibling?.robot])
-      if (old) old.removeFromParent();
-    this.robot = robot;
-    this.ghost = ghost;
-    this.joints = joints ?? null;
-    const names = joints?.names ?? SERVO_JOINTS;
-    this.robotJoints = names.map((n) => robot.joints[n]);
-    this.ghostJoints = names.map((n) => ghost.joints[n]);
-    this.ghostAngles = new Float64Array(names.length);
+    for (const old of [this.live?.robot, this.ghost?.robot, this.sibling?.robot])
+      old?.removeFromParent();
+    this.live = new PosedRobot(robot, joints);
+    this.ghost = new Ghost(new PosedRobot(ghost, joints), this.store, this.target);
+    this.sibling =
+      sibling && this.replay
+        ? new ReplaySibling(new PosedRobot(sibling, joints), this.replay)
+        : null;
     this.stage.world.add(robot, ghost);
-    this.sibling = sibling;
-    if (sibling) this.stage.world.add(sibling.robot);
-    if (joints) frameCamera(this, robot);
+    if (this.sibling) this.stage.world.add(this.sibling.robot);
+    frameCamera(this, robot);
+    this.sibling?.standClearOf(robot);
     this.needsRender = true;
     this.shadowsDirty = true;
   }
@@ -168,9 +153,7 @@ export class Viewer {
     this.container.appendChild(this.renderer.domElement);
     this.resize();
     window.addEventListener('resize', this.resize);
-    const el = this.renderer.domElement;
-    el.addEventListener('pointerdown', this.onPointerDown);
-    el.addEventListener('pointerup', this.onPointerUp);
+    this.picker.attach();
     this.running = true;
     this.frame = requestAnimationFrame(this.tick);
   }
@@ -188,13 +171,13 @@ export class Viewer {
     if (!this.running) return;
     this.frame = requestAnimationFrame(this.tick);
     const now = performance.now();
-    if (this.store.sample(now) && this.pose(this.robotJoints, this.store.rendered))
+    if (this.store.sample(now) && this.live?.pose(this.store.rendered))
       this.needsRender = this.shadowsDirty = true;
-    this.updateGhost(now);
+    if (this.ghost?.update(now, this.ghostSource)) this.needsRender = true;
     if (this.sibling?.update(now)) this.needsRender = this.shadowsDirty = true;
     // A hook may move something that casts a shadow (waypoint spheres): redraw the map too.
     for (const hook of this.frameHooks) if (hook(now)) this.needsRender = this.shadowsDirty = true;
-    this.updateTarget();
+    if (this.marker.update()) this.needsRender = true;
     if (this.warmupFrames > 0) {
       this.warmupFrames--;
       this.needsRender = true;
@@ -238,87 +221,6 @@ export class Viewer {
     for (const hook of this.renderHooks) hook(now);
   }
 
-  /** Sets the joints to servo angles (degrees); true if any joint moved. */
-  private pose(joints: (URDFJoint | undefined)[], angles: ArrayLike<number>): boolean {
-    let changed = false;
-    const m = this.joints;
-    for (let i = 0; i < joints.length; i++) {
-      const a = angles[i] ?? NaN;
-      const v = m ? m.scale[i]! * a + m.bias[i]! : jointValueFromAngle(a);
-      if (!Number.isNaN(a) && joints[i]?.setJointValue(v)) changed = true;
-    }
-    return changed;
-  }
-
-  private updateGhost(now: number): void {
-    const ghost = this.ghost;
-    if (!ghost) return;
-    const t = this.target;
-    const shows = !t.ghostEnabled
-      ? 'nothing'
-      : this.ghostSource?.sample(now, this.ghostAngles)
-        ? 'plan'
-        : ghostPose(
-            {
-              arm: this.store.opts.arm,
-              rendered: this.store.rendered,
-              commandedPwm: this.store.commandedPwm,
-              previewOk: t.active && t.code === 0,
-              previewAngles: t.angles,
-            },
-            this.ghostAngles,
-          );
-    t.ghostShows = shows;
-    const visible = shows !== 'nothing';
-    if (ghost.visible !== visible) {
-      ghost.visible = visible;
-      this.needsRender = true;
-    }
-    if (visible && this.pose(this.ghostJoints, this.ghostAngles)) this.needsRender = true;
-  }
-
-  private updateTarget(): void {
-    const t = this.target;
-    const m = this.stage.marker;
-    if (m.visible !== t.active) {
-      m.visible = t.active;
-      this.needsRender = true;
-    }
-    if (!t.active) return;
-    const x = t.x * MM;
-    const y = t.y * MM;
-    const z = t.z * MM;
-    if (
-      m.position.x !== x ||
-      m.position.y !== y ||
-      m.position.z !== z ||
-      this.stage.markerOk !== (t.code === 0)
-    ) {
-      this.stage.placeMarker(x, y, z, t.code === 0);
-      this.needsRender = true;
-    }
-  }
-
-  private readonly onPointerDown = (e: PointerEvent): void => {
-    this.downAt = e.button === 0 ? { x: e.clientX, y: e.clientY } : null;
-  };
-
-  /** A click (not a drag) on the floor places the Cartesian target there. */
-  private readonly onPointerUp = (e: PointerEvent): void => {
-    const d = this.downAt;
-    this.downAt = null;
-    if (!d || Math.hypot(e.clientX - d.x, e.clientY - d.y) > 4) return;
-    const rect = this.renderer.domElement.getBoundingClientRect();
-    this.pointer.set(
-      ((e.clientX - rect.left) / rect.width) * 2 - 1,
-      -((e.clientY - rect.top) / rect.height) * 2 + 1,
-    );
-    this.raycaster.setFromCamera(this.pointer, this.camera);
-    if (!this.raycaster.ray.intersectPlane(this.stage.floorPlane, this.hit)) return;
-    this.stage.world.worldToLocal(this.hit); // three's y-up → the arm's z-up frame, metres
-    this.target.place(Math.round(this.hit.x / MM), Math.round(this.hit.y / MM));
-  };
-
   /** Asks for a render on the next frame (e.g. after a settings change). */
   invalidate(): void {
     this.needsRender = this.shadowsDirty = true;
@@ -328,6 +230,7 @@ export class Viewer {
     this.running = false;
     cancelAnimationFrame(this.frame);
     window.removeEventListener('resize', this.resize);
+    this.picker.detach();
     this.controls.dispose();
     this.renderer.dispose();
     this.renderer.domElement.remove();

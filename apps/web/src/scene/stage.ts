@@ -5,7 +5,6 @@
  * inside it, (x, y, z) are the arm's metres and z = 0 is the floor.
  */
 import * as THREE from 'three';
-import type { MaterialFactory } from './loadRobot.ts';
 
 export interface Stage {
   /** The arm's z-up frame, metres. */
@@ -163,17 +162,3 @@ export function createStage(scene: THREE.Scene): Stage {
   };
   return stage;
 }
-
-/** The ghost's look: one translucent cyan for every part. */
-export const ghostMaterial: MaterialFactory = () =>
-  new THREE.MeshStandardMaterial({
-    color: 0x67e8f9,
-    emissive: 0x0e7490,
-    emissiveIntensity: 0.4,
-    transparent: true,
-    opacity: 0.35,
-    depthWrite: false,
-    // Strictly nearer only: where the ghost coincides with the live arm it is not drawn (no stripes).
-    depthFunc: THREE.LessDepth,
-    roughness: 0.4,
-  });

@@ -1,24 +1,32 @@
 /**
  * The HUD's plain store: everything the status stream says, held as mutable typed arrays and
- * counters. The MQTT module feeds it (`ingest`), the three.js loop and the charts read it every
- * frame (`sample`), and React panels poll `snapshot()` a few times a second. No message causes
- * a React render, and nothing here allocates per frame. Every method takes `now` (a monotonic
- * ms clock, performance.now() in the page) so tests drive time themselves.
+ * counters. The MQTT link feeds it (`ingest`), the three.js loop reads the drawn angles every
+ * frame (`sample`, then `rendered`), the health charts read `history`, and React panels read
+ * its fields through `useSampled` a few times a second. No message causes a React render, and
+ * nothing here allocates per frame. Every method takes `now` (a monotonic ms clock,
+ * performance.now() in the page) so tests drive time themselves.
  */
 import {
+  PWM_CENTRE,
+  US_PER_DEG,
   angleFromPwm,
   createReader,
-  READER_ERROR_KINDS,
+  unhandled,
   type Frame,
   type Group,
   type Reader,
-  type ReaderErrorKind,
 } from '@armtwin/protocol';
 import { DEMO_ARM, type ArmProfile } from '@armtwin/ik';
 import { HealthHistory } from './HealthHistory.ts';
 import { IntervalEstimator, JointTween } from './interpolation.ts';
 import { RateMeter } from './RateMeter.ts';
 import { PingTracker } from './PingTracker.ts';
+import {
+  countDrop,
+  emptyDropCounters,
+  type DropCounters,
+  type FirstErrors,
+} from './readerErrors.ts';
 
 export interface ArmStoreOptions {
   /** The arm's profile: servo count, names, polarity. */
@@ -49,14 +57,11 @@ export const DEFAULT_ARM_STORE_OPTIONS: ArmStoreOptions = {
 export type ConnectionState =
   'idle' | 'connecting' | 'connected' | 'reconnecting' | 'offline' | 'error';
 
-export interface StoreCounters {
+export interface StoreCounters extends DropCounters {
   /** MQTT messages on the status topic. */
   messages: number;
   /** Frames decoded (group members included). */
   frames: number;
-  /** Pieces of input the reader dropped, in all and by kind. */
-  dropped: number;
-  droppedByKind: Record<ReaderErrorKind, number>;
   /** `$ERR` frames from the controller. */
   controllerErrors: number;
   /** Messages this HUD published on the control topic. */
@@ -68,8 +73,18 @@ export class ArmStore {
   // The per-servo arrays are replaced (never resized) by `configure`, when the arm's profile
   // changes; read them through the store each time, never keep one.
   servoCount!: number;
-  /** Latest reported pulse per servo, NaN until reported. */
+  /**
+   * Latest reported pulse per servo, NaN until reported. For a servo that reports §8 angle
+   * frames, the exact pulse-equivalent of its angle (unrounded and unclamped, so linear in the
+   * angle and outside 500–2500 µs beyond ±135°), for the panels that count in pulses.
+   */
   pwm!: Float64Array;
+  /**
+   * Latest reported servo angle per servo, degrees in the store arm's terms, NaN until
+   * reported: an angle frame's angle as it came, or a pulse frame's pulse as an angle. When a
+   * servo is reported both ways, the newer report wins (both are its position).
+   */
+  angle!: Float64Array;
   /** Servo angles drawn this frame, degrees (written by `sample`). Read by the debug hook. */
   rendered!: Float64Array;
   /** Last pulse this HUD commanded per servo (jog or IK), NaN = none / follow the arm. */
@@ -97,7 +112,7 @@ export class ArmStore {
   kmsReplies = 0;
   lastControllerError = '';
   /** First message per reader error kind, for the Status panel. */
-  readonly firstError: Partial<Record<ReaderErrorKind, string>> = {};
+  readonly firstError: FirstErrors = {};
 
   private tweens!: JointTween[];
   private readonly interval = new IntervalEstimator();
@@ -116,28 +131,21 @@ export class ArmStore {
     this.counters = {
       messages: 0,
       frames: 0,
-      dropped: 0,
-      droppedByKind: Object.fromEntries(READER_ERROR_KINDS.map((k) => [k, 0])) as Record<
-        ReaderErrorKind,
-        number
-      >,
+      ...emptyDropCounters(),
       controllerErrors: 0,
       published: 0,
     };
     this.reader = createReader({
       onFrame: (f) => this.onFrame(f),
       onGroup: (g) => this.onGroup(g),
-      onError: (e) => {
-        this.counters.dropped++;
-        this.counters.droppedByKind[e.kind]++;
-        this.firstError[e.kind] ??= `${e.message}: ${JSON.stringify(e.text)}`;
-      },
+      onError: (e) => countDrop(this.counters, this.firstError, e),
     });
   }
 
   private allocate(): void {
     const n = (this.servoCount = this.opts.arm.servos.length);
     this.pwm = new Float64Array(n).fill(NaN);
+    this.angle = new Float64Array(n).fill(NaN);
     this.rendered = new Float64Array(n).fill(NaN);
     this.commandedPwm = new Float64Array(n).fill(NaN);
     this.temp = new Float64Array(n).fill(NaN);
@@ -183,6 +191,9 @@ export class ArmStore {
       if (f.type === 'position') {
         if (positions++ === 0) this.stateArrived(g.time);
         this.setPosition(f.id, f.pwm);
+      } else if (f.type === 'angle') {
+        if (positions++ === 0) this.stateArrived(g.time);
+        this.setAngle(f.id, f.deg);
       } else if (f.type === 'health') {
         health++;
         this.setHealth(f.id, f.temp, f.mv);
@@ -204,6 +215,10 @@ export class ArmStore {
         this.stateArrived(f.time);
         this.setPosition(f.id, f.pwm);
         break;
+      case 'angle':
+        this.stateArrived(f.time);
+        this.setAngle(f.id, f.deg);
+        break;
       case 'health':
         this.rowTemp.fill(NaN);
         this.rowVolt.fill(NaN);
@@ -221,8 +236,18 @@ export class ArmStore {
         this.counters.controllerErrors++;
         this.lastControllerError = f.text;
         break;
+      // `$TIM` stamps the frames after it (the reader does that), and host → arm frames
+      // someone else published on the status topic say nothing about the arm.
+      case 'time':
+      case 'move':
+      case 'angleMove':
+      case 'readPosition':
+      case 'readHealth':
+      case 'stop':
+      case 'kms':
+        break;
       default:
-        break; // `$TIM`, and host → arm frames someone else published
+        return unhandled(f);
     }
   }
 
@@ -237,7 +262,18 @@ export class ArmStore {
   private setPosition(id: number, pwm: number): void {
     if (id >= this.servoCount) return;
     this.pwm[id] = pwm;
-    const deg = angleFromPwm(pwm, this.opts.arm.servos[id]!.polarity);
+    this.retarget(id, angleFromPwm(pwm, this.opts.arm.servos[id]!.polarity));
+  }
+
+  /** An angle report (§8): drawn as it came, with no pulse on the way (±360° stays ±360°). */
+  private setAngle(id: number, deg: number): void {
+    if (id >= this.servoCount) return;
+    this.pwm[id] = PWM_CENTRE + this.opts.arm.servos[id]!.polarity * US_PER_DEG * deg;
+    this.retarget(id, deg);
+  }
+
+  private retarget(id: number, deg: number): void {
+    this.angle[id] = deg;
     this.tweens[id]!.retarget(
       deg,
       this.now,
@@ -297,6 +333,7 @@ export class ArmStore {
   resetArm(): void {
     this.reader.reset();
     this.pwm.fill(NaN);
+    this.angle.fill(NaN);
     this.rendered.fill(NaN);
     this.commandedPwm.fill(NaN);
     this.temp.fill(NaN);

@@ -9,7 +9,15 @@
  *   A prismatic axis maps its pulse range linearly onto its limits: pulseMin ↔ min and
  *   pulseMax ↔ max with polarity +1, the other way round with −1; rounded to whole µs.
  */
-import { PWM_MAX, PWM_MIN, SERVO_RANGE_DEG, angleFromPwm, pwmFromAngle } from '@armtwin/protocol';
+import {
+  PWM_CENTRE,
+  PWM_MAX,
+  PWM_MIN,
+  SERVO_RANGE_DEG,
+  US_PER_DEG,
+  angleFromPwm,
+  pwmFromAngle,
+} from '@armtwin/protocol';
 import type { ProfileServo } from './types.ts';
 
 const DEG = Math.PI / 180;
@@ -25,8 +33,13 @@ export function servoFromPwm(servo: ProfileServo, pwm: number): number {
     : servo.max - u * (servo.max - servo.min);
 }
 
-/** Pulse width (integer µs) for a servo value (deg or mm). Not clamped. */
+/**
+ * Pulse width (integer µs) for a servo value (deg or mm). Not clamped. A servo that speaks
+ * angles (`units: "angle"`) never travels as a pulse: its pulse here is the exact, unrounded
+ * §2 pulse-equivalent, so that its angle survives every conversion whole (350° stays 350°).
+ */
 export function pwmFromServo(servo: ProfileServo, s: number): number {
+  if (servo.units === 'angle') return PWM_CENTRE + servo.polarity * US_PER_DEG * s;
   if (servo.type === 'revolute') return pwmFromAngle(s, servo.polarity);
   const u = (s - servo.min) / (servo.max - servo.min);
   const span = servo.pulseMax - servo.pulseMin;

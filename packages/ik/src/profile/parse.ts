@@ -3,12 +3,13 @@
  * and return it typed, or every problem found, each message naming its field. Pure: the caller
  * reads the file and runs `JSON.parse`. The format is described in docs/robots.md.
  */
-import { PWM_MAX, PWM_MIN, SERVO_ID_MAX } from '@armtwin/protocol';
+import { ANGLE_DEG_MAX, PWM_MAX, PWM_MIN, SERVO_ID_MAX } from '@armtwin/protocol';
 import { pwmFromServo, servoFromPwm, servoWithinLimits, pwmWithinLimits } from './convert.ts';
 import { Fields, type Json } from './fields.ts';
 import {
   PROFILE_FORMAT,
   PROFILE_SERVO_DEFAULTS as D,
+  SERVO_UNITS,
   type Analytic5Spec,
   type ParseProfileResult,
   type ProfileIk,
@@ -22,6 +23,7 @@ const SERVO_KEYS = [
   'name',
   'joint',
   'type',
+  'units',
   'polarity',
   'offset',
   'pulseMin',
@@ -50,6 +52,7 @@ function parseServo(f: Fields, path: string, raw: unknown): ProfileServo | undef
   const name = f.string(`${path}.name`, o.name);
   const joint = f.string(`${path}.joint`, o.joint);
   const type = f.oneOf(`${path}.type`, o.type, ['revolute', 'prismatic'] as const);
+  const units = f.oneOf(`${path}.units`, o.units, SERVO_UNITS, D.units);
   const polarity = f.oneOf(`${path}.polarity`, o.polarity, [1, -1] as const, D.polarity);
   const offset = f.number(`${path}.offset`, o.offset, { fallback: D.offset });
   const pulseMin = f.number(`${path}.pulseMin`, o.pulseMin, {
@@ -70,6 +73,7 @@ function parseServo(f: Fields, path: string, raw: unknown): ProfileServo | undef
     name,
     joint,
     type,
+    units,
     polarity,
     offset,
     pulseMin,
@@ -90,7 +94,20 @@ function parseServo(f: Fields, path: string, raw: unknown): ProfileServo | undef
       `${path}.offset`,
       'must be 0 (or absent) on a prismatic axis: its pulse range maps onto min…max',
     );
-  if (s.type === 'revolute') {
+  if (s.units === 'angle') {
+    if (s.type !== 'revolute')
+      return f.fail(
+        `${path}.units`,
+        '"angle" is for revolute servos only (angle frames carry degrees)',
+      );
+    const lo = s.min - s.offset;
+    const hi = s.max - s.offset;
+    if (lo < -ANGLE_DEG_MAX || hi > ANGLE_DEG_MAX)
+      return f.fail(
+        `${path}.min`,
+        `limits ${s.min}…${s.max}° (offset ${s.offset}°) are servo angles ${lo}…${hi}°, outside what an angle frame carries (±${ANGLE_DEG_MAX}°)`,
+      );
+  } else if (s.type === 'revolute') {
     const a = pwmFromServo(s, s.min - s.offset);
     const b = pwmFromServo(s, s.max - s.offset);
     if (Math.min(a, b) < s.pulseMin || Math.max(a, b) > s.pulseMax)

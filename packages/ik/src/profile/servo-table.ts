@@ -3,10 +3,10 @@
  * simulator runs (`armtwin sim --profile <name>`), a named pose as pulses, and, for an
  * `analytic5` profile, the `ArmProfile` that `solveIk` takes.
  */
-import { PWM_MAX, PWM_MIN, SERVO_RANGE_DEG, angleFromPwm } from '@armtwin/protocol';
+import { US_PER_DEG, angleFromPwm } from '@armtwin/protocol';
 import type { ArmProfile, ServoSpec } from '../arm.ts';
 import { maxSpeedPwm, pwmFromServo, pwmLimits, servoLimits } from './convert.ts';
-import type { Profile } from './types.ts';
+import type { Profile, ServoUnits } from './types.ts';
 
 /** One servo as a simulator sees it: everything in pulses (µs). */
 export interface ServoTableEntry {
@@ -16,6 +16,10 @@ export interface ServoTableEntry {
   readonly key: string;
   readonly name: string;
   readonly type: 'revolute' | 'prismatic';
+  /** What it speaks on the wire; an `angle` servo's pulses are exact §2 pulse-equivalents. */
+  readonly units: ServoUnits;
+  /** Mounting polarity (§2's k): turns an angle servo's pulse-equivalent into its angle. */
+  readonly polarity: 1 | -1;
   /** Pulses of the joint limits, `minPwm ≤ maxPwm`; anything outside is refused. */
   readonly minPwm: number;
   readonly maxPwm: number;
@@ -45,6 +49,8 @@ export function servoTable(profile: Profile): ServoTableEntry[] {
       key: s.key,
       name: s.name,
       type: s.type,
+      units: s.units,
+      polarity: s.polarity,
       minPwm: min,
       maxPwm: max,
       maxSpeedPwmPerS: maxSpeedPwm(s),
@@ -71,32 +77,49 @@ export function armProfileFromProfile(profile: Profile): ArmProfile | undefined 
       maxDeg: max,
       jointOffsetDeg: a.jointOffsetsDeg[i] ?? 0,
       maxSpeedDegPerS: s.maxSpeed,
+      ...(s.units === 'angle' ? { units: 'angle' as const } : {}),
     };
   });
   return { name: profile.title, links: { ...a.links }, servos };
 }
 
-const US_PER_DEG = (PWM_MAX - PWM_MIN) / SERVO_RANGE_DEG;
-
 /**
  * The `ArmProfile` of any profile in pulse terms: each servo's pulse limits and pulse speed
  * from `servoTable`, written as §2 angles with polarity +1, which round-trip to exactly the
  * same pulses (a prismatic axis included). What a servo model or the HUD's store counts in
- * for an arm the §4 solver does not describe.
+ * for an arm the §4 solver does not describe. A servo that speaks angles (`units: "angle"`)
+ * keeps its own servo angles instead (polarity, limits less the offset, speed), so that its
+ * positions are never rounded to a pulse and may exceed the pulse range.
  */
 export function pulseEquivalentArm(profile: Profile): ArmProfile {
   return {
     name: profile.title,
     links: { l0: 0, l1: 0, l2: 0, l3: 0 },
-    servos: servoTable(profile).map((s) => ({
-      id: s.id,
-      name: s.name,
-      polarity: 1,
-      minDeg: angleFromPwm(s.minPwm),
-      maxDeg: angleFromPwm(s.maxPwm),
-      jointOffsetDeg: 0,
-      maxSpeedDegPerS: s.maxSpeedPwmPerS / US_PER_DEG,
-    })),
+    servos: servoTable(profile).map((s, i): ServoSpec => {
+      const p = profile.servos[i]!;
+      if (p.units === 'angle') {
+        const { min, max } = servoLimits(p);
+        return {
+          id: s.id,
+          name: s.name,
+          polarity: p.polarity,
+          minDeg: min,
+          maxDeg: max,
+          jointOffsetDeg: 0,
+          maxSpeedDegPerS: p.maxSpeed,
+          units: 'angle',
+        };
+      }
+      return {
+        id: s.id,
+        name: s.name,
+        polarity: 1,
+        minDeg: angleFromPwm(s.minPwm),
+        maxDeg: angleFromPwm(s.maxPwm),
+        jointOffsetDeg: 0,
+        maxSpeedDegPerS: s.maxSpeedPwmPerS / US_PER_DEG,
+      };
+    }),
   };
 }
 

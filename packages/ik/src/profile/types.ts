@@ -12,6 +12,13 @@ export const PROFILE_FORMAT = 'armtwin-profile/1';
 
 export type ServoKind = 'revolute' | 'prismatic';
 
+/**
+ * What a servo speaks on the wire: `pulse` (§2 pulse widths, `#IIIP…`) or `angle` (§8 angle
+ * frames `#IIIA±ddd.dd…`, bus servos such as Dynamixel or Feetech). Declared once.
+ */
+export const SERVO_UNITS = ['pulse', 'angle'] as const;
+export type ServoUnits = (typeof SERVO_UNITS)[number];
+
 /** Optional servo fields and their values when a profile leaves them out (declared once). */
 export const PROFILE_SERVO_DEFAULTS = {
   /** Mounting polarity k of PROTOCOL.md §2. */
@@ -22,6 +29,8 @@ export const PROFILE_SERVO_DEFAULTS = {
   pulseMin: 500,
   /** Highest pulse the servo accepts, µs. */
   pulseMax: 2500,
+  /** What the servo speaks on the wire. */
+  units: 'pulse',
 } as const;
 
 export interface ProfileServo {
@@ -34,6 +43,12 @@ export interface ProfileServo {
   /** The URDF joint this servo drives. */
   readonly joint: string;
   readonly type: ServoKind;
+  /**
+   * `pulse`: positions travel as pulse widths, so the limits must fit the pulse range.
+   * `angle`: positions travel as §8 angle frames in servo degrees (revolute only); the limits
+   * may span up to ±999.99° of servo angle and `pulseMin`/`pulseMax` do not apply.
+   */
+  readonly units: ServoUnits;
   /** Mounting polarity: +1, or −1 when a higher pulse turns (or moves) the joint negative. */
   readonly polarity: 1 | -1;
   /**

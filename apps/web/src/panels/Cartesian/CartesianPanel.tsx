@@ -25,7 +25,7 @@ const CART_FIELDS = [
 ] as const;
 
 export function CartesianPanel() {
-  const { store, link, target, robots } = useHud();
+  const { store, link, target, robots, requests } = useHud();
   const [fields, setFields] = useState(INITIAL);
   const [touched, setTouched] = useState(false);
   const [sent, setSent] = useState<{ text: string; replies: number } | null>(null);
@@ -98,7 +98,7 @@ export function CartesianPanel() {
         !robots.fleet.request({ id, mode: 'joint', targets, execute: true })
       )
         return setRefusal('Not sent: the broker is not connected.');
-      robots.requests.sent(id, `move to ${parsed.x} ${parsed.y} ${parsed.z}`);
+      requests.sent(id, `move to ${parsed.x} ${parsed.y} ${parsed.z}`);
       setSent({
         text: `(${parsed.x}, ${parsed.y}, ${parsed.z}) as a motion request`,
         replies: Infinity,

@@ -1,5 +1,5 @@
 /**
- * Command box (issue 9): "home", "open gripper", "move to 150 0 80", "line to …", "plan …" →
+ * Command box: "home", "open gripper", "move to 150 0 80", "line to …", "plan …" →
  * `parseCommand` (@armtwin/motion) against the arm's profile → a motion request on
  * `arm/{id}/request`; the arm's feedback (planned, executing, done, unreachable with its code in
  * words, failed with its message) is listed as it arrives, as text only. The tip line is the FK
@@ -14,8 +14,7 @@ import { feedbackWords } from '../../robots/feedback.ts';
 import { nextRequestId } from './RequestLog.ts';
 
 export function CommandPanel() {
-  const { robots, link, store } = useHud();
-  const log = robots.requests;
+  const { robots, requests: log, link, store } = useHud();
   const [text, setText] = useState('');
   const [error, setError] = useState('');
   const fleet = robots.fleet;

@@ -11,7 +11,8 @@ import { downloadText } from './download.ts';
 import { timeTickFormat, type ChartSpec } from './historyChart.ts';
 import type { AngleViews, OverviewViews } from './loadHistory.ts';
 import { SeriesChart } from './SeriesChart.tsx';
-import type { Loaded, SeriesAnswer } from './types.ts';
+import type { SeriesAnswer } from '@armtwin/api';
+import type { Loaded } from './loaded.ts';
 import { ViewError, ViewHeader } from './ViewHeader.tsx';
 
 const colourOf = (id: string) => SERVO_COLOURS[Number(id) % SERVO_COLOURS.length]!;

@@ -41,8 +41,20 @@ function initialChoice(): RangeChoice {
 }
 
 export function HistoryPanel() {
-  const { settings, store, replay } = useHud();
+  const { settings, store, replay, robots } = useHud();
   const servos = store.opts.arm.servos;
+  const sliders = robots.active.spec.sliders;
+  // The replay's angles are the store's (§2 degrees of the store's profile; an angle servo's own
+  // angle as stored): shown in joint units.
+  const replayJoints = useMemo(
+    () =>
+      sliders.map((j) => ({
+        name: j.name,
+        unit: j.unit,
+        value: (a: number) => j.valueFromAngle(a),
+      })),
+    [sliders],
+  );
   const arm = settings.armId;
   const { apiBase, username, password } = settings;
   // Under `armtwin up` with users, /api wants the log-in's password (HTTP Basic).
@@ -172,13 +184,7 @@ export function HistoryPanel() {
           <TablesView arm={arm} overview={overview} servoName={servoName} />
         )}
         {tab === 'replay' && (
-          <ReplayControls
-            api={api}
-            arm={arm}
-            range={range}
-            player={replay}
-            servoNames={servos.map((s) => s.name)}
-          />
+          <ReplayControls api={api} arm={arm} range={range} player={replay} joints={replayJoints} />
         )}
       </div>
     </details>

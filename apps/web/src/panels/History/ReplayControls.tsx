@@ -11,17 +11,32 @@ import { REPLAY_SPEEDS, type ReplaySpeed } from '../../replay/ReplayClock.ts';
 import { clockTime, fixed } from './format.ts';
 import type { HistoryApi } from './historyApi.ts';
 import type { TimeRange } from './range.ts';
-import type { PoseAnswer } from './types.ts';
+import type { PoseAnswer } from '@armtwin/api';
 import { ViewError } from './ViewHeader.tsx';
 
 const SCRUB_SAMPLE_MS = 100;
+
+export interface ReplayJoint {
+  name: string;
+  unit: 'deg' | 'mm';
+  /** The joint value (deg, or mm for a prismatic axis) of a store angle (degrees). */
+  value(storeAngle: number): number;
+}
+
+/** `45.0°`, `1500.0 mm`, or `—` while the record has no sample for the servo. */
+function jointWords(j: ReplayJoint | undefined, angle: number): string {
+  if (Number.isNaN(angle)) return '—';
+  if (!j) return `${fixed(angle, 1)}°`;
+  return j.unit === 'mm' ? `${fixed(j.value(angle), 1)} mm` : `${fixed(j.value(angle), 1)}°`;
+}
 
 export function ReplayControls(props: {
   api: HistoryApi;
   arm: string;
   range: TimeRange | null;
   player: ReplayPlayer;
-  servoNames: string[];
+  /** Per servo of the active robot: its name and the replay's store angle in joint units. */
+  joints: readonly ReplayJoint[];
 }) {
   const { player, range } = props;
   const [error, setError] = useState<string | null>(null);
@@ -35,7 +50,7 @@ export function ReplayControls(props: {
       start: player.clock.start,
       stop: player.clock.stop,
       speed: player.clock.speed,
-      angles: Array.from(player.angles, (a) => (Number.isNaN(a) ? '—' : `${fixed(a, 1)}°`)),
+      angles: Array.from(player.angles, (a, i) => jointWords(props.joints[i], a)),
     }),
     SCRUB_SAMPLE_MS,
   );
@@ -113,7 +128,7 @@ export function ReplayControls(props: {
       </div>
       {s.loaded && (
         <p className="replay-angles" data-testid="replay-angles">
-          {props.servoNames.map((n, i) => `${n} ${s.angles[i]}`).join(' · ')}
+          {props.joints.map((j, i) => `${j.name} ${s.angles[i]}`).join(' · ')}
         </p>
       )}
     </div>

@@ -7,7 +7,7 @@ import { alarmsCsv, csvFileName, trackingCsv } from './csv.ts';
 import { downloadText } from './download.ts';
 import { fixed, tableTime } from './format.ts';
 import type { OverviewViews } from './loadHistory.ts';
-import type { AlarmEpisode } from './types.ts';
+import type { AlarmEpisode } from '@armtwin/api';
 import { ViewError, ViewHeader } from './ViewHeader.tsx';
 
 const KIND_WORDS: Record<string, string> = {

@@ -4,7 +4,7 @@
  * tracking-error table, the alarm log. Times as epoch ms and ISO 8601 UTC. Pure.
  */
 import type { Aligned } from './align.ts';
-import type { AlarmEpisode, TrackingJoint } from './types.ts';
+import type { AlarmEpisode, TrackingJoint } from '@armtwin/api';
 
 export type Cell = string | number | null | undefined;
 

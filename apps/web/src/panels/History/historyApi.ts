@@ -4,7 +4,7 @@
  * says history needs storage, an unreachable API says so). `fetch` and extra headers (a login
  * may add `Authorization`) are injected.
  */
-import type { Loaded } from './types.ts';
+import type { Loaded } from './loaded.ts';
 
 export type Endpoint = 'series' | 'alarms' | 'tracking' | 'pose';
 export type Fetch = (url: string, init?: RequestInit) => Promise<Response>;

@@ -5,7 +5,8 @@
  */
 import type { HistoryApi } from './historyApi.ts';
 import type { TimeRange } from './range.ts';
-import type { AlarmsAnswer, Loaded, SeriesAnswer, TrackingAnswer } from './types.ts';
+import type { AlarmsAnswer, SeriesAnswer, TrackingAnswer } from '@armtwin/api';
+import type { Loaded } from './loaded.ts';
 
 export interface OverviewViews {
   range: TimeRange;

@@ -2,7 +2,7 @@
  * Jog: one slider per servo of the arm's profile, named after its joint ("Base", "Shoulder", …),
  * in degrees (millimetres for a prismatic axis) within the joint's limits (so the HUD never sends
  * an out-of-limit pulse). Dragging or arrow keys
- * publish `#IIIPppppTtttt!`, coalesced by ArmLink to ≤ 20 per second per servo. Disabled while
+ * publish `#IIIPppppTtttt!` (`#IIIA±ddd.ddTtttt!` for a servo that speaks angles), coalesced by ArmLink to ≤ 20 per second per servo. Disabled while
  * the data is stale or the broker is not connected.
  */
 import { useHud } from '../../hud/HudContext.ts';
@@ -17,7 +17,13 @@ export function JogPanel() {
     return {
       enabled: link.permissions.command && store.connection === 'connected' && !store.isStale(now),
       allowed: link.permissions.command,
-      live: Array.from(store.pwm, (p, i) => round1(servos[i]?.valueFromPwm(p) ?? NaN)),
+      live: Array.from(store.pwm, (p, i) => {
+        const spec = servos[i];
+        if (!spec) return NaN;
+        return round1(
+          spec.speaksAngle ? spec.valueFromAngle(store.angle[i]!) : spec.valueFromPwm(p),
+        );
+      }),
       commanded: Array.from(store.commandedPwm, (p, i) =>
         round1(servos[i]?.valueFromPwm(p) ?? NaN),
       ),

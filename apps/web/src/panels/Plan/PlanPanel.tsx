@@ -1,5 +1,5 @@
 /**
- * Plan (issue 9): waypoints as spheres in the 3D view (add one at the tip or at the Cartesian
+ * Plan: waypoints as spheres in the 3D view (add one at the tip or at the Cartesian
  * target, or click the floor with "place" on; drag a sphere to move it, Shift+drag for height;
  * or type the numbers), joint-space or Cartesian path. "Preview" plans from where the arm is
  * (@armtwin/motion, in the page) and the ghost runs along the plan; "Execute" streams it to the
@@ -28,8 +28,8 @@ const PLAN_LINEAR_SPEED = 80;
 type Planned = { plan: Plan; spec: MotionSpec };
 
 export function PlanPanel() {
-  const { robots, store, link, target } = useHud();
-  const { waypoints, preview, runner } = robots;
+  const { robots, plan: tools, store, link, target } = useHud();
+  const { waypoints, preview, runner } = tools;
   const [mode, setMode] = useState<MotionMode>('cartesian');
   const [note, setNote] = useState<{ text: string; bad: boolean } | null>(null);
 

@@ -101,7 +101,7 @@ export class PlanRunner {
     const r = exec.step(now, actual);
     switch (r.kind) {
       case 'move': {
-        const frame = moveGroup(robot.ids, this.lastSent, r.pwm, r.ms);
+        const frame = moveGroup(robot.ids, this.lastSent, r.pwm, r.ms, robot.table);
         if (frame && link.sendGroup(frame)) this.sent++;
         if (frame) this.lastSent = r.pwm;
         this.state = 'running';

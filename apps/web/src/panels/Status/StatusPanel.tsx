@@ -1,16 +1,18 @@
 /**
  * Status: broker connection, arm online/offline (retained `arm/{id}/online`), message rate,
- * live `$PNG` round trip, frames the reader dropped, history storage, and a stale-data warning
- * when no state report has come for more than 1 s.
+ * live `$PNG` round trip, what each reader dropped (the arm's status stream; the fleet's
+ * reports of the other arms, with its rejected profiles and feedback), history storage, and a
+ * stale-data warning when no state report has come for more than 1 s.
  */
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { useStorageStatus } from './useStorageStatus.ts';
-import { CONNECTION_WORDS, armWords, formatRate } from './words.ts';
+import { CONNECTION_WORDS, armWords, fleetRejects, formatRate } from './words.ts';
 import { gapWords } from '../../mqtt/GapTracker.ts';
+import { droppedWords } from '../../store/readerErrors.ts';
 
 export function StatusPanel() {
-  const { store, settings, link } = useHud();
+  const { store, settings, link, robots } = useHud();
   const storage = useStorageStatus();
   const s = useSampled(() => {
     const now = performance.now();
@@ -30,10 +32,10 @@ export function StatusPanel() {
       states: formatRate(store.stateRatePerS(now)),
       rtt: pingFresh && !Number.isNaN(rtt) ? `${rtt.toFixed(rtt < 10 ? 1 : 0)} ms` : '—',
       dropped: store.counters.dropped,
-      droppedKinds: Object.entries(store.counters.droppedByKind)
-        .filter(([, n]) => n > 0)
-        .map(([k, n]) => `${k} ${n}`)
-        .join(', '),
+      droppedKinds: droppedWords(store.counters.droppedByKind),
+      fleetDropped: robots.fleet.counters.dropped,
+      fleetDroppedKinds: droppedWords(robots.fleet.counters.droppedByKind),
+      fleetRejected: fleetRejects(robots.fleet.counters),
       published: store.counters.published,
       controllerError: store.lastControllerError,
     };
@@ -68,6 +70,12 @@ export function StatusPanel() {
         <dd data-testid="dropped" title={s.droppedKinds}>
           {s.dropped} frame{s.dropped === 1 ? '' : 's'}
           {s.droppedKinds && <span className="dim"> ({s.droppedKinds})</span>}
+        </dd>
+        <dt>Fleet</dt>
+        <dd data-testid="fleet-dropped" title={s.fleetDroppedKinds}>
+          {s.fleetDropped} frame{s.fleetDropped === 1 ? '' : 's'} dropped
+          {s.fleetDroppedKinds && <span className="dim"> ({s.fleetDroppedKinds})</span>}
+          {s.fleetRejected && <span className="dim"> · {s.fleetRejected}</span>}
         </dd>
         <dt>Sent</dt>
         <dd>{s.published} commands</dd>

@@ -14,3 +14,12 @@ export const armWords = (online: boolean | null): string =>
 
 export const formatRate = (perS: number): string =>
   perS >= 100 ? perS.toFixed(0) : perS.toFixed(1);
+
+/** `1 bad profile, 2 bad feedback` ('' when none). */
+export function fleetRejects(c: { badProfiles: number; badFeedback: number }): string {
+  const parts: string[] = [];
+  if (c.badProfiles > 0)
+    parts.push(`${c.badProfiles} bad profile${c.badProfiles === 1 ? '' : 's'}`);
+  if (c.badFeedback > 0) parts.push(`${c.badFeedback} bad feedback`);
+  return parts.join(', ');
+}

@@ -1,0 +1,115 @@
+/**
+ * The optional parts of `armtwin up`: the HUD's build (found only if this checkout has the HUD's
+ * sources; `up` says plainly when it runs without it) and the middleware with its storage (a
+ * local influxd when no INFLUX_URL is given). The middleware is imported when it is started, so
+ * `--no-middleware` loads none of it.
+ */
+import { spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import type {
+  LocalInflux,
+  Middleware,
+  MiddlewareConfig,
+  MiddlewareDeps,
+} from '@armtwin/middleware';
+
+export const REPO_ROOT = path.resolve(
+  path.dirname(fileURLToPath(import.meta.url)),
+  '..',
+  '..',
+  '..',
+);
+export const WEB_DIR = path.join(REPO_ROOT, 'apps', 'web');
+export const WEB_DIST = path.join(WEB_DIR, 'dist');
+export const LOCAL_INFLUX_DATA = path.join(REPO_ROOT, '.armtwin', 'influx');
+export const MIDDLEWARE_SPOOL = path.join(REPO_ROOT, '.armtwin', 'middleware-spool');
+
+type Say = (msg: string) => void;
+
+/** Builds the HUD when it has sources but no build; returns whether dist/index.html exists. */
+export function ensureWebBuild(say: Say): boolean {
+  if (fs.existsSync(path.join(WEB_DIST, 'index.html'))) return true;
+  const pkg = path.join(WEB_DIR, 'package.json');
+  if (!fs.existsSync(pkg) || !fs.existsSync(path.join(WEB_DIR, 'index.html'))) {
+    say('HUD: not in this checkout yet (apps/web); the page says so');
+    return false;
+  }
+  say('HUD: apps/web/dist is missing; building it (npm run build -w @armtwin/web)…');
+  const r = spawnSync('npm', ['run', 'build', '-w', '@armtwin/web'], {
+    cwd: REPO_ROOT,
+    stdio: ['ignore', 2, 2],
+  });
+  const ok = r.status === 0 && fs.existsSync(path.join(WEB_DIST, 'index.html'));
+  if (!ok) say('HUD: the build failed (see above); serving without it');
+  return ok;
+}
+
+type ConnectFn = NonNullable<MiddlewareDeps['connect']>;
+
+/** How the middleware reaches the broker, and the token its HTTP API requires. */
+export interface MiddlewareLink {
+  /** Shown in /healthz. */
+  mqttUrl: string;
+  /** Connects its MQTT client (in-process to the embedded broker). */
+  connect: ConnectFn;
+  /** API_TOKEN ('' = open API). */
+  apiToken: string;
+}
+
+export interface StartedMiddleware {
+  middleware: Middleware;
+  influx: LocalInflux | null;
+  /** Where points go, in words. */
+  storage: string;
+}
+
+/**
+ * Starts the middleware on the broker of `link`: storage is INFLUX_URL if given, else a local
+ * influxd under .armtwin/influx if one can be started, else none. Throws when it fails to start.
+ */
+export async function startMiddlewarePart(
+  link: MiddlewareLink,
+  influxUrl: string,
+  env: Record<string, string | undefined>,
+  say: Say,
+): Promise<StartedMiddleware> {
+  const mod = await import('@armtwin/middleware');
+  let influx: LocalInflux | null = null;
+  const overrides: Partial<MiddlewareConfig> = {
+    mqttUrl: link.mqttUrl,
+    apiToken: link.apiToken,
+    spoolDir: env.SPOOL_DIR || MIDDLEWARE_SPOOL,
+    // `armtwin up` checks log-ins itself (the broker's throttle, one lockout for MQTT and /api)
+    // and hands the middleware its token: a second users file and throttle would go unused.
+    usersFile: '',
+  };
+  if (influxUrl) {
+    overrides.influxUrl = influxUrl;
+  } else {
+    fs.mkdirSync(LOCAL_INFLUX_DATA, { recursive: true });
+    influx = await mod.startLocalInflux({
+      dataDir: LOCAL_INFLUX_DATA,
+      log: (m) => say(`influxd: ${m}`),
+    });
+    if (influx)
+      Object.assign(overrides, {
+        influxUrl: influx.url,
+        influxBucket: influx.bucket,
+        influxToken: '',
+        influxOrg: '',
+      });
+  }
+  const config: MiddlewareConfig = { ...mod.loadConfig(env), ...overrides };
+  try {
+    const middleware = await mod.startMiddleware(config, { listen: false, connect: link.connect });
+    const storage = config.influxUrl
+      ? `InfluxDB at ${config.influxUrl}${influx ? ` (local influxd, data in ${path.relative(REPO_ROOT, LOCAL_INFLUX_DATA)})` : ''}`
+      : 'NONE: no INFLUX_URL and no local influxd could be started, so nothing is stored';
+    return { middleware, influx, storage };
+  } catch (err) {
+    await influx?.stop();
+    throw err;
+  }
+}

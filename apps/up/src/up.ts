@@ -1,0 +1,241 @@
+/**
+ * `armtwin up` (what `npm start` runs): the embedded broker, ONE HTTP(S) server (the HUD's
+ * files, MQTT over WebSockets at /mqtt, the middleware under /api), the simulated arm, and the
+ * middleware with its storage, each as far as it exists. The arm and the middleware connect to
+ * the broker in-process (no socket, no password) with the device and middleware roles.
+ * `stop()` takes them down in order: the sim says offline, the middleware flushes, influxd
+ * stops, the broker and server close.
+ *
+ * Security (SECURITY.md): without a users file this is the anonymous local demo and the broker
+ * refuses any non-loopback host. With one, every MQTT client logs in, and /api (but /healthz)
+ * needs either the API token as a bearer token or a user's name and password (HTTP Basic).
+ */
+import { randomBytes } from 'node:crypto';
+import http from 'node:http';
+import https from 'node:https';
+import {
+  basicCredentials,
+  whoamiAnswer,
+  type LoginResult,
+  type LoginThrottle,
+  type Users,
+} from '@armtwin/auth';
+import { startBroker, type Broker, type BrokerTls } from '@armtwin/broker';
+import { linkOptions } from '@armtwin/protocol';
+import { DEFAULT_PROFILE, loadSimProfile, simWill, startMqttSim, type MqttSim } from '@armtwin/sim';
+import { ensureWebBuild, startMiddlewarePart, WEB_DIST, type StartedMiddleware } from './parts.ts';
+import { staticFiles } from './static-files.ts';
+
+export interface UpOptions {
+  /** The HTTP port: HUD, /mqtt, /api. 0 = any free port. */
+  httpPort: number;
+  /** The broker's MQTT/TCP port. */
+  mqttPort: number;
+  /** Fall back to a free MQTT port when `mqttPort` is taken (when it was not asked for explicitly). */
+  mqttPortFallback: boolean;
+  host: string;
+  /** The simulated arm's id and state rate. */
+  armId: string;
+  rate: number;
+  /**
+   * The simulated arms and their profiles (`--arms arm1:armtwin5,arm2:track6`), all on this
+   * broker; `sim` is the first. Unset or empty: one arm, `armId`, with the default profile.
+   */
+  arms?: { id: string; profile: string }[];
+  /** INFLUX_URL ('' = local influxd if possible). */
+  influxUrl: string;
+  /** Build the HUD if it is missing. */
+  buildWeb: boolean;
+  /** Start the middleware. */
+  middleware: boolean;
+  /** The environment handed to the middleware's own config loader. */
+  env: Record<string, string | undefined>;
+  /** Users and roles (null = the anonymous local demo, loopback only). */
+  users: Users | null;
+  /** HTTPS/WSS and MQTTS with this certificate (null = plain). */
+  tls: BrokerTls | null;
+  /** API_TOKEN for /api ('' with users = a random one, so only log-ins reach /api). */
+  apiToken: string;
+  /** Progress lines for the operator. */
+  say: (msg: string) => void;
+  onFirst: (kind: string, message: string) => void;
+}
+
+export interface Up {
+  /** The URL to open. */
+  url: string;
+  broker: Broker;
+  sim: MqttSim;
+  /** Every simulated arm, in `arms` order. */
+  sims: MqttSim[];
+  /** Resolves when the middleware (if any) is up or has failed to start. */
+  middlewareReady: Promise<StartedMiddleware | null>;
+  stop(): Promise<void>;
+}
+
+const MIDDLEWARE_MISSING = JSON.stringify({
+  ok: false,
+  storage: false,
+  error: 'the middleware is not running',
+});
+
+export async function startUp(o: UpOptions): Promise<Up> {
+  const armSpecs = o.arms?.length ? o.arms : [{ id: o.armId, profile: DEFAULT_PROFILE }];
+  const profiles = armSpecs.map((a) => loadSimProfile(a.profile)); // a bad profile fails here, before anything starts
+  const hasWeb = o.buildWeb ? ensureWebBuild(o.say) : false;
+  const broker = await startBroker({
+    host: o.host,
+    port: o.mqttPort,
+    fallbackToFreePort: o.mqttPortFallback,
+    users: o.users,
+    tls: o.tls,
+    onDenied: (what, detail) =>
+      o.onFirst(`denied:${what}`, `${what} refused ${JSON.stringify(detail)}`),
+  });
+  const apiToken = o.apiToken || (o.users ? randomBytes(32).toString('base64url') : '');
+  if (broker.fellBack)
+    o.say(`broker: port ${o.mqttPort} is taken; MQTT/TCP on ${broker.port} instead`);
+
+  let mw: StartedMiddleware | null = null;
+  const files = staticFiles(
+    WEB_DIST,
+    'The HUD is not built: run `npm run build -w @armtwin/web`.\n',
+  );
+  const api = async (req: http.IncomingMessage, res: http.ServerResponse) => {
+    if (req.url === '/api/whoami') return whoami(req, res, broker.logins);
+    if (broker.logins) await basicToBearer(req, broker.logins, apiToken);
+    if (mw?.middleware.handler(req, res)) return;
+    res.writeHead(mw ? 404 : 503, {
+      'content-type': 'application/json',
+      'cache-control': 'no-store',
+    });
+    res.end(mw ? JSON.stringify({ error: 'not found' }) : MIDDLEWARE_MISSING);
+  };
+  const onRequest = (req: http.IncomingMessage, res: http.ServerResponse) => {
+    if (req.url === '/api' || req.url?.startsWith('/api/')) {
+      api(req, res).catch((err: unknown) => {
+        o.onFirst('api', `api request failed: ${(err as Error).message}`);
+        if (!res.headersSent) res.writeHead(500).end();
+      });
+      return;
+    }
+    files(req, res);
+  };
+  const server = o.tls
+    ? https.createServer({ ...o.tls, minVersion: 'TLSv1.2' }, onRequest)
+    : http.createServer(onRequest);
+  broker.attach(server);
+  try {
+    await new Promise<void>((resolve, reject) => {
+      server.once('error', reject);
+      server.listen(o.httpPort, o.host, () => resolve());
+    });
+  } catch (err) {
+    await broker.close();
+    throw (err as NodeJS.ErrnoException).code === 'EADDRINUSE'
+      ? new Error(`HTTP port ${o.httpPort} is taken: set ARMTWIN_PORT to another port`)
+      : err;
+  }
+  const address = server.address();
+  const httpPort = typeof address === 'object' && address ? address.port : o.httpPort;
+  const shownHost = o.host === '0.0.0.0' || o.host === '::' ? 'localhost' : o.host;
+  const url = `${o.tls ? 'https' : 'http'}://${shownHost}:${httpPort}/`;
+
+  const sims = armSpecs.map(({ id }, k) => {
+    const client = broker.connectInProcess(
+      { name: `sim-${id}`, role: 'device', arm: id },
+      {
+        clientId: `armtwin-sim-${id}`,
+        will: simWill(id),
+        ...linkOptions(),
+        queueQoSZero: false,
+      },
+    );
+    const profile = profiles[k]!;
+    return startMqttSim(client, {
+      armId: id,
+      rate: o.rate,
+      onFirst: o.onFirst,
+      model: profile.model,
+      profile,
+    });
+  });
+  const sim = sims[0]!;
+
+  const middlewareReady = o.middleware
+    ? startMiddlewarePart(
+        {
+          mqttUrl: broker.url,
+          connect: (_url, opts) =>
+            broker.connectInProcess({ name: 'middleware', role: 'middleware' }, opts),
+          apiToken,
+        },
+        o.influxUrl,
+        o.env,
+        o.say,
+      ).then(
+        (started) => {
+          mw = started;
+          o.say(`middleware: running; storage: ${started.storage}`);
+          return started;
+        },
+        (err: unknown) => {
+          o.say(`middleware: failed to start: ${err instanceof Error ? err.message : String(err)}`);
+          return null;
+        },
+      )
+    : Promise.resolve(null);
+  if (!hasWeb && o.buildWeb) o.say('HUD: not available; the page at the URL says why');
+
+  let stopping: Promise<void> | undefined;
+  const stop = () =>
+    (stopping ??= (async () => {
+      await Promise.all(sims.map((s) => s.stop()));
+      const started = await middlewareReady;
+      if (started) {
+        await started.middleware
+          .stop()
+          .catch((err: Error) => o.say(`middleware: stop failed: ${err.message}`));
+        await started.influx
+          ?.stop()
+          .catch((err: Error) => o.say(`influxd: stop failed: ${err.message}`));
+      }
+      const closed = new Promise<void>((resolve) => server.close(() => resolve()));
+      await broker.close();
+      server.closeAllConnections();
+      await closed;
+    })());
+
+  return { url, broker, sim, sims, middlewareReady, stop };
+}
+
+/**
+ * HTTP Basic with a user's name and password (any role: a viewer may read the history) is
+ * turned into the bearer token the middleware checks; anything else reaches it unchanged.
+ */
+async function basicToBearer(
+  req: http.IncomingMessage,
+  logins: LoginThrottle,
+  token: string,
+): Promise<void> {
+  if (!/^Basic /i.test(req.headers.authorization ?? '')) return;
+  if ((await basicUser(req, logins)).ok) req.headers.authorization = `Bearer ${token}`;
+  else delete req.headers.authorization;
+}
+
+/** The log-in named by an HTTP Basic header, through the throttle the broker uses. */
+async function basicUser(req: http.IncomingMessage, logins: LoginThrottle): Promise<LoginResult> {
+  const creds = basicCredentials(req.headers.authorization);
+  if (!creds) return { ok: false, lockedMs: 0 };
+  return logins.login(req.socket.remoteAddress ?? 'unknown', creds.name, creds.password);
+}
+
+/** `GET /api/whoami`, for the HUD (`whoamiAnswer`): the anonymous demo is an operator. */
+async function whoami(
+  req: http.IncomingMessage,
+  res: http.ServerResponse,
+  logins: LoginThrottle | null,
+): Promise<void> {
+  const a = whoamiAnswer(logins ? await basicUser(req, logins) : 'anonymous-demo');
+  res.writeHead(a.status, a.headers).end(a.body);
+}

@@ -1,0 +1,144 @@
+/**
+ * The page's one composition root: builds every plain object the HUD runs on — settings, the
+ * store, the target preview, the replay, the 3D view, the log-in session, the arm link, the
+ * robots (fleet link and active robot), the Plan panel's objects and the request log — and
+ * wires them to each other. Nothing below `hud/` builds or wires another part; `main.tsx` only
+ * mounts what this returns.
+ */
+import mqtt from 'mqtt';
+import {
+  clearInterval as clearWorkerInterval,
+  setInterval as setWorkerInterval,
+} from 'worker-timers';
+import { ArmStore } from '../store/ArmStore.ts';
+import { TargetPreview } from '../store/TargetPreview.ts';
+import { ArmLink, type IntervalTimers } from '../mqtt/ArmLink.ts';
+import type { ConnectOptions } from '../mqtt/connectOptions.ts';
+import { loadSettings, type HudSettings } from '../config/settings.ts';
+import { armQueryProblem } from '../config/queryProblems.ts';
+import { Viewer } from '../scene/Viewer.ts';
+import { ReplayPlayer } from '../replay/ReplayPlayer.ts';
+import { Session } from '../auth/Session.ts';
+import { fetchWhoami } from '../auth/whoami.ts';
+import type { RobotView } from '../robots/ActiveRobot.ts';
+import { RobotsHub } from '../robots/RobotsHub.ts';
+import { settingsForArm } from '../robots/selectArm.ts';
+import { PlanPreview } from '../panels/Plan/PlanPreview.ts';
+import { PlanRunner } from '../panels/Plan/PlanRunner.ts';
+import { WaypointEditor } from '../panels/Plan/WaypointEditor.ts';
+import { Waypoints } from '../panels/Plan/Waypoints.ts';
+import { RequestLog } from '../panels/Command/RequestLog.ts';
+import type { Hud, PlanTools } from './HudContext.ts';
+import { installDebugHook } from './debugHook.ts';
+
+/** The page's elements: the 3D view's container and the line that says the model is loading. */
+export interface HudElements {
+  view: HTMLElement;
+  message: HTMLElement;
+}
+
+export interface HudPage {
+  readonly hud: Hud;
+  /** Connects, loads the robot model and starts the 3D view. */
+  start(): void;
+}
+
+/** mqtt.js for both of the page's clients (the arm link and the fleet link). */
+const connect = (url: string, opts: ConnectOptions) => mqtt.connect(url, opts);
+
+/** The deadman's beat keeps time in a worker: a hidden tab is not throttled into a stop. */
+const workerIntervals: IntervalTimers = {
+  setInterval: (fn, ms) => setWorkerInterval(fn, ms),
+  clearInterval: (id) => clearWorkerInterval(id),
+};
+
+const polaritiesOf = (arm: ArmStore['opts']['arm']): number[] => arm.servos.map((s) => s.polarity);
+
+/** `render(hud)` draws the panels; it is called whenever what they show changes shape. */
+export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage {
+  const settings = loadSettings();
+  const store = new ArmStore({ interpolationAlpha: settings.interpolationAlpha });
+  const target = new TargetPreview();
+  const replay = new ReplayPlayer();
+  const viewer = new Viewer(els.view, store, target, replay);
+  const session = new Session({
+    whoami: (s) => fetchWhoami(s.apiBase, s),
+    queryProblem: armQueryProblem(window.location.search),
+  });
+  // The active robot is shown by the 3D view and replayed by the sibling, both in its terms.
+  const view: RobotView = {
+    show(spec, urdfUrl) {
+      replay.configure(polaritiesOf(spec.storeArm));
+      return viewer.load(urdfUrl, spec.joints);
+    },
+  };
+  const robots = new RobotsHub(store, view, connect, settings, () => render(hud));
+  const plan: PlanTools = {
+    waypoints: new Waypoints(),
+    preview: new PlanPreview(),
+    runner: new PlanRunner(),
+    editor: null,
+  };
+  const requests = new RequestLog();
+
+  const hud: Hud = {
+    store,
+    target,
+    replay,
+    settings,
+    session,
+    robots,
+    plan,
+    requests,
+    link: new ArmLink(store, settings, connect, workerIntervals),
+    selectArm(armId: string) {
+      const next = settingsForArm(hud.settings, armId);
+      if (next) hud.reconnect(next);
+    },
+    reconnect(next: HudSettings) {
+      hud.link.stop();
+      store.resetArm();
+      store.setInterpolationAlpha(next.interpolationAlpha);
+      const prev = hud.settings;
+      hud.settings = next;
+      hud.link = new ArmLink(store, next, connect, workerIntervals);
+      plan.runner.cancel(prev.armId === next.armId ? '' : 'stopped: another arm was selected');
+      plan.preview.clear();
+      robots.switched(prev, next);
+      void session.start(hud.link);
+      render(hud);
+    },
+  };
+
+  // The ghost runs along the plan being previewed, and along each re-plan of a run.
+  viewer.ghostSource = plan.preview;
+  plan.runner.onPlan((p) => plan.preview.show(p, polaritiesOf(store.opts.arm), performance.now()));
+  robots.onFeedback((f) => requests.take(f));
+  const debug = installDebugHook(hud, viewer);
+
+  function start(): void {
+    void session.start(hud.link);
+    // Let go of the arm when the page goes away (the deadman's `0` at once, not after the will).
+    window.addEventListener('pagehide', () => hud.link.release());
+    window.addEventListener('pageshow', (e) => e.persisted && hud.reconnect(hud.settings));
+    render(hud);
+    els.message.textContent = 'Loading the arm model…';
+    robots.start(settings.armId);
+    robots.active.firstLoad
+      .then(() => {
+        els.message.hidden = true;
+        viewer.start();
+        plan.editor ??= new WaypointEditor(viewer, plan.waypoints);
+        debug.ready = true;
+        render(hud);
+      })
+      .catch((err: unknown) => {
+        els.message.classList.add('error');
+        els.message.setAttribute('role', 'alert');
+        els.message.textContent = `The arm model failed to load: ${err instanceof Error ? err.message : String(err)}`;
+        render(hud); // the panels still work without the 3D view
+      });
+  }
+
+  return { hud, start };
+}

@@ -1,0 +1,80 @@
+/**
+ * `window.__armtwin`: the page's objects for the end-to-end tests, the bench's probe and the
+ * console. Read-only by convention (apps/web/README.md § Debug hook).
+ */
+import type { ArmStore } from '../store/ArmStore.ts';
+import type { TargetPreview } from '../store/TargetPreview.ts';
+import type { ArmLink } from '../mqtt/ArmLink.ts';
+import type { DrawnRobot, Viewer } from '../scene/Viewer.ts';
+import type { ReplayPlayer } from '../replay/ReplayPlayer.ts';
+import type { Session } from '../auth/Session.ts';
+import type { ActiveRobot } from '../robots/ActiveRobot.ts';
+import type { FleetLink } from '../robots/FleetLink.ts';
+import { historyProbe } from '../panels/History/probe.ts';
+import type { Hud } from './HudContext.ts';
+
+export interface DebugHook {
+  store: ArmStore;
+  target: TargetPreview;
+  viewer: Viewer;
+  readonly link: ArmLink;
+  /** Set once the first robot model has loaded and the 3D view runs. */
+  ready: boolean;
+  replay: ReplayPlayer;
+  history: typeof historyProbe;
+  session: Session;
+  /** The fleet, the active robot, and the Plan panel's objects. */
+  robots: {
+    readonly fleet: FleetLink;
+    active: ActiveRobot;
+    waypoints: Hud['plan']['waypoints'];
+    preview: Hud['plan']['preview'];
+    runner: Hud['plan']['runner'];
+    readonly editor: Hud['plan']['editor'];
+    requests: Hud['requests'];
+  };
+  /**
+   * The URDF joint values a robot is drawn with (rad, or m for a prismatic joint), servo order:
+   * the live arm (default), the ghost, or the replay's sibling.
+   */
+  joints(which?: DrawnRobot): number[];
+}
+
+declare global {
+  interface Window {
+    __armtwin?: DebugHook;
+  }
+}
+
+/** Installs the hook; `hud` is read live (its link and settings are replaced on reconnect). */
+export function installDebugHook(hud: Hud, viewer: Viewer): DebugHook {
+  const { robots, plan } = hud;
+  const hook: DebugHook = {
+    store: hud.store,
+    target: hud.target,
+    viewer,
+    get link() {
+      return hud.link;
+    },
+    ready: false,
+    replay: hud.replay,
+    history: historyProbe,
+    session: hud.session,
+    robots: {
+      get fleet() {
+        return robots.fleet;
+      },
+      active: robots.active,
+      waypoints: plan.waypoints,
+      preview: plan.preview,
+      runner: plan.runner,
+      get editor() {
+        return plan.editor;
+      },
+      requests: hud.requests,
+    },
+    joints: (which) => viewer.jointValues(which),
+  };
+  window.__armtwin = hook;
+  return hook;
+}

@@ -1,0 +1,21 @@
+/**
+ * The part of mqtt.js's MqttClient the page's links use, and the factory that makes one. The
+ * page hands in mqtt.js (src/hud/createHud.ts); a unit test hands in a fake.
+ */
+import type { ConnectOptions } from './connectOptions.ts';
+
+export interface MqttLike {
+  on(event: 'connect' | 'reconnect' | 'close' | 'offline' | 'end', cb: () => void): unknown;
+  on(event: 'error', cb: (err: Error) => void): unknown;
+  on(event: 'message', cb: (topic: string, payload: Uint8Array) => void): unknown;
+  subscribe(topics: string[], opts: { qos: 0 | 1 }, cb?: (err: Error | null) => void): unknown;
+  publish(
+    topic: string,
+    payload: string,
+    opts: { qos: 0 | 1; retain?: boolean },
+    cb?: (err?: Error) => void,
+  ): unknown;
+  end(force?: boolean): unknown;
+}
+
+export type MqttConnect = (url: string, opts: ConnectOptions) => MqttLike;

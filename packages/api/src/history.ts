@@ -1,0 +1,87 @@
+/**
+ * The answers of the middleware's history API (apps/middleware/src/history/README.md): the
+ * middleware writes them, the HUD reads them. Times are epoch ms. Every answer carries `arm`,
+ * `start`, `stop`.
+ */
+
+export interface RangeEcho {
+  arm: string;
+  start: number;
+  stop: number;
+}
+
+/**
+ * The fields `/history/series?field=` serves; `command` is the commanded angle (measurement
+ * `command`, field `angle`), so commanded and actual can be overlaid.
+ */
+export const HISTORY_FIELDS = ['pwm', 'angle', 'temp', 'volt', 'command'] as const;
+export type HistoryField = (typeof HISTORY_FIELDS)[number];
+/** The fields the HUD charts (`pwm` is served but not charted). */
+export type SeriesField = Exclude<HistoryField, 'pwm'>;
+
+export interface Series {
+  id: string;
+  /** Epoch ms, ascending. */
+  times: number[];
+  values: number[];
+}
+
+export interface SeriesAnswer extends RangeEcho {
+  field: HistoryField;
+  every: string;
+  everyMs: number;
+  series: Series[];
+}
+
+export interface PoseAnswer extends RangeEcho {
+  every: string;
+  everyMs: number;
+  /** Servo ids, the order of each frame's angles. */
+  ids: string[];
+  /** Frame times, ascending. */
+  times: number[];
+  /** angles[frame][i] belongs to ids[i]; null before that servo's first sample. */
+  angles: (number | null)[][];
+}
+
+export const ALARM_KINDS = ['temp-warning', 'temp-critical', 'undervoltage'] as const;
+export type AlarmKind = (typeof ALARM_KINDS)[number];
+
+export interface AlarmEpisode {
+  kind: AlarmKind;
+  arm: string;
+  id: string;
+  start: number;
+  /** null: still in the alarm state at the end of the range. */
+  end: number | null;
+  /** Highest temperature (°C) or lowest voltage (V). */
+  peak: number;
+}
+
+export interface AlarmsAnswer extends RangeEcho {
+  truncated: boolean;
+  episodes: AlarmEpisode[];
+}
+
+export interface TrackingJoint {
+  id: string;
+  /** Actual samples compared. */
+  samples: number;
+  /** Mean absolute error, degrees (null with no samples). */
+  meanAbsError: number | null;
+  /** Maximum absolute error, degrees, and the time (epoch ms) it happened. */
+  maxAbsError: number | null;
+  maxAt: number | null;
+}
+
+export interface TrackingAnswer extends RangeEcho {
+  unit: 'deg';
+  stride: number;
+  truncated: boolean;
+  joints: TrackingJoint[];
+}
+
+/** Every error answer of the history API: `{error}` with a 4xx or 5xx status. */
+export interface ErrorAnswer {
+  error: string;
+}

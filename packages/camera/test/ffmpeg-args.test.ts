@@ -1,0 +1,73 @@
+import { describe, expect, it } from 'vitest';
+import {
+  describeSource,
+  ffmpegArgs,
+  ffmpegVersion,
+  filterChain,
+  parseSource,
+  DEFAULT_ENCODER_OPTIONS,
+} from '../src/index.ts';
+
+describe('camera sources', () => {
+  it('parses each kind of source', () => {
+    expect(parseSource('testsrc')).toEqual({ type: 'testsrc' });
+    expect(parseSource('/dev/video0')).toEqual({ type: 'v4l2', device: '/dev/video0' });
+    expect(parseSource('rtsp://cam.local:554/stream1')).toEqual({
+      type: 'rtsp',
+      url: 'rtsp://cam.local:554/stream1',
+    });
+    expect(parseSource('http://cam.local/video.mjpg')).toEqual({
+      type: 'mjpeg-url',
+      url: 'http://cam.local/video.mjpg',
+    });
+    for (const bad of ['video0', '/dev/../etc/passwd', 'file:///dev/video0', '-i /dev/video0', ''])
+      expect(() => parseSource(bad), bad).toThrow(RangeError);
+  });
+  it('never shows a password in a description', () => {
+    expect(describeSource(parseSource('rtsp://admin:secret@cam.local/s'))).toBe(
+      'rtsp://cam.local/s',
+    );
+  });
+});
+
+describe('ffmpeg command line', () => {
+  it('test source: paced to the wall clock, time stripe, JPEG on fd 1 and H.264 FLV on fd 3', () => {
+    const args = ffmpegArgs(parseSource('testsrc'), {}, { mjpeg: 1, h264: 3 });
+    const line = args.join(' ');
+    expect(line).toContain('-re -f lavfi -i testsrc2=size=640x480:rate=30');
+    expect(line).toContain('split=2[m][h]');
+    expect(line).toContain('setpts=RTCTIME/1000');
+    expect(line).toMatch(/-map \[m\] .* -c:v mjpeg .* -f mjpeg pipe:1/);
+    expect(line).toMatch(
+      /-map \[h\] .* -c:v libx264 -preset veryfast -tune zerolatency -profile:v baseline .* -bf 0 -g 30 .* -f flv pipe:3$/,
+    );
+  });
+  it('one output only, no split', () => {
+    const args = ffmpegArgs(parseSource('testsrc'), { timeStripe: false }, { h264: 3 });
+    expect(args.join(' ')).not.toContain('split');
+    expect(args.join(' ')).not.toContain('mjpeg');
+    expect(() => ffmpegArgs(parseSource('testsrc'), {}, {})).toThrow(RangeError);
+  });
+  it('a camera is scaled and letterboxed to the frame size, without a stripe', () => {
+    const f = filterChain(parseSource('/dev/video0'), DEFAULT_ENCODER_OPTIONS);
+    expect(f).toBe(
+      'scale=640:480:force_original_aspect_ratio=decrease,pad=640:480:(ow-iw)/2:(oh-ih)/2,format=yuv420p',
+    );
+    const v4l2 = ffmpegArgs(
+      parseSource('/dev/video0'),
+      { v4l2InputFormat: 'mjpeg' },
+      { mjpeg: 1 },
+    ).join(' ');
+    expect(v4l2).toContain(
+      '-f v4l2 -framerate 30 -video_size 640x480 -input_format mjpeg -i /dev/video0',
+    );
+    const rtsp = ffmpegArgs(parseSource('rtsp://cam/s'), {}, { mjpeg: 1 }).join(' ');
+    expect(rtsp).toContain('-rtsp_transport tcp -timeout 5000000 -i rtsp://cam/s');
+  });
+});
+
+describe('ffmpeg on this machine', () => {
+  it('ffmpegVersion says null for a program that is not there', () => {
+    expect(ffmpegVersion('/nonexistent/ffmpeg')).toBeNull();
+  });
+});

@@ -1,0 +1,304 @@
+/**
+ * The bus gateway's logic, without sockets: it does for Dynamixel or Feetech servos what the
+ * seed controller's firmware did for its own. At each line open it pings the profile's ids
+ * (missing ones reported with `$ERR` and pinged again every `repingMs`), switches wide joints to
+ * multi-turn, writes present positions as goals and turns torque on; then it reads positions
+ * with SYNC READ at the state rate and temperature and voltage at the health rate, publishing
+ * `$TIM`-stamped angle and health groups. Control frames become checked goals
+ * (`./bus-control.ts`), `$KMS` through the IK (`./bus-kms.ts`); a stop, the deadman or torque going back on write the present position as
+ * the goal. One request on the half-duplex line at a time (`./bus-line.ts`). The bytes, the
+ * clock, the timers and the publish function are injected.
+ */
+import type { Profile } from '@armtwin/ik';
+import {
+  armTopics,
+  encodeControllerError,
+  encodeTime,
+  OPERATOR_LEASE_MS,
+  OperatorWatch,
+  type OperatorTimers,
+} from '@armtwin/protocol';
+import type { BusProtocol, BusResult } from '@armtwin/servo-bus';
+import { BusControl } from './bus-control.ts';
+import type { BusKmsSolver } from './bus-kms.ts';
+import { BusLine, type BusLineCounters } from './bus-line.ts';
+import { BusReports } from './bus-reports.ts';
+import { busJoints, type BusGoal, type BusJoint } from './bus-servos.ts';
+import { goalsWrite, multiTurnWrites } from './bus-writes.ts';
+
+export interface BusGatewayIo extends OperatorTimers {
+  publish(topic: string, payload: string, opts: { qos: 0 | 1; retain: boolean }): void;
+  /** Writes to the serial line; false when it is not open. */
+  write(data: Uint8Array): boolean;
+  /** Unix epoch ms. */
+  now(): number;
+  /** Told the first time each kind of problem happens. */
+  onFirst(kind: string, message: string): void;
+}
+
+export interface BusGatewayOptions {
+  armId: string;
+  protocol: BusProtocol;
+  profile: Profile;
+  /** Line speed, for the reply time-outs. */
+  baudRate: number;
+  /** Positions read and published per second. */
+  stateRate: number;
+  /** Temperatures and voltages read and published per second. */
+  healthRate: number;
+  /** A servo that did not answer is pinged again this often, ms. */
+  repingMs: number;
+  /** A beating operator is let go after this long without a `1`, ms (0 = only a `0`). */
+  operatorLeaseMs: number;
+  /** `$KMS` through the profile's IK (`busKmsSolver`); unset: `$KMS` is refused. */
+  kms?: BusKmsSolver;
+}
+
+export const DEFAULT_BUS_GATEWAY_OPTIONS = {
+  baudRate: 1_000_000,
+  stateRate: 50,
+  healthRate: 2,
+  repingMs: 1000,
+  operatorLeaseMs: OPERATOR_LEASE_MS,
+} satisfies Partial<BusGatewayOptions>;
+
+export class BusGatewayCore {
+  readonly counters = {
+    statePayloads: 0,
+    healthPayloads: 0,
+    goalWrites: 0,
+    holds: 0,
+    deadmanStops: 0,
+    /** Servos found missing by a ping or a read (each time one goes missing). */
+    missing: 0,
+  };
+  readonly operator: OperatorWatch;
+  readonly joints: BusJoint[];
+  readonly control: BusControl;
+  readonly reports = new BusReports();
+  /** Servos that answer (others are pinged again). */
+  readonly found = new Set<number>();
+  private readonly o: BusGatewayOptions;
+  private readonly topics;
+  private readonly line: BusLine;
+  private lineOpen = false;
+  private brokerUp = false;
+  private torqueWanted = true;
+  private pollTimer: unknown;
+  private nextHealthMs = 0;
+  private nextPingMs = 0;
+
+  constructor(
+    options: Partial<BusGatewayOptions> & Pick<BusGatewayOptions, 'armId' | 'protocol' | 'profile'>,
+    private readonly io: BusGatewayIo,
+  ) {
+    this.o = { ...DEFAULT_BUS_GATEWAY_OPTIONS, ...options };
+    this.topics = armTopics(this.o.armId);
+    this.joints = busJoints(this.o.profile);
+    this.line = new BusLine(this.o.protocol, this.joints, this.o.baudRate, io);
+    this.control = new BusControl(this, this.joints, this.o.kms);
+    this.operator = new OperatorWatch(
+      io,
+      (reason) => {
+        if (!this.ready) return;
+        this.counters.deadmanStops++;
+        this.hold(this.joints.map((j) => j.id));
+        if (reason === 'lapsed') io.onFirst('deadman:lapsed', 'operator stopped beating: holding');
+      },
+      this.o.operatorLeaseMs,
+    );
+  }
+
+  /** Last position read, servo degrees, by id. */
+  get positions(): ReadonlyMap<number, number> {
+    return this.reports.positions;
+  }
+
+  /** Last health read, by id. */
+  get health(): ReadonlyMap<number, { temp: number; mv: number }> {
+    return this.reports.health;
+  }
+
+  get lineCounters(): BusLineCounters {
+    return this.line.counters;
+  }
+
+  /** The line is open and the servos found have been set up. */
+  get ready(): boolean {
+    return this.lineOpen && this.line.ready;
+  }
+
+  serialOpened(): void {
+    this.lineOpen = true;
+    this.line.reset();
+    this.found.clear();
+    this.presence();
+    const ids = this.joints.map((j) => j.id);
+    this.line.ping(ids, (found, missing) => {
+      for (const id of found) this.found.add(id);
+      this.reportMissing(missing);
+      this.setUp(found);
+      this.line.markReady();
+    });
+    this.schedule();
+  }
+
+  serialClosed(): void {
+    this.lineOpen = false;
+    this.line.reset();
+    this.io.clearTimeout(this.pollTimer);
+    this.pollTimer = undefined;
+    this.presence();
+  }
+
+  brokerConnected(connected: boolean): void {
+    this.brokerUp = connected;
+    if (connected) this.presence();
+  }
+
+  fromSerial(chunk: Uint8Array): void {
+    this.line.fromSerial(chunk);
+  }
+
+  fromOperator(payload: Uint8Array | string): void {
+    this.operator.receive(payload);
+  }
+
+  fromControl(payload: Uint8Array | string): void {
+    const replies = this.control.receive(payload);
+    if (replies.length) this.status(replies);
+  }
+
+  /** `arm/{id}/torque`: `1` torque on (goals = present positions first), `0` torque off. */
+  fromTorque(payload: Uint8Array | string): void {
+    const text = (typeof payload === 'string' ? payload : Buffer.from(payload).toString()).trim();
+    if (text !== '0' && text !== '1') return;
+    this.torqueWanted = text === '1';
+    if (!this.ready) return;
+    const ids = [...this.found];
+    if (this.torqueWanted) this.holdThen(ids, () => this.line.torque(true, ids), true);
+    else this.line.torque(false, ids, true);
+  }
+
+  /** Goals checked by `BusControl`: one sync write, after whatever is on the line now. */
+  writeGoals(goals: BusGoal[]): void {
+    this.counters.goalWrites++;
+    this.reports.remember(goals);
+    this.line.send(goalsWrite(this.o.protocol, goals), 'goal');
+  }
+
+  /** Stops `ids` where they are: goals = present positions, ahead of any queued goal. */
+  hold(ids: number[]): void {
+    this.counters.holds++;
+    this.line.dropGoals();
+    this.holdThen(ids, () => {}, true);
+  }
+
+  /** Publishes frames (already encoded) as one `$TIM`-stamped status payload. */
+  status(frames: string[]): void {
+    if (!this.brokerUp) return;
+    const payload = encodeTime(Math.round(this.io.now())) + frames.join('');
+    this.io.publish(this.topics.status, payload, { qos: 0, retain: false });
+  }
+
+  /** Reads `ids`, writes their present positions as goals, then `then()`. */
+  private holdThen(ids: number[], then: () => void, first: boolean): void {
+    const present = ids.filter((id) => this.found.has(id));
+    if (present.length === 0) return then();
+    this.line.readPositions(
+      present,
+      (r) => {
+        const goals = r.servos.map((s) => ({
+          id: s.id,
+          degrees: s.degrees,
+          speedDegPerS: this.joint(s.id).servo.maxSpeed,
+        }));
+        this.reports.remember(goals);
+        if (goals.length) this.line.send(goalsWrite(this.o.protocol, goals), 'hold', true);
+        then();
+      },
+      first,
+    );
+  }
+
+  private joint(id: number): BusJoint {
+    return this.joints.find((j) => j.id === id)!;
+  }
+
+  /** Torque off, multi-turn where needed, goals = present, torque on (as wanted). */
+  private setUp(ids: number[]): void {
+    if (ids.length === 0) return;
+    this.line.torque(false, ids);
+    for (const id of ids)
+      if (this.joint(id).multiTurn)
+        for (const w of multiTurnWrites(this.o.protocol)) this.line.config(id, w);
+    this.holdThen(ids, () => this.torqueWanted && this.line.torque(true, ids), false);
+  }
+
+  private reportMissing(missing: number[]): void {
+    if (missing.length === 0) return;
+    this.counters.missing += missing.length;
+    const text = `missing servos ${missing.map((id) => String(id).padStart(3, '0')).join(' ')}`;
+    this.io.onFirst('bus:missing', text);
+    this.status([encodeControllerError(text)]);
+  }
+
+  private schedule(): void {
+    this.io.clearTimeout(this.pollTimer);
+    this.pollTimer = this.io.setTimeout(() => this.poll(), 1000 / this.o.stateRate);
+  }
+
+  private poll(): void {
+    this.pollTimer = undefined;
+    if (!this.lineOpen) return;
+    this.schedule();
+    if (!this.line.ready) return;
+    const now = this.io.now();
+    const ids = this.joints.map((j) => j.id).filter((id) => this.found.has(id));
+    if (ids.length && !this.line.has('positions'))
+      this.line.readPositions(ids, (r) => this.onPositions(r, ids));
+    if (ids.length && now >= this.nextHealthMs && !this.line.has('health')) {
+      this.nextHealthMs = now + 1000 / this.o.healthRate;
+      this.line.readHealth(ids, (r) => this.onHealth(r, ids));
+    }
+    const lost = this.joints.map((j) => j.id).filter((id) => !this.found.has(id));
+    if (lost.length && now >= this.nextPingMs && !this.line.has('ping')) {
+      this.nextPingMs = now + this.o.repingMs;
+      this.line.ping(lost, (back) => {
+        for (const id of back) this.found.add(id);
+        this.setUp(back);
+      });
+    }
+  }
+
+  private onPositions(r: Extract<BusResult, { kind: 'positions' }>, asked: number[]): void {
+    const group = this.reports.positionFrames(r);
+    this.lose(asked, r.missing);
+    if (!group) return;
+    this.counters.statePayloads++;
+    this.status([group]);
+  }
+
+  private onHealth(r: Extract<BusResult, { kind: 'health' }>, asked: number[]): void {
+    const frames = this.reports.healthFrames(r);
+    this.lose(asked, r.missing);
+    if (frames.length === 0) return;
+    this.counters.healthPayloads++;
+    this.status(frames);
+  }
+
+  /**
+   * Servos that missed `MISSES_TO_LOSE` reads in a row: reported, left out of the reads and
+   * pinged until they are back (then set up again: they may have lost power).
+   */
+  private lose(asked: number[], missing: number[]): void {
+    const lost = this.reports.lost(asked, missing);
+    for (const id of lost) this.found.delete(id);
+    this.reportMissing(lost);
+  }
+
+  private presence(): void {
+    if (!this.brokerUp) return;
+    this.io.publish(this.topics.online, this.lineOpen ? '1' : '0', { qos: 1, retain: true });
+  }
+}

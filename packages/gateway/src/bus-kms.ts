@@ -1,0 +1,34 @@
+/**
+ * `$KMS` on a servo bus (pure): the profile's IK (§4's analytic solver, or the numeric one of a
+ * URDF chain, both through `solveTip` of `@armtwin/motion`) turned to servo degrees. The IK
+ * works in pulse widths, exact (fractional) ones, which `servoFromPwm` turns back into the
+ * same degrees; the arm's present angles seed it.
+ */
+import { pwmFromServo, servoFromPwm } from '@armtwin/ik';
+import { solveTip, type MotionRobot } from '@armtwin/motion';
+
+/** (x, y, z mm, pitch deg or undefined, degrees now by servo index) → code and target degrees (NaN = leave). */
+export type BusKmsSolver = (
+  x: number,
+  y: number,
+  z: number,
+  alpha: number | undefined,
+  degrees: readonly number[],
+) => { code: number; degrees: number[] };
+
+export function busKmsSolver(robot: MotionRobot): BusKmsSolver {
+  const servos = robot.profile.servos;
+  return (x, y, z, alpha, degrees) => {
+    const seed = servos.map((s, i) =>
+      pwmFromServo(s, Number.isFinite(degrees[i]) ? degrees[i]! : 0),
+    );
+    const r = solveTip(robot, alpha === undefined ? { x, y, z } : { x, y, z, pitch: alpha }, seed);
+    return {
+      code: r.code,
+      degrees: r.pwm.map((p, i) => (Number.isNaN(p) ? NaN : servoFromPwm(servos[i]!, p))),
+    };
+  };
+}
+
+/** The `$KMS` code for a solution a joint limit refuses (as the simulator answers it). */
+export const KMS_LIMIT_CODE = 8;

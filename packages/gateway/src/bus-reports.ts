@@ -1,0 +1,88 @@
+/**
+ * What the bus gateway reports from its reads (pure): SYNC READ results → the contract's
+ * frames, the last readings by servo (for `PRAD`/`PRTV` and the speeds of timed moves), servo
+ * error flags as `$ERR` when they change, and which servos have missed too many reads in a row.
+ */
+import { encodeAngle, encodeControllerError, encodeGroup, encodeHealth } from '@armtwin/protocol';
+import { degreesToTicks, type BusResult } from '@armtwin/servo-bus';
+import type { BusGoal } from './bus-servos.ts';
+
+/** Reads in a row a servo may miss before it counts as gone. */
+export const MISSES_TO_LOSE = 3;
+
+type Positions = Extract<BusResult, { kind: 'positions' }>;
+type Health = Extract<BusResult, { kind: 'health' }>;
+
+const id3 = (id: number) => String(id).padStart(3, '0');
+
+export class BusReports {
+  /** Last position read, servo degrees, by id. */
+  readonly positions = new Map<number, number>();
+  /** Last health read, by id. */
+  readonly health = new Map<number, { temp: number; mv: number }>();
+  private readonly problems = new Map<number, string>();
+  private readonly misses = new Map<number, number>();
+  /** The last goal written to each servo, as commanded and in ticks. */
+  private readonly commanded = new Map<number, { ticks: number; degrees: number }>();
+
+  /** Goals as written, so a servo that reaches one reports it exactly. */
+  remember(goals: readonly BusGoal[]): void {
+    for (const g of goals)
+      this.commanded.set(g.id, {
+        ticks: degreesToTicks(g.degrees, { id: g.id }),
+        degrees: g.degrees,
+      });
+  }
+
+  /**
+   * The state group `{#000A+000.00!…}` ('' when nobody answered). A servo resting on the tick
+   * of its last goal reports the goal as commanded, so an angle round-trips exactly (+350.00°
+   * stays +350.00°, not the 349.98° of tick 3982); anywhere else its tick's angle.
+   */
+  positionFrames(r: Positions): string {
+    const frames: string[] = [];
+    for (const s of r.servos) {
+      const c = this.commanded.get(s.id);
+      const degrees = c && c.ticks === s.ticks ? c.degrees : s.degrees;
+      this.positions.set(s.id, degrees);
+      if (Math.abs(degrees) <= 999.99) frames.push(encodeAngle(s.id, degrees));
+    }
+    return frames.length ? encodeGroup(frames) : '';
+  }
+
+  /**
+   * The health group `{#000T025V7400!…}` (mV capped at the frame's 9999), then `$ERR` for each
+   * servo whose error flags changed to something; [] when nobody answered.
+   */
+  healthFrames(r: Health): string[] {
+    const frames: string[] = [];
+    const errors: string[] = [];
+    for (const s of r.servos) {
+      const temp = Math.min(999, Math.max(0, Math.round(s.temperatureC)));
+      const mv = Math.min(9999, Math.max(0, Math.round(s.voltageV * 1000)));
+      this.health.set(s.id, { temp, mv });
+      frames.push(encodeHealth(s.id, temp, mv));
+      const problems = s.status.problems.join(' ');
+      if (problems !== (this.problems.get(s.id) ?? '')) {
+        this.problems.set(s.id, problems);
+        if (problems) errors.push(encodeControllerError(`servo ${id3(s.id)} ${problems}`));
+      }
+    }
+    return frames.length ? [encodeGroup(frames), ...errors] : [];
+  }
+
+  /** The servos of a read (`asked`) that have now missed `MISSES_TO_LOSE` in a row. */
+  lost(asked: readonly number[], missing: readonly number[]): number[] {
+    for (const id of asked) if (!missing.includes(id)) this.misses.delete(id);
+    const out: number[] = [];
+    for (const id of missing) {
+      const n = (this.misses.get(id) ?? 0) + 1;
+      this.misses.set(id, n);
+      if (n >= MISSES_TO_LOSE) {
+        this.misses.delete(id);
+        out.push(id);
+      }
+    }
+    return out;
+  }
+}

@@ -1,0 +1,79 @@
+/**
+ * A robot profile's servos as the bus gateway drives them (pure): bus ids are the profile's
+ * wire ids, a servo's bus position is its §8 servo angle s (0° = the centre tick, 2048 of
+ * 4096; zero offsets and direction are left to calibration), and a joint whose limits reach
+ * past half a turn either way runs multi-turn (Dynamixel extended position mode, Feetech
+ * with both angle limits 0). Control frames become goals here: limits checked, pulse widths
+ * turned into degrees through the profile, `T…` turned into a speed.
+ */
+import { servoFromPwm, servoLimits, type Profile, type ProfileServo } from '@armtwin/ik';
+import type { ServoCalibration } from '@armtwin/servo-bus';
+
+export interface BusJoint {
+  id: number;
+  servo: ProfileServo;
+  /** Servo-angle limits, degrees. */
+  min: number;
+  max: number;
+  /** Travel beyond ±180°: the servo is switched to multi-turn at start. */
+  multiTurn: boolean;
+}
+
+/** Degrees/s asked of the servo for a move of `ms` ms when none can be worked out. */
+export const BUS_MIN_SPEED_DEG_PER_S = 1;
+
+export function busJoints(profile: Profile): BusJoint[] {
+  return profile.servos.map((servo) => {
+    const { min, max } = servoLimits(servo);
+    return { id: servo.id, servo, min, max, multiTurn: min < -180 || max > 180 };
+  });
+}
+
+export const busCalibrations = (joints: readonly BusJoint[]): ServoCalibration[] =>
+  joints.map((j) => ({ id: j.id }));
+
+/** A goal for one servo: where, and at what speed (°/s). */
+export interface BusGoal {
+  id: number;
+  degrees: number;
+  speedDegPerS: number;
+}
+
+export type GoalResult = { ok: true; goal: BusGoal } | { ok: false; error: string };
+
+const id3 = (id: number) => String(id).padStart(3, '0');
+
+/**
+ * A move to `degrees` in `ms` from `fromDeg` (the last position read, NaN when unknown): the
+ * speed that arrives on time, never above the profile's `maxSpeed` (0 ms = as fast as allowed).
+ */
+export function goalFor(
+  joint: BusJoint,
+  degrees: number,
+  ms: number,
+  fromDeg: number,
+  what: string,
+): GoalResult {
+  const tol = 1e-9;
+  if (!Number.isFinite(degrees) || degrees < joint.min - tol || degrees > joint.max + tol)
+    return {
+      ok: false,
+      error: `limit ${id3(joint.id)} ${what} outside ${joint.min}..${joint.max}`,
+    };
+  const top = joint.servo.maxSpeed;
+  let speed = top;
+  if (ms > 0 && Number.isFinite(fromDeg))
+    speed = Math.min(
+      top,
+      Math.max(BUS_MIN_SPEED_DEG_PER_S, Math.abs(degrees - fromDeg) / (ms / 1000)),
+    );
+  return { ok: true, goal: { id: joint.id, degrees, speedDegPerS: speed } };
+}
+
+/** `#IIIPppppTtttt!` on a bus servo: the pulse width read through the profile (§2). */
+export const pulseGoal = (joint: BusJoint, pwm: number, ms: number, fromDeg: number) =>
+  goalFor(joint, servoFromPwm(joint.servo, pwm), ms, fromDeg, `P${pwm}`);
+
+/** `#IIIA±ddd.ddTtttt!`. */
+export const angleGoal = (joint: BusJoint, deg: number, ms: number, fromDeg: number) =>
+  goalFor(joint, deg, ms, fromDeg, `A${deg}`);

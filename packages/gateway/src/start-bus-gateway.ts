@@ -1,0 +1,170 @@
+/**
+ * Wires the bus gateway (`armtwin gateway --bus dynamixel|feetech`): the robot profile read
+ * from disk, a `SerialLink` (reopens with back-off), an mqtt.js client (last will `0` on
+ * `arm/{id}/online`) and `BusGatewayCore`, on the system clock.
+ */
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import mqtt, { type MqttClient } from 'mqtt';
+import { chainFromUrdf, parseProfile, type Profile } from '@armtwin/ik';
+import { createMotionRobot, type MotionRobot } from '@armtwin/motion';
+import { armTopics, linkOptions, SYSTEM_CLOCK } from '@armtwin/protocol';
+import type { BusProtocol } from '@armtwin/servo-bus';
+import { busKmsSolver } from './bus-kms.ts';
+import {
+  BusGatewayCore,
+  DEFAULT_BUS_GATEWAY_OPTIONS,
+  type BusGatewayOptions,
+} from './bus-gateway.ts';
+import { SerialLink } from './serial-link.ts';
+import { DEFAULT_GATEWAY_OPTIONS, type GatewayOptions } from './start-gateway.ts';
+
+/** The robots' folders: `public/models` at the repository root. */
+export const BUS_MODELS_DIR = path.resolve(
+  path.dirname(fileURLToPath(import.meta.url)),
+  '..',
+  '..',
+  '..',
+  'public',
+  'models',
+);
+
+/** The topic that turns torque off (`0`) and on (`1`): `arm/{id}/torque`, retained or not. */
+export const torqueTopic = (armId: string) => `arm/${armId}/torque`;
+
+export interface BusGatewayStartOptions extends GatewayOptions {
+  bus: BusProtocol;
+  /** Robot profile: `<modelsDir>/<name>/profile.json`. */
+  profile: string;
+  modelsDir: string;
+  stateRate: number;
+  healthRate: number;
+}
+
+export interface BusGateway {
+  core: BusGatewayCore;
+  client: MqttClient;
+  link: SerialLink;
+  stop(): Promise<void>;
+}
+
+/**
+ * Reads and parses `<modelsDir>/<name>/profile.json`, and builds its IK (a numeric profile's
+ * from its URDF); throws with every problem found.
+ */
+export function loadProfile(
+  name: string,
+  modelsDir: string = BUS_MODELS_DIR,
+): { profile: Profile; robot: MotionRobot } {
+  if (!/^[a-z0-9_-]{1,32}$/.test(name)) throw new Error(`bad profile name "${name}"`);
+  const dir = path.join(modelsDir, name);
+  const file = path.join(dir, 'profile.json');
+  const parsed = parseProfile(JSON.parse(fs.readFileSync(file, 'utf8')) as unknown);
+  if (!parsed.ok) throw new Error(`${file}:\n  ${parsed.errors.join('\n  ')}`);
+  const { profile } = parsed;
+  if (profile.ik.kind !== 'numeric') return { profile, robot: createMotionRobot(profile) };
+  const built = chainFromUrdf(profile, fs.readFileSync(path.join(dir, profile.urdf), 'utf8'));
+  if (!built.ok) throw new Error(`profile ${name}: ${built.errors.join('; ')}`);
+  return { profile, robot: createMotionRobot(profile, built.chain) };
+}
+
+export function startBusGateway(
+  options: Partial<BusGatewayStartOptions> &
+    Pick<BusGatewayStartOptions, 'serialPath' | 'mqttUrl' | 'armId' | 'bus' | 'profile'>,
+): BusGateway {
+  const o = {
+    ...DEFAULT_GATEWAY_OPTIONS,
+    baudRate: DEFAULT_BUS_GATEWAY_OPTIONS.baudRate,
+    modelsDir: BUS_MODELS_DIR,
+    stateRate: DEFAULT_BUS_GATEWAY_OPTIONS.stateRate,
+    healthRate: DEFAULT_BUS_GATEWAY_OPTIONS.healthRate,
+    ...options,
+  };
+  const { log } = o;
+  const { profile, robot } = loadProfile(o.profile, o.modelsDir);
+  const topics = armTopics(o.armId);
+  const torque = torqueTopic(o.armId);
+  const client = mqtt.connect(o.mqttUrl, {
+    clientId: `armtwin-gateway-${o.armId}-${process.pid}`,
+    ...(o.username ? { username: o.username, password: o.password ?? '' } : {}),
+    will: { topic: topics.online, payload: Buffer.from('0'), qos: 1, retain: true },
+    ...linkOptions({ keepalive: o.keepaliveS, reconnectPeriod: o.reconnectMs }),
+    queueQoSZero: false,
+  });
+  client.on('connect', () =>
+    (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true),
+  );
+  const link: SerialLink = new SerialLink(
+    { ...o.serial, path: o.serialPath, baudRate: o.baudRate },
+    {
+      onOpen: () => {
+        core.serialOpened();
+        log?.info({ serial: o.serialPath, bus: o.bus }, 'serial line open');
+      },
+      onClose: (reason) => {
+        core.serialClosed();
+        log?.warn({ reason }, 'serial line closed; reopening');
+      },
+      onData: (chunk) => core.fromSerial(chunk),
+    },
+  );
+  const coreOptions: Partial<BusGatewayOptions> &
+    Pick<BusGatewayOptions, 'armId' | 'protocol' | 'profile'> = {
+    armId: o.armId,
+    protocol: o.bus,
+    profile,
+    baudRate: o.baudRate,
+    stateRate: o.stateRate,
+    healthRate: o.healthRate,
+    operatorLeaseMs: o.operatorLeaseMs,
+    kms: busKmsSolver(robot),
+  };
+  const core = new BusGatewayCore(coreOptions, {
+    ...SYSTEM_CLOCK,
+    publish: (topic, payload, opts) => {
+      if (client.connected) client.publish(topic, payload, opts);
+    },
+    write: (data) => link.write(Buffer.from(data.buffer, data.byteOffset, data.byteLength)),
+    onFirst: o.onFirst,
+  });
+  client.on('connect', () => {
+    log?.info({ arm: o.armId }, 'broker connected');
+    core.brokerConnected(true);
+    client.subscribe(
+      [topics.control, topics.operator, torque],
+      { qos: 1 },
+      (err) => err && o.onFirst('subscribe', err.message),
+    );
+  });
+  client.on('close', () => core.brokerConnected(false));
+  client.on('offline', () => log?.warn('broker unreachable; reconnecting'));
+  client.on('error', (err) => o.onFirst(`mqtt:${err.message}`, `mqtt: ${err.message}`));
+  client.on('message', (topic, payload) => {
+    if (topic === topics.control) core.fromControl(payload);
+    else if (topic === topics.operator) core.fromOperator(payload);
+    else if (topic === torque) core.fromTorque(payload);
+  });
+  link.start();
+  log?.info(
+    { arm: o.armId, bus: o.bus, profile: o.profile, ids: core.joints.map((j) => j.id) },
+    'bus gateway running',
+  );
+  return {
+    core,
+    client,
+    link,
+    async stop() {
+      core.operator.reset();
+      core.serialClosed();
+      if (client.connected)
+        await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
+      await client.endAsync().catch(() => {});
+      await link.stop();
+      log?.info(
+        { counters: core.counters, line: core.lineCounters, serial: link.counters },
+        'gateway stopped',
+      );
+    },
+  };
+}

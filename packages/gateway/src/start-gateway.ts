@@ -1,0 +1,130 @@
+/**
+ * Wires the gateway (what `armtwin gateway` runs): a `SerialLink` (reopens with back-off) and an
+ * mqtt.js client (reconnects every `reconnectMs`, last will `0` retained on `arm/{id}/online`),
+ * both kept up on their own.
+ */
+import mqtt, { type MqttClient } from 'mqtt';
+import type { Logger } from 'pino';
+import {
+  armTopics,
+  linkOptions,
+  MQTT_KEEPALIVE_S,
+  MQTT_RECONNECT_MS,
+  OPERATOR_LEASE_MS,
+  SYSTEM_CLOCK,
+} from '@armtwin/protocol';
+import { GatewayCore } from './gateway.ts';
+import { DEFAULT_SERIAL_LINK_OPTIONS, SerialLink, type SerialLinkOptions } from './serial-link.ts';
+
+export interface GatewayOptions {
+  serialPath: string;
+  baudRate: number;
+  mqttUrl: string;
+  armId: string;
+  username?: string;
+  password?: string;
+  /** MQTT reconnect period, ms. */
+  reconnectMs: number;
+  /** MQTT keep-alive, s. */
+  keepaliveS: number;
+  /** A beating operator is let go after this long without a `1`, ms (0 = only a `0`). */
+  operatorLeaseMs: number;
+  serial: Partial<Omit<SerialLinkOptions, 'path' | 'baudRate'>>;
+  onFirst: (kind: string, message: string) => void;
+  /**
+   * Logs the serial line and the broker coming and going, and the counters at stop (unset:
+   * silent).
+   */
+  log?: Logger;
+}
+
+export const DEFAULT_GATEWAY_OPTIONS = {
+  baudRate: DEFAULT_SERIAL_LINK_OPTIONS.baudRate,
+  reconnectMs: MQTT_RECONNECT_MS,
+  keepaliveS: MQTT_KEEPALIVE_S,
+  operatorLeaseMs: OPERATOR_LEASE_MS,
+  serial: {},
+  onFirst: () => {},
+} satisfies Partial<GatewayOptions>;
+
+export interface Gateway {
+  core: GatewayCore;
+  client: MqttClient;
+  link: SerialLink;
+  stop(): Promise<void>;
+}
+
+export function startGateway(
+  options: Partial<GatewayOptions> & Pick<GatewayOptions, 'serialPath' | 'mqttUrl' | 'armId'>,
+): Gateway {
+  const o: GatewayOptions = { ...DEFAULT_GATEWAY_OPTIONS, ...options };
+  const { log } = o;
+  const topics = armTopics(o.armId);
+  const client = mqtt.connect(o.mqttUrl, {
+    clientId: `armtwin-gateway-${o.armId}-${process.pid}`,
+    ...(o.username ? { username: o.username, password: o.password ?? '' } : {}),
+    will: { topic: topics.online, payload: Buffer.from('0'), qos: 1, retain: true },
+    ...linkOptions({ keepalive: o.keepaliveS, reconnectPeriod: o.reconnectMs }),
+    queueQoSZero: false,
+  });
+  // Frames are small: don't let Nagle's algorithm hold them back (~40 ms tails otherwise).
+  client.on('connect', () =>
+    (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true),
+  );
+  const link: SerialLink = new SerialLink(
+    { ...o.serial, path: o.serialPath, baudRate: o.baudRate },
+    {
+      onOpen: () => {
+        core.serialOpened();
+        log?.info({ serial: o.serialPath }, 'serial line open');
+      },
+      onClose: (reason) => {
+        core.serialClosed();
+        log?.warn({ reason }, 'serial line closed; reopening');
+      },
+      onData: (chunk) => core.fromSerial(chunk),
+    },
+  );
+  const core = new GatewayCore(
+    o.armId,
+    {
+      ...SYSTEM_CLOCK,
+      publish: (topic, payload, opts) => {
+        if (client.connected) client.publish(topic, payload, opts); // presence is re-sent on connect
+      },
+      write: (data) => link.write(data),
+      onFirst: o.onFirst,
+    },
+    o.operatorLeaseMs,
+  );
+  client.on('connect', () => {
+    log?.info({ arm: o.armId }, 'broker connected');
+    core.brokerConnected(true);
+    client.subscribe(
+      [topics.control, topics.operator],
+      { qos: 1 },
+      (err) => err && o.onFirst('subscribe', err.message),
+    );
+  });
+  client.on('close', () => core.brokerConnected(false));
+  client.on('offline', () => log?.warn('broker unreachable; reconnecting'));
+  client.on('error', (err) => o.onFirst(`mqtt:${err.message}`, `mqtt: ${err.message}`));
+  client.on('message', (topic, payload) => {
+    if (topic === topics.control) core.fromControl(payload);
+    else if (topic === topics.operator) core.fromOperator(payload);
+  });
+  link.start();
+  return {
+    core,
+    client,
+    link,
+    async stop() {
+      core.operator.reset();
+      if (client.connected)
+        await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
+      await client.endAsync().catch(() => {});
+      await link.stop();
+      log?.info({ counters: core.counters, serial: link.counters }, 'gateway stopped');
+    },
+  };
+}

@@ -1,0 +1,221 @@
+/**
+ * The bus gateway's core with an emulated servo bus as its wire (no serial port, no broker):
+ * the bytes the core writes go to `createEmulatedBus`, its answers come straight back, time is
+ * a manual clock. Both buses: start-up (ping, torque, multi-turn), angle and health frames,
+ * moves with their limits and speeds, stop and deadman holding position, missing servos,
+ * torque off on request, the line going away and coming back.
+ */
+import fs from 'node:fs';
+import path from 'node:path';
+import { describe, expect, test } from 'vitest';
+import { parseProfile, type Profile } from '@armtwin/ik';
+import { createMotionRobot, exactPwmFromServo, tipPose } from '@armtwin/motion';
+import { createReader, type Frame } from '@armtwin/protocol';
+import { FakeClock } from '@armtwin/protocol/fake-clock';
+import {
+  createEmulatedBus,
+  degreesToTicks,
+  type BusProtocol,
+  type EmulatedBus,
+} from '@armtwin/servo-bus';
+import { BusGatewayCore, BUS_MODELS_DIR, busKmsSolver } from '../src/index.ts';
+
+/** armtwin5 with its wrist roll (004) able to turn ±360°. */
+function profile(): Profile {
+  const raw = JSON.parse(
+    fs.readFileSync(path.join(BUS_MODELS_DIR, 'armtwin5', 'profile.json'), 'utf8'),
+  ) as { servos: Record<string, unknown>[] };
+  raw.servos[4] = { ...raw.servos[4], units: 'angle', min: -360, max: 360 };
+  const parsed = parseProfile(raw);
+  if (!parsed.ok) throw new Error(parsed.errors.join('; '));
+  return parsed.profile;
+}
+
+function rig(protocol: BusProtocol, ids = [0, 1, 2, 3, 4, 5]) {
+  const clock = new FakeClock();
+  const bus: EmulatedBus = createEmulatedBus({
+    protocol,
+    startMs: clock.now(),
+    servos: ids.map((id) => ({ id })),
+  });
+  const items: { frame?: Frame; group?: Frame[] }[] = [];
+  const retained = new Map<string, string>();
+  const reader = createReader({
+    onFrame: (frame) => frame.type !== 'time' && items.push({ frame }),
+    onGroup: (g) => items.push({ group: g.frames }),
+  });
+  let open = true;
+  const core: BusGatewayCore = new BusGatewayCore(
+    { armId: 'a1', protocol, profile: profile(), kms: busKmsSolver(createMotionRobot(profile())) },
+    {
+      now: () => clock.now(),
+      setTimeout: (fn, ms) => clock.setTimeout(fn, ms),
+      clearTimeout: (h) => clock.clearTimeout(h),
+      onFirst: () => {},
+      publish: (topic, payload) => {
+        if (topic.endsWith('/status')) reader.feed(payload);
+        else retained.set(topic, payload);
+      },
+      write: (data) => {
+        if (!open) return false;
+        bus.advance(clock.now());
+        const reply = bus.feed(data);
+        if (reply.length) core.fromSerial(reply);
+        return true;
+      },
+    },
+  );
+  core.brokerConnected(true);
+  core.serialOpened();
+  clock.advance(100);
+  /** Latest angle reported for servo `id`. */
+  const angle = (id: number): number | undefined => {
+    for (let i = items.length - 1; i >= 0; i--) {
+      const f = items[i]!.group?.find((x) => x.type === 'angle' && x.id === id);
+      if (f?.type === 'angle') return f.deg;
+    }
+    return undefined;
+  };
+  const errors = () =>
+    items.flatMap((i) => (i.frame?.type === 'controllerError' ? [i.frame.text] : []));
+  const setOpen = (value: boolean) => {
+    open = value;
+    if (value) core.serialOpened();
+    else core.serialClosed();
+  };
+  return { clock, bus, core, items, retained, angle, errors, setOpen };
+}
+
+describe.each(['dynamixel', 'feetech'] as const)('bus gateway core on %s', (protocol) => {
+  test('sets the servos up, then streams angle groups at the state rate and health at 2 Hz', () => {
+    const r = rig(protocol);
+    expect(r.retained.get('arm/a1/online')).toBe('1');
+    expect(r.core.found.size).toBe(6);
+    expect(r.bus.servos.every((s) => s.torque)).toBe(true);
+    const before = r.items.length;
+    r.clock.advance(1000);
+    const groups = r.items.slice(before).flatMap((i) => (i.group ? [i.group] : []));
+    const states = groups.filter((g) => g[0]?.type === 'angle');
+    const health = groups.filter((g) => g[0]?.type === 'health');
+    expect(states.length).toBeGreaterThanOrEqual(45);
+    expect(states.length).toBeLessThanOrEqual(51);
+    expect(health.length).toBe(2);
+    expect(states.at(-1)).toHaveLength(6);
+    expect(r.angle(0)).toBe(0);
+    const h = health[0]!.find((f) => f.type === 'health' && f.id === 1);
+    expect(h).toMatchObject({ type: 'health', temp: 25 });
+  });
+
+  test('a timed angle move arrives on time; a pulse move goes through the profile', () => {
+    const r = rig(protocol);
+    r.core.fromControl('#001A+045.00T1000!');
+    r.clock.advance(500);
+    const half = r.angle(1)!;
+    expect(half).toBeGreaterThan(15);
+    expect(half).toBeLessThan(35);
+    r.clock.advance(700);
+    expect(Math.abs(r.angle(1)! - 45)).toBeLessThan(0.1);
+    r.core.fromControl('#002P2500T0000!'); // 135° at the profile's top speed
+    r.clock.advance(1000);
+    expect(Math.abs(r.angle(2)! - 135)).toBeLessThan(0.1);
+  });
+
+  test('a ±360° joint goes multi-turn and +350.00° comes back as +350.00', () => {
+    const r = rig(protocol);
+    r.core.fromControl('#004A+350.00T0500!');
+    r.clock.advance(2000);
+    expect(r.angle(4)).toBe(350);
+    expect(r.bus.servo(4)!.position).toBe(degreesToTicks(350, { id: 4 }));
+  });
+
+  test('moves beyond the limits are refused with $ERR, a group all or nothing', () => {
+    const r = rig(protocol);
+    r.core.fromControl('#004A+361.00T0100!');
+    r.core.fromControl('{#000A+010.00T0100!#001A+095.00T0100!}');
+    r.clock.advance(500);
+    expect(r.errors()).toEqual([
+      'limit 004 A361 outside -360..360',
+      'limit 001 A95 outside -90..90',
+    ]);
+    expect(r.angle(0)).toBe(0); // the group's valid move was not made either
+  });
+
+  test('#255PDST! holds the arm short of a slow move, beating queued goals', () => {
+    const r = rig(protocol);
+    r.core.fromControl('#000A+090.00T9000!');
+    r.clock.advance(1000);
+    r.core.fromControl('#255PDST!');
+    r.clock.advance(2000);
+    const held = r.angle(0)!;
+    expect(held).toBeGreaterThan(5);
+    expect(held).toBeLessThan(20);
+    r.clock.advance(1000);
+    expect(r.angle(0)).toBe(held);
+  });
+
+  test('the deadman holds position when a beating operator falls silent', () => {
+    const r = rig(protocol);
+    r.core.fromOperator('1');
+    r.core.fromOperator('1');
+    r.core.fromControl('#000A+090.00T9000!');
+    r.clock.advance(3000); // the 2.5 s lease lapses during the move
+    const held = r.angle(0)!;
+    expect(held).toBeLessThan(30);
+    r.clock.advance(1000);
+    expect(r.angle(0)).toBe(held);
+    expect(r.core.counters.deadmanStops).toBe(1);
+  });
+
+  test('$KMS goes through the IK: $KMS:0! and the tip gets there; unreachable is $KMS:2!', () => {
+    const r = rig(protocol);
+    r.core.fromControl('$KMS:150,50,120,800!');
+    expect(r.items.at(-1)?.frame).toMatchObject({ type: 'kmsResult', code: 0 });
+    r.clock.advance(1500);
+    const robot = createMotionRobot(profile());
+    const pwm = robot.profile.servos.map((s, i) => exactPwmFromServo(s, r.angle(i)!));
+    const tip = tipPose(robot, pwm);
+    expect(Math.hypot(tip.x - 150, tip.y - 50, tip.z - 120)).toBeLessThan(1);
+    r.core.fromControl('$KMS:1000,0,100,500!');
+    expect(r.items.at(-1)?.frame).toMatchObject({ type: 'kmsResult', code: 2 });
+  });
+
+  test('$PNG, PRAD and PRTV are answered', () => {
+    const r = rig(protocol);
+    r.core.fromControl('$PNG:7!#003PRAD!#003PRTV!');
+    const replies = r.items.slice(-3).map((i) => i.frame);
+    expect(replies).toMatchObject([
+      { type: 'ping', seq: 7 },
+      { type: 'angle', id: 3, deg: 0 },
+      { type: 'health', id: 3, temp: 25, mv: protocol === 'dynamixel' ? 9999 : 7400 },
+    ]);
+  });
+
+  test('missing servos are reported and left out of the reads', () => {
+    const r = rig(protocol, [0, 1, 2, 3, 4]);
+    expect(r.errors()).toContain('missing servos 005');
+    expect(r.core.found.has(5)).toBe(false);
+    expect(r.items.at(-1)?.group).toHaveLength(5);
+  });
+
+  test('torque off and on by request; the line going and coming back', () => {
+    const r = rig(protocol);
+    r.core.fromTorque('0');
+    r.clock.advance(50);
+    expect(r.bus.servos.some((s) => s.torque)).toBe(false);
+    r.bus.servo(3)!.setPosition(degreesToTicks(20, { id: 3 })); // moved by hand
+    r.core.fromTorque('1');
+    r.clock.advance(200);
+    expect(r.bus.servos.every((s) => s.torque)).toBe(true);
+    expect(Math.round(r.angle(3)!)).toBe(20); // held where the hand left it
+    r.setOpen(false);
+    expect(r.retained.get('arm/a1/online')).toBe('0');
+    r.core.fromControl('#000A+010.00T0100!');
+    expect(r.errors().at(-1)).toBe('gateway: serial line down');
+    r.setOpen(true);
+    r.clock.advance(200);
+    expect(r.retained.get('arm/a1/online')).toBe('1');
+    r.core.fromControl('#000A+010.00T0100!');
+    r.clock.advance(300);
+    expect(r.angle(0)).toBe(10);
+  });
+});

@@ -1,0 +1,29 @@
+/**
+ * Connection defaults every part shares (PROTOCOL.md §6: "MQTT: keep-alive 60 s, reconnect
+ * every 1000 ms"), declared once and imported by the HUD, the simulator, the gateway, the
+ * middleware and the broker. Each part may override them through its own options.
+ */
+
+/** Largest MQTT payload any part accepts or sends, bytes (brokers: `max_packet_size`). */
+export const MAX_PAYLOAD_BYTES = 65_536;
+/** MQTT keep-alive, seconds. */
+export const MQTT_KEEPALIVE_S = 60;
+/** Delay between MQTT reconnect attempts, ms. */
+export const MQTT_RECONNECT_MS = 1000;
+/** How long one MQTT connect attempt may take, ms. */
+export const MQTT_CONNECT_TIMEOUT_MS = 10_000;
+
+/** The shared part of every armtwin MQTT client's connect options (mqtt.js names). */
+export interface LinkOptions {
+  keepalive: number;
+  reconnectPeriod: number;
+  connectTimeout: number;
+}
+
+/** The defaults above as mqtt.js options, with `overrides` on top. */
+export const linkOptions = (overrides: Partial<LinkOptions> = {}): LinkOptions => ({
+  keepalive: MQTT_KEEPALIVE_S,
+  reconnectPeriod: MQTT_RECONNECT_MS,
+  connectTimeout: MQTT_CONNECT_TIMEOUT_MS,
+  ...overrides,
+});

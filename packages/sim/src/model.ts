@@ -1,0 +1,316 @@
+/**
+ * The simulated controller: executes control frames the way the firmware would, against the
+ * servo model. Pure: time comes in as an argument (epoch ms), replies go out as encoded frame
+ * strings appended to an array the caller owns. The MQTT or serial side lives elsewhere.
+ */
+import { isWithinLimits, solveIk, speaksAngle, type ArmProfile } from '@armtwin/ik';
+import {
+  PWM_CENTRE,
+  PWM_MAX,
+  PWM_MIN,
+  SERVO_ID_ALL,
+  US_PER_DEG,
+  encodeAngle,
+  encodeControllerError,
+  encodeGroup,
+  encodeHealth,
+  encodeKmsResult,
+  encodePing,
+  encodePosition,
+  unhandled,
+  type AngleMoveFrame,
+  type Frame,
+  type Group,
+  type MoveFrame,
+} from '@armtwin/protocol';
+import { DEFAULT_SIM_MODEL_OPTIONS, type ReportUnits, type SimModelOptions } from './options.ts';
+import { Servos } from './servos.ts';
+
+const id3 = (id: number) => String(id).padStart(3, '0');
+
+/** What the controller did with a command, counted by kind. */
+export interface SimCounters {
+  moves: number;
+  groups: number;
+  kms: number;
+  stops: number;
+  emergencyStops: number;
+  rejected: Record<'limit' | 'unknown-servo' | 'group' | 'unexpected' | 'ik', number>;
+}
+
+export class SimModel {
+  readonly servos: Servos;
+  readonly arm: ArmProfile;
+  readonly counters: SimCounters = {
+    moves: 0,
+    groups: 0,
+    kms: 0,
+    stops: 0,
+    emergencyStops: 0,
+    rejected: { limit: 0, 'unknown-servo': 0, group: 0, unexpected: 0, ik: 0 },
+  };
+
+  private readonly kmsSolver: SimModelOptions['kms'];
+  /** Per servo index: 1 when its position is reported in §8 angle frames. */
+  readonly reportsAngle: Uint8Array;
+  /** Per servo index: mounting polarity, for servo angle ↔ the model's pulse-equivalent. */
+  private readonly polarity: Float64Array;
+
+  constructor(options: Partial<SimModelOptions> = {}, now = 0) {
+    const o = { ...DEFAULT_SIM_MODEL_OPTIONS, ...options };
+    this.arm = o.arm;
+    this.kmsSolver = o.kms;
+    this.servos = new Servos(o, now);
+    this.reportsAngle = Uint8Array.from(o.arm.servos, (spec) =>
+      reportAngle(o.report, speaksAngle(spec)) ? 1 : 0,
+    );
+    this.polarity = Float64Array.from(o.arm.servos, (spec) => spec.polarity);
+  }
+
+  /** Integrates heat and supply up to t; call with each state tick and before each command. */
+  advance(t: number): void {
+    this.servos.advance(t);
+  }
+
+  /** Rounded pulse width of the servo at index i at time t. */
+  pwmAt(i: number, t: number): number {
+    return Math.round(this.servos.pwmAt(i, t));
+  }
+
+  /**
+   * Servo angle of the servo at index i at time t, degrees: exact (the model's positions are
+   * unrounded pulse-equivalents, linear in the angle and never clamped to the pulse range).
+   */
+  angleAt(i: number, t: number): number {
+    return (this.polarity[i]! * (this.servos.pwmAt(i, t) - PWM_CENTRE)) / US_PER_DEG;
+  }
+
+  /** The model's (unrounded) pulse-equivalent of servo angle `deg` for the servo at index i. */
+  private pulseOfAngle(i: number, deg: number): number {
+    return PWM_CENTRE + this.polarity[i]! * deg * US_PER_DEG;
+  }
+
+  /**
+   * The pulse a position report carries: rounded, and held within 500–2500 µs (only an angle
+   * servo reported in pulses, `report: 'pulse'`, can be outside it).
+   */
+  reportedPwm(i: number, t: number): number {
+    return Math.min(PWM_MAX, Math.max(PWM_MIN, this.pwmAt(i, t)));
+  }
+
+  /** The position report of the servo at index i at t: `#IIIA±ddd.dd!` or `#IIIPpppp!`. */
+  positionReport(i: number, t: number): string {
+    const id = this.servos.ids[i]!;
+    return this.reportsAngle[i]
+      ? encodeAngle(id, this.angleAt(i, t))
+      : encodePosition(id, this.reportedPwm(i, t));
+  }
+
+  /** Executes one top-level frame received at t; appends reply frames to `out`. */
+  execute(frame: Frame, t: number, out: string[]): void {
+    this.advance(t);
+    const reads: string[] = [];
+    const error = this.check(frame);
+    if (error) {
+      out.push(encodeControllerError(error));
+      return;
+    }
+    this.apply(frame, t, reads, out);
+    if (reads.length > 1) out.push(encodeGroup(reads));
+    else if (reads.length === 1) out.push(reads[0]!);
+  }
+
+  /**
+   * Executes a `{…}` group received at t: only when every frame in it decoded and passes its
+   * checks, and then all together. Reads inside it are answered as one group.
+   */
+  executeGroup(group: Group, t: number, out: string[]): void {
+    this.advance(t);
+    let error = group.invalid > 0 ? `group rejected: ${group.invalid} bad frame(s)` : '';
+    for (const frame of group.frames) {
+      if (error) break;
+      const e = this.check(frame);
+      if (e) error = `group rejected: ${e}`;
+    }
+    if (error) {
+      this.counters.rejected.group++;
+      out.push(encodeControllerError(error));
+      return;
+    }
+    this.counters.groups++;
+    const reads: string[] = [];
+    for (const frame of group.frames) this.apply(frame, t, reads, out);
+    if (reads.length > 0) out.push(encodeGroup(reads));
+  }
+
+  /** Stops every servo where it is now (`#255PDST!`). */
+  emergencyStop(t: number): void {
+    this.advance(t);
+    this.counters.emergencyStops++;
+    for (let i = 0; i < this.servos.count; i++) this.servos.stop(i, t);
+  }
+
+  /** The reason a frame cannot run, or '' when it can. Changes nothing. */
+  private check(frame: Frame): string {
+    switch (frame.type) {
+      case 'move':
+        return this.checkMove(frame);
+      case 'angleMove':
+        return this.checkAngleMove(frame);
+      case 'readPosition':
+      case 'readHealth':
+      case 'stop':
+        if (frame.id !== SERVO_ID_ALL && this.servos.indexOf(frame.id) < 0) {
+          this.counters.rejected['unknown-servo']++;
+          return `no servo ${id3(frame.id)}`;
+        }
+        return '';
+      case 'kms':
+      case 'ping':
+      case 'time':
+        return '';
+      case 'position':
+      case 'angle':
+      case 'health':
+      case 'kmsResult':
+      case 'controllerError':
+        this.counters.rejected.unexpected++;
+        return `unexpected ${frame.type} frame on control`;
+      default:
+        return unhandled(frame);
+    }
+  }
+
+  private checkMove(m: MoveFrame): string {
+    const s = this.servos;
+    if (m.id !== SERVO_ID_ALL && s.indexOf(m.id) < 0) {
+      this.counters.rejected['unknown-servo']++;
+      return `no servo ${id3(m.id)}`;
+    }
+    for (let i = 0; i < s.count; i++) {
+      const id = s.ids[i]!;
+      if ((m.id === SERVO_ID_ALL || m.id === id) && !isWithinLimits(id, m.pwm, this.arm)) {
+        this.counters.rejected.limit++;
+        return `limit ${id3(id)} P${m.pwm} outside ${s.minPwm[i]}-${s.maxPwm[i]}`;
+      }
+    }
+    return '';
+  }
+
+  /** `#IIIA±ddd.ddTtttt!`: checked in servo degrees against the profile's limits. */
+  private checkAngleMove(m: AngleMoveFrame): string {
+    const s = this.servos;
+    if (m.id !== SERVO_ID_ALL && s.indexOf(m.id) < 0) {
+      this.counters.rejected['unknown-servo']++;
+      return `no servo ${id3(m.id)}`;
+    }
+    for (let i = 0; i < s.count; i++) {
+      const spec = this.arm.servos[i]!;
+      if (
+        (m.id === SERVO_ID_ALL || m.id === spec.id) &&
+        !(m.deg >= spec.minDeg && m.deg <= spec.maxDeg)
+      ) {
+        this.counters.rejected.limit++;
+        return `limit ${id3(spec.id)} A${m.deg} outside ${spec.minDeg}..${spec.maxDeg}`;
+      }
+    }
+    return '';
+  }
+
+  /** Runs a checked frame. Position and health reads go to `reads`, other replies to `out`. */
+  private apply(frame: Frame, t: number, reads: string[], out: string[]): void {
+    const s = this.servos;
+    switch (frame.type) {
+      case 'move':
+        this.counters.moves++;
+        for (let i = 0; i < s.count; i++) {
+          if (frame.id === SERVO_ID_ALL || frame.id === s.ids[i])
+            s.moveTo(i, frame.pwm, frame.ms, t);
+        }
+        return;
+      case 'angleMove':
+        this.counters.moves++;
+        for (let i = 0; i < s.count; i++) {
+          if (frame.id === SERVO_ID_ALL || frame.id === s.ids[i])
+            s.moveTo(i, this.pulseOfAngle(i, frame.deg), frame.ms, t);
+        }
+        return;
+      case 'stop':
+        if (frame.id === SERVO_ID_ALL) return this.emergencyStop(t);
+        this.counters.stops++;
+        return s.stop(s.indexOf(frame.id), t);
+      case 'readPosition':
+      case 'readHealth':
+        for (let i = 0; i < s.count; i++) {
+          const id = s.ids[i]!;
+          if (frame.id !== SERVO_ID_ALL && frame.id !== id) continue;
+          reads.push(
+            frame.type === 'readPosition'
+              ? this.positionReport(i, t)
+              : encodeHealth(id, s.temp[i]!, s.mv[i]!),
+          );
+        }
+        return;
+      case 'kms':
+        return this.kms(frame.x, frame.y, frame.z, frame.alpha, frame.ms, t, out);
+      case 'ping':
+        out.push(encodePing(frame.seq));
+        return;
+      case 'time': // `$TIM` on control: a stamp, nothing to do
+      case 'position': // status frames never pass check()
+      case 'angle':
+      case 'health':
+      case 'kmsResult':
+      case 'controllerError':
+        return;
+      default:
+        return unhandled(frame);
+    }
+  }
+
+  /** `$KMS`: solve, answer `$KMS:c!`, move servos 000–003 together only when c is 0. */
+  private kms(
+    x: number,
+    y: number,
+    z: number,
+    alpha: number | undefined,
+    ms: number,
+    t: number,
+    out: string[],
+  ) {
+    this.counters.kms++;
+    const s = this.servos;
+    if (this.kmsSolver) {
+      // Another arm's IK (profile.ts): every servo it gives a pulse moves, together.
+      const now = Array.from({ length: s.count }, (_, i) => s.pwmAt(i, t));
+      const k = this.kmsSolver(x, y, z, alpha, now);
+      if (k.code !== 0) this.counters.rejected.ik++;
+      out.push(encodeKmsResult(k.code));
+      if (k.code === 0)
+        k.pwm.forEach((p, i) => Number.isNaN(p) || s.moveTo(i, Math.round(p), ms, t));
+      return;
+    }
+    const r = solveIk(x, y, z, alpha, this.arm);
+    const idx = [0, 1, 2, 3].map((j) => s.indexOf(this.arm.servos[j]?.id ?? -1));
+    const ok =
+      r.code === 0 && idx.every((i, j) => i >= 0 && isWithinLimits(s.ids[i]!, r.pwm[j]!, this.arm));
+    if (r.code !== 0) this.counters.rejected.ik++;
+    out.push(encodeKmsResult(r.code === 0 && !ok ? 8 : r.code));
+    if (!ok) return;
+    for (let j = 0; j < 4; j++) s.moveTo(idx[j]!, r.pwm[j]!, ms, t);
+  }
+}
+
+/** Whether a servo is reported in angle frames: as asked, or (`auto`) as its profile says. */
+function reportAngle(report: ReportUnits, speaksAngleFrames: boolean): boolean {
+  switch (report) {
+    case 'auto':
+      return speaksAngleFrames;
+    case 'angle':
+      return true;
+    case 'pulse':
+      return false;
+    default:
+      return unhandled(report);
+  }
+}

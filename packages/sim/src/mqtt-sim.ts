@@ -1,0 +1,144 @@
+/**
+ * The simulated arm on MQTT: the runner's status payloads go to `arm/{id}/status` (QoS 0),
+ * `arm/{id}/control` feeds it, `arm/{id}/sim` takes fault commands (JSON, see faults.ts) and
+ * the faults in force are published retained on `arm/{id}/sim/faults`. Presence: retained `1`
+ * on `arm/{id}/online` at every (re)connect; the client must be created with the retained `0`
+ * will (see `simWill`), and `stop()` publishes `0` itself before disconnecting.
+ * Deadman: `arm/{id}/operator` is watched (`OperatorWatch`): a `0` there (the operator let go,
+ * or the broker published its last will because its page dropped), or a beating operator whose
+ * lease ran out, stops a moving arm (`runner.operatorLeft`).
+ * The MQTT client is injected.
+ */
+import type { IClientOptions, MqttClient } from 'mqtt';
+import {
+  armTopics,
+  OPERATOR_LEASE_MS,
+  OperatorWatch,
+  SYSTEM_CLOCK,
+  type Clock,
+} from '@armtwin/protocol';
+import { parseFaults } from './faults.ts';
+import { startMotionService } from './motion-service.ts';
+import type { SimProfile } from './profile.ts';
+import { SimRunner, type SimRunnerOptions } from './runner.ts';
+
+export interface MqttSimOptions extends Partial<SimRunnerOptions> {
+  /** The arm id: `[a-z0-9-]{1,32}`. */
+  armId: string;
+  clock?: Clock;
+  /** The arm's profile: announced on `arm/{id}/profile`, and motion requests served (motion-service.ts). */
+  profile?: SimProfile;
+  /** A beating operator is let go after this long without a `1` (0 = only a `0` lets go). */
+  operatorLeaseMs?: number;
+}
+
+export interface MqttSim {
+  runner: SimRunner;
+  operator: OperatorWatch;
+  /** Publishes online `0` (retained), stops the loops, ends the client. */
+  stop(): Promise<void>;
+}
+
+export const simTopics = (armId: string) => {
+  const t = armTopics(armId);
+  return { ...t, sim: `arm/${armId}/sim`, simFaults: `arm/${armId}/sim/faults` };
+};
+
+/** The last will every arm client must connect with: retained `0` on `arm/{id}/online`. */
+export const simWill = (armId: string): IClientOptions['will'] => ({
+  topic: armTopics(armId).online,
+  payload: Buffer.from('0'),
+  qos: 1,
+  retain: true,
+});
+
+export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttSim {
+  const topics = simTopics(options.armId);
+  const onFirst = options.onFirst ?? (() => {});
+  const clock = options.clock ?? SYSTEM_CLOCK;
+  let offlineDrops = 0;
+  const runner = new SimRunner(
+    {
+      send(payload) {
+        // QoS 0 and not queued while offline: a stale state stream is worse than a gap.
+        if (!client.connected) {
+          if (offlineDrops++ === 0)
+            onFirst('offline', 'broker unreachable: status payloads dropped');
+          return;
+        }
+        client.publish(topics.status, payload, { qos: 0 });
+      },
+    },
+    clock,
+    options,
+  );
+
+  const operator = new OperatorWatch(
+    clock,
+    (reason) => {
+      if (!runner.operatorLeft()) return;
+      onFirst(
+        `deadman:${reason}`,
+        reason === 'lapsed'
+          ? 'operator stopped beating while the arm moved: every servo stopped'
+          : 'operator gone while the arm moved: every servo stopped',
+      );
+    },
+    options.operatorLeaseMs ?? OPERATOR_LEASE_MS,
+  );
+
+  const publishFaults = (error?: string) =>
+    client.publish(
+      topics.simFaults,
+      JSON.stringify({ ...runner.faults, ...(error ? { error } : {}) }),
+      {
+        qos: 1,
+        retain: true,
+      },
+    );
+
+  const onConnect = () => {
+    client.publish(topics.online, '1', { qos: 1, retain: true });
+    client.subscribe([topics.control, topics.sim, topics.operator], { qos: 1 }, (err) => {
+      if (err) onFirst('subscribe', err.message);
+    });
+    publishFaults();
+  };
+  const onMessage = (topic: string, payload: Buffer) => {
+    if (topic === topics.control) return runner.receive(payload);
+    if (topic === topics.operator) return operator.receive(payload);
+    if (topic !== topics.sim) return;
+    try {
+      runner.applyFaults(parseFaults(payload.toString('utf8')));
+      publishFaults();
+    } catch (err) {
+      const message = err instanceof Error ? err.message : String(err);
+      onFirst('fault', message);
+      publishFaults(message);
+    }
+  };
+  client.on('connect', onConnect);
+  client.on('message', onMessage);
+  if (client.connected) onConnect();
+  runner.start();
+  const motion = options.profile
+    ? startMotionService(client, runner, options.armId, options.profile, clock, onFirst)
+    : undefined;
+
+  return {
+    runner,
+    operator,
+    async stop() {
+      operator.reset();
+      runner.stop();
+      motion?.stop();
+      client.removeListener('message', onMessage);
+      client.removeListener('connect', onConnect);
+      if (client.connected) {
+        await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
+        await client.publishAsync(topics.simFaults, '', { qos: 1, retain: true }).catch(() => {});
+      }
+      await client.endAsync().catch(() => {});
+    },
+  };
+}

@@ -1,0 +1,115 @@
+/**
+ * `armtwin sim --profile <name>`: the robot profile `public/models/<name>/profile.json` (and, for
+ * a numeric one, its URDF), turned into what the simulator runs: the servo table (ids, pulse
+ * limits, speeds, home), a `$KMS` solver for arms the §4 solver does not describe, the planner's
+ * robot for motion requests, and the retained announcement for `arm/{id}/profile`.
+ *
+ * The servo model (servos.ts) counts in degrees of a §2 servo. An `analytic5` profile gives it
+ * its own `ArmProfile` (armtwin5's equals DEMO_ARM, so the default sim behaves exactly as
+ * before). Any other profile gets a pulse-equivalent one: each servo's pulse limits and pulse
+ * speed from `servoTable(profile)`, written as §2 angles with polarity +1, which round-trip to
+ * exactly the same pulses (a prismatic axis included).
+ */
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import {
+  armProfileFromProfile,
+  chainFromUrdf,
+  parseProfile,
+  pulseEquivalentArm,
+  type Profile,
+} from '@armtwin/ik';
+import { createMotionRobot, solveTip, type MotionRobot } from '@armtwin/motion';
+import { PWM_CENTRE } from '@armtwin/protocol';
+import type { KmsSolver, SimModelOptions } from './options.ts';
+
+/** The robots' folders: `public/models` at the repository root. */
+export const MODELS_DIR = path.resolve(
+  path.dirname(fileURLToPath(import.meta.url)),
+  '..',
+  '..',
+  '..',
+  'public',
+  'models',
+);
+export const DEFAULT_PROFILE = 'armtwin5';
+/** A profile name is a folder name: `[a-z0-9_-]{1,32}` (so it can never leave MODELS_DIR). */
+export const PROFILE_NAME = /^[a-z0-9_-]{1,32}$/;
+/**
+ * Largest announcement published on `arm/{id}/profile`, bytes: well under the broker's packet
+ * bound (`maxPacketBytes`, 64 KiB) and the sim's own payload bound. track6's is about 3 KB.
+ */
+export const MAX_PROFILE_ANNOUNCEMENT_BYTES = 32768;
+
+export interface SimProfile {
+  profile: Profile;
+  /** The planner's robot (motion requests). */
+  robot: MotionRobot;
+  /** What the servo model needs: the arm, the pulses at power-on, and `$KMS` for numeric arms. */
+  model: Partial<SimModelOptions>;
+  /** The retained payload of `arm/{id}/profile`: `{"name", "title", "profile": <profile.json>}`. */
+  announcement: string;
+}
+
+/**
+ * `$KMS` on a numeric arm: without a pitch, a position-only target; with one, position + the
+ * tool axis at that pitch (in the vertical plane the tool points in now). Seeded from the pose
+ * the arm is in. Codes 0, 2, 9, 10 (docs/robots.md).
+ */
+export function numericKms(robot: MotionRobot): KmsSolver {
+  return (x, y, z, alpha, pwm) => {
+    const r = solveTip(robot, alpha === undefined ? { x, y, z } : { x, y, z, pitch: alpha }, pwm);
+    return { code: r.code, pwm: r.pwm };
+  };
+}
+
+/** Builds the sim's view of a parsed profile; `urdf` is needed for a numeric one. */
+export function simProfile(profile: Profile, raw: unknown, urdf?: string): SimProfile {
+  let chain;
+  if (profile.ik.kind === 'numeric') {
+    if (urdf === undefined) throw new Error(`profile ${profile.name}: its URDF is needed`);
+    const built = chainFromUrdf(profile, urdf);
+    if (!built.ok) throw new Error(`profile ${profile.name}: ${built.errors.join('; ')}`);
+    chain = built.chain;
+  }
+  const robot = createMotionRobot(profile, chain);
+  const analytic = profile.ik.kind === 'analytic5' ? armProfileFromProfile(profile) : undefined;
+  const model: Partial<SimModelOptions> = {
+    arm: analytic ?? pulseEquivalentArm(profile),
+    initialPwm: robot.table.map((s) => (Number.isFinite(s.homePwm) ? s.homePwm : PWM_CENTRE)),
+  };
+  if (!analytic) model.kms = numericKms(robot);
+  const announcement = JSON.stringify({ name: profile.name, title: profile.title, profile: raw });
+  if (Buffer.byteLength(announcement) > MAX_PROFILE_ANNOUNCEMENT_BYTES)
+    throw new Error(
+      `profile ${profile.name}: ${Buffer.byteLength(announcement)} bytes is too large to announce (at most ${MAX_PROFILE_ANNOUNCEMENT_BYTES})`,
+    );
+  return { profile, robot, model, announcement };
+}
+
+/** Reads `<modelsDir>/<name>/profile.json` (and its URDF); throws with every problem found. */
+export function loadSimProfile(name: string, modelsDir = MODELS_DIR): SimProfile {
+  if (!PROFILE_NAME.test(name)) throw new Error(`profile name must match ${PROFILE_NAME.source}`);
+  const dir = path.join(modelsDir, name);
+  const file = path.join(dir, 'profile.json');
+  if (!fs.existsSync(file)) {
+    const have = fs.existsSync(modelsDir)
+      ? fs
+          .readdirSync(modelsDir)
+          .filter((d) => fs.existsSync(path.join(modelsDir, d, 'profile.json')))
+      : [];
+    throw new Error(
+      `no profile "${name}" (${file} is missing; profiles: ${have.join(', ') || 'none'})`,
+    );
+  }
+  const raw: unknown = JSON.parse(fs.readFileSync(file, 'utf8'));
+  const parsed = parseProfile(raw);
+  if (!parsed.ok) throw new Error(`${file}:\n  ${parsed.errors.join('\n  ')}`);
+  const { profile } = parsed;
+  const urdf =
+    profile.ik.kind === 'numeric'
+      ? fs.readFileSync(path.join(dir, profile.urdf), 'utf8')
+      : undefined;
+  return simProfile(profile, raw, urdf);
+}

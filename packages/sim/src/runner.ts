@@ -1,0 +1,348 @@
+/**
+ * Runs the simulated controller over any byte transport: control bytes in (`receive`), status
+ * payloads out (`SimTransport.send`). Owns the state and health loops, the link faults (drop,
+ * latency), the reply batching (the replies to one incoming chunk leave as one payload) and the
+ * interlocks: the command rate limit, the payload bound, the emergency stop that overrides
+ * everything queued, and the deadman (`operatorLeft`). The clock and the random source are
+ * injected; no sockets here.
+ */
+import {
+  createReader,
+  encodeControllerError,
+  MAX_PAYLOAD_BYTES,
+  type Clock,
+  type Frame,
+  type Group,
+  type ReaderError,
+} from '@armtwin/protocol';
+import { applyFault, NO_FAULTS, type Fault, type FaultState } from './faults.ts';
+import { SimModel } from './model.ts';
+import { DEFAULT_SIM_MODEL_OPTIONS, type SimModelOptions } from './options.ts';
+import { TokenBucket } from './rate-limit.ts';
+import { StatusWriter } from './status-writer.ts';
+import { TickLoop } from './tick-loop.ts';
+
+export type PayloadKind = 'state' | 'health' | 'reply';
+
+export interface SimTransport {
+  /** Sends one status payload; the runner does not reuse the buffer. */
+  send(payload: Buffer, kind: PayloadKind): void;
+}
+
+export interface SimRunnerOptions {
+  /** State rate, Hz (1–1000). */
+  rate: number;
+  /** Health rate, Hz. */
+  healthRate: number;
+  /** Put `$TIM:…!` first in every payload (MQTT: yes; a serial line, like real firmware: no). */
+  stamp: boolean;
+  /**
+   * How far behind (ms) the state loop may fall and still send every sample it owes, batched
+   * into one payload (each with its own `$TIM`); beyond that it skips ahead and counts.
+   */
+  maxCatchUpMs: number;
+  /** Most `$ERR` replies to one incoming chunk; the rest are only counted. */
+  maxErrorsPerChunk: number;
+  /** Random numbers in [0, 1), for the drop fault. */
+  random: () => number;
+  /** Physical parameters of the simulated arm. */
+  model: Partial<SimModelOptions>;
+  /** Faults in force from the start. */
+  faults: Fault[];
+  /** Told the first time each kind of problem happens (later ones are only counted). */
+  onFirst: (kind: string, message: string) => void;
+  /**
+   * Commands per second the controller accepts, sustained (a top-level frame or a whole `{…}`
+   * group is one command; stops, `#255PDST!` included, are never limited; dropped input costs
+   * nothing). Beyond it commands are dropped, never queued, and the first drop of a run is
+   * answered `$ERR:rate limit!`.
+   */
+  commandRate: number;
+  /** Commands accepted at once after a quiet spell (the bucket's size). */
+  commandBurst: number;
+  /** Largest control payload (or serial chunk) read, bytes; a bigger one is refused whole. */
+  maxPayloadBytes: number;
+}
+
+export const DEFAULT_SIM_RUNNER_OPTIONS: SimRunnerOptions = {
+  rate: 50,
+  healthRate: 2,
+  stamp: true,
+  maxCatchUpMs: 500,
+  maxErrorsPerChunk: 8,
+  random: Math.random,
+  model: {},
+  faults: [],
+  onFirst: () => {},
+  commandRate: 50,
+  commandBurst: 100,
+  maxPayloadBytes: MAX_PAYLOAD_BYTES,
+};
+
+export const MAX_STATE_RATE = 1000;
+
+type Item = { frame: Frame } | { group: Group } | { error: ReaderError } | { limited: true };
+
+export const RATE_LIMIT_REPLY = 'rate limit';
+export const OVERSIZE_REPLY = 'payload too large';
+export const DEADMAN_REPLY = 'deadman stop';
+
+export class SimRunner {
+  readonly model: SimModel;
+  readonly counters = {
+    statePayloads: 0,
+    stateSamples: 0,
+    droppedSamples: 0,
+    /** State samples never sent because the process stalled longer than maxCatchUpMs. */
+    skippedSamples: 0,
+    healthPayloads: 0,
+    replyPayloads: 0,
+    rejected: {} as Record<string, number>,
+    discardedQueued: 0,
+    /** Commands dropped by the rate limit. */
+    rateLimited: 0,
+    /** Control payloads refused for their size. */
+    oversizePayloads: 0,
+    /** Stops made because the operator's presence went to 0 while the arm was moving. */
+    deadmanStops: 0,
+  };
+  faults: FaultState = { ...NO_FAULTS };
+  private readonly o: SimRunnerOptions;
+  private readonly writer = new StatusWriter();
+  private readonly stateLoop: TickLoop;
+  private readonly healthLoop: TickLoop;
+  private readonly items: Item[] = [];
+  private readonly reader;
+  private lastStamp = -1;
+  private readonly pending = new Set<unknown>(); // latency timers
+  private inbound: { due: number; items: Item[]; timer: unknown }[] = [];
+  private readonly bucket: TokenBucket;
+  private limiting = false;
+
+  constructor(
+    private readonly transport: SimTransport,
+    private readonly clock: Clock,
+    options: Partial<SimRunnerOptions> = {},
+  ) {
+    const o = (this.o = { ...DEFAULT_SIM_RUNNER_OPTIONS, ...options });
+    if (!(o.rate > 0 && o.rate <= MAX_STATE_RATE))
+      throw new RangeError(`state rate must be in (0, ${MAX_STATE_RATE}] Hz`);
+    if (!(o.healthRate > 0 && o.healthRate <= MAX_STATE_RATE))
+      throw new RangeError('health rate must be > 0 Hz');
+    this.model = new SimModel(o.model, clock.now());
+    this.bucket = new TokenBucket(o.commandRate, o.commandBurst, clock.now());
+    this.stateLoop = new TickLoop(clock, (t, n) => this.stateTicks(t, n), {
+      hz: o.rate,
+      maxBatch: Math.max(1, Math.ceil((o.rate * o.maxCatchUpMs) / 1000)),
+    });
+    this.healthLoop = new TickLoop(clock, (t, n) => this.healthTick(t[n - 1]!), {
+      hz: o.healthRate,
+      maxBatch: 1,
+    });
+    this.reader = createReader({
+      onFrame: (frame) => this.items.push({ frame }),
+      onGroup: (group) => this.items.push({ group }),
+      onError: (error) => this.items.push({ error }),
+    });
+    this.applyFaults(o.faults);
+  }
+
+  start(): void {
+    this.stateLoop.startLoop();
+    this.healthLoop.startLoop();
+  }
+
+  /** Stops the loops and drops whatever latency still holds back. */
+  stop(): void {
+    this.stateLoop.stopLoop();
+    this.healthLoop.stopLoop();
+    for (const t of this.pending) this.clock.clearTimeout(t);
+    this.pending.clear();
+    for (const q of this.inbound) this.clock.clearTimeout(q.timer);
+    this.inbound = [];
+  }
+
+  /** Control bytes as they arrive (an MQTT payload, a serial chunk). */
+  receive(chunk: string | Uint8Array): void {
+    this.stateLoop.catchUp(); // samples due before this command go out as they were
+    if (chunk.length > this.o.maxPayloadBytes) {
+      if (this.counters.oversizePayloads++ === 0)
+        this.o.onFirst('control:oversize', `control payload of ${chunk.length} bytes refused`);
+      return this.reply([encodeControllerError(OVERSIZE_REPLY)]);
+    }
+    this.reader.feed(chunk);
+    const items = this.limit(this.items.splice(0));
+    if (items.length === 0) return;
+    const latency = this.faults.latencyMs;
+    const stopAt = items.findIndex((it) => isEmergencyStop(it));
+    if (stopAt >= 0) {
+      // The emergency stop acts on arrival and discards every command still queued.
+      this.discardQueued();
+      this.execute(items.slice(0, stopAt + 1));
+      items.splice(0, stopAt + 1);
+      if (items.length === 0) return;
+    }
+    if (latency <= 0) return this.execute(items);
+    const entry = { due: this.clock.now() + latency, items, timer: undefined as unknown };
+    entry.timer = this.clock.setTimeout(() => {
+      this.inbound = this.inbound.filter((q) => q !== entry);
+      this.stateLoop.catchUp();
+      this.execute(entry.items);
+    }, latency);
+    this.inbound.push(entry);
+  }
+
+  /**
+   * The deadman: the operator's presence went to `0` (it let go, or its last will). If a move
+   * is under way or a command is still queued, every servo stops where it is, as `#255PDST!`
+   * would, and the queue is discarded; answered `$ERR:deadman stop!`. At rest it does nothing.
+   * Returns whether it stopped the arm.
+   */
+  operatorLeft(): boolean {
+    this.stateLoop.catchUp();
+    const t = this.clock.now();
+    this.model.advance(t);
+    const s = this.model.servos;
+    let moving = this.inbound.length > 0;
+    for (let i = 0; i < s.count && !moving; i++) moving = s.isMoving(i, t);
+    if (!moving) return false;
+    this.discardQueued();
+    this.model.emergencyStop(t);
+    this.counters.deadmanStops++;
+    this.reply([encodeControllerError(DEADMAN_REPLY)]);
+    return true;
+  }
+
+  /** Applies faults now; returns the faults in force. Throws for a servo the arm lacks. */
+  applyFaults(faults: Fault[]): FaultState {
+    const t = this.clock.now();
+    const overheatC = this.o.model.overheatC ?? DEFAULT_SIM_MODEL_OPTIONS.overheatC;
+    for (const f of faults) this.faults = applyFault(this.model, this.faults, f, t, overheatC);
+    return this.faults;
+  }
+
+  private discardQueued(): void {
+    for (const q of this.inbound) {
+      this.clock.clearTimeout(q.timer);
+      this.counters.discardedQueued += q.items.length;
+    }
+    this.inbound = [];
+  }
+
+  /** Drops the commands over the rate (never stops); marks the first drop of a run for a reply. */
+  private limit(items: Item[]): Item[] {
+    const out: Item[] = [];
+    const now = this.clock.now();
+    for (const it of items) {
+      // Pings move nothing and measure the link: limiting them would distort the round trip.
+      const costs =
+        ('frame' in it && it.frame.type !== 'time' && it.frame.type !== 'ping') || 'group' in it;
+      if (!costs || isStop(it) || isEmergencyStop(it) || this.bucket.take(now)) {
+        if (costs) this.limiting = false;
+        out.push(it);
+        continue;
+      }
+      if (this.counters.rateLimited++ === 0)
+        this.o.onFirst('control:rate-limit', `commands over ${this.o.commandRate}/s dropped`);
+      if (!this.limiting) out.push({ limited: true });
+      this.limiting = true;
+    }
+    return out;
+  }
+
+  private execute(items: Item[]): void {
+    const t = this.clock.now();
+    const replies: string[] = [];
+    let errors = 0;
+    for (const it of items) {
+      if ('frame' in it) this.model.execute(it.frame, t, replies);
+      else if ('group' in it) this.model.executeGroup(it.group, t, replies);
+      else if ('limited' in it) replies.push(encodeControllerError(RATE_LIMIT_REPLY));
+      else {
+        const kind = it.error.kind;
+        this.counters.rejected[kind] = (this.counters.rejected[kind] ?? 0) + 1;
+        if (this.counters.rejected[kind] === 1)
+          this.o.onFirst(`control:${kind}`, `${it.error.message}: ${it.error.text}`);
+        if (errors++ < this.o.maxErrorsPerChunk)
+          replies.push(encodeControllerError(`${kind} ${it.error.text}`));
+      }
+    }
+    this.reply(replies, t);
+  }
+
+  /** Sends replies as one payload, `$TIM` first. */
+  private reply(replies: string[], t = this.clock.now()): void {
+    if (replies.length === 0) return;
+    const w = this.writer.reset();
+    if (this.o.stamp) w.time(Math.round(t));
+    for (const r of replies) w.text(r);
+    this.counters.replyPayloads++;
+    this.out(w.take(), 'reply');
+  }
+
+  private stateTicks(times: Float64Array, n: number): void {
+    this.counters.skippedSamples = this.stateLoop.skipped;
+    const w = this.writer.reset();
+    const s = this.model.servos;
+    const drop = this.faults.dropPercent;
+    for (let j = 0; j < n; j++) {
+      const t = times[j]!;
+      this.model.advance(t);
+      const stamp = Math.round(t);
+      if (stamp <= this.lastStamp) continue; // never two samples with the same $TIM
+      this.lastStamp = stamp;
+      if (drop > 0 && this.o.random() * 100 < drop) {
+        this.counters.droppedSamples++;
+        continue;
+      }
+      if (this.o.stamp) w.time(stamp);
+      w.groupStart();
+      for (let i = 0; i < s.count; i++) {
+        if (this.model.reportsAngle[i]) w.angle(s.ids[i]!, this.model.angleAt(i, t));
+        else w.position(s.ids[i]!, this.model.reportedPwm(i, t));
+      }
+      w.groupEnd();
+      this.counters.stateSamples++;
+    }
+    if (w.length === 0) return;
+    this.counters.statePayloads++;
+    this.out(w.take(), 'state');
+  }
+
+  private healthTick(t: number): void {
+    this.model.advance(t);
+    const s = this.model.servos;
+    const w = this.writer.reset();
+    if (this.o.stamp) w.time(Math.round(t));
+    w.groupStart();
+    for (let i = 0; i < s.count; i++) w.health(s.ids[i]!, s.temp[i]!, s.takeMinMv(i));
+    w.groupEnd();
+    this.counters.healthPayloads++;
+    this.out(w.take(), 'health');
+  }
+
+  private out(payload: Buffer, kind: PayloadKind): void {
+    const latency = this.faults.latencyMs;
+    if (latency <= 0) return this.transport.send(payload, kind);
+    const timer = this.clock.setTimeout(() => {
+      this.pending.delete(timer);
+      this.transport.send(payload, kind);
+    }, latency);
+    this.pending.add(timer);
+  }
+}
+
+/** A stop of one servo or of all: never rate-limited (stopping must always be possible). */
+function isStop(it: Item): boolean {
+  if ('frame' in it) return it.frame.type === 'stop';
+  if ('group' in it)
+    return it.group.invalid === 0 && it.group.frames.every((f) => f.type === 'stop');
+  return false;
+}
+
+function isEmergencyStop(it: Item): boolean {
+  if ('frame' in it) return it.frame.type === 'stop' && it.frame.id === 255;
+  if ('group' in it)
+    return it.group.invalid === 0 && it.group.frames.some((f) => f.type === 'stop' && f.id === 255);
+  return false;
+}

@@ -1,0 +1,152 @@
+/**
+ * `armtwin sim`: the simulated controller on its own, over MQTT (a client of its own, with the
+ * retained `0` will) or on a serial line (as real firmware, behind the gateway). Loads the
+ * profile, starts the runner with the faults in force, and logs what it does; the caller
+ * decides when to stop.
+ */
+import mqtt from 'mqtt';
+import type { Logger } from 'pino';
+import { linkOptions, OPERATOR_LEASE_MS } from '@armtwin/protocol';
+import type { BusProtocol } from '@armtwin/servo-bus';
+import { startBusSim, type BusSimCore } from './bus-sim.ts';
+import type { Fault } from './faults.ts';
+import { simWill, startMqttSim } from './mqtt-sim.ts';
+import type { ReportUnits } from './options.ts';
+import { DEFAULT_PROFILE, loadSimProfile, MODELS_DIR } from './profile.ts';
+import { DEFAULT_SIM_RUNNER_OPTIONS, type SimRunner } from './runner.ts';
+import { startSerialSim } from './serial-sim.ts';
+
+export interface SimOptions {
+  /** The broker to connect to (MQTT mode). */
+  mqttUrl: string;
+  /** Broker credentials ('' = anonymous). */
+  username: string;
+  password: string;
+  /** The arm id: `[a-z0-9-]{1,32}`. */
+  armId: string;
+  /** Robot profile: `<modelsDir>/<name>/profile.json`. */
+  profile: string;
+  /** The folder of robot profiles (default: the repository's `public/models`). */
+  modelsDir: string;
+  /** Position reports: as the profile says (`auto`), all §8 angle frames, or all pulse widths. */
+  report: ReportUnits;
+  /** State and health rates, Hz. */
+  rate: number;
+  healthRate: number;
+  /** Speak on this serial line instead of MQTT ('' = MQTT): no `$TIM`, no presence. */
+  serialPath: string;
+  baudRate: number;
+  /** On the serial line, answer as a Dynamixel or Feetech bus of the profile's servos ('' = frames). */
+  bus: '' | BusProtocol;
+  /** Faults in force from the start. */
+  faults: Fault[];
+  /** A beating operator is let go after this long without a `1`, ms (0 = only a `0`). */
+  operatorLeaseMs: number;
+  log: Logger;
+  /** Told the first time each kind of problem happens (later ones are only counted). */
+  onFirst: (kind: string, message: string) => void;
+}
+
+export const DEFAULT_SIM_OPTIONS = {
+  username: '',
+  password: '',
+  profile: DEFAULT_PROFILE,
+  modelsDir: MODELS_DIR,
+  report: 'auto',
+  rate: DEFAULT_SIM_RUNNER_OPTIONS.rate,
+  healthRate: DEFAULT_SIM_RUNNER_OPTIONS.healthRate,
+  serialPath: '',
+  baudRate: 115200,
+  bus: '',
+  faults: [],
+  operatorLeaseMs: OPERATOR_LEASE_MS,
+  onFirst: () => {},
+} satisfies Partial<SimOptions>;
+
+export interface Sim {
+  /** The frame controller (absent on a servo bus). */
+  runner?: SimRunner;
+  /** The emulated servo bus (`bus` set). */
+  bus?: BusSimCore;
+  /** Resolves with the reason when the serial line closes under the sim; never on MQTT. */
+  closed: Promise<string>;
+  /** Stops the loops; on MQTT, says offline and disconnects. */
+  stop(): Promise<void>;
+}
+
+export async function startSim(
+  options: Partial<SimOptions> & Pick<SimOptions, 'mqttUrl' | 'armId' | 'log'>,
+): Promise<Sim> {
+  const o: SimOptions = { ...DEFAULT_SIM_OPTIONS, ...options };
+  const { log } = o;
+  const profile = loadSimProfile(o.profile, o.modelsDir);
+  const runnerOptions = {
+    model: { ...profile.model, report: o.report },
+    rate: o.rate,
+    healthRate: o.healthRate,
+    faults: o.faults,
+    onFirst: o.onFirst,
+  };
+  if (o.serialPath && o.bus) {
+    const sim = await startBusSim({
+      protocol: o.bus,
+      profile: profile.profile,
+      faults: o.faults,
+      path: o.serialPath,
+      baudRate: o.baudRate,
+      onFirst: o.onFirst,
+    });
+    log.info(
+      { serial: o.serialPath, bus: o.bus, ids: profile.profile.servos.map((s) => s.id) },
+      'simulated servo bus on the serial line',
+    );
+    return { bus: sim.core, closed: sim.closed, stop: () => sim.stop() };
+  }
+  if (o.serialPath) {
+    const sim = await startSerialSim({
+      ...runnerOptions,
+      path: o.serialPath,
+      baudRate: o.baudRate,
+    });
+    log.info({ serial: o.serialPath, rate: o.rate }, 'simulated controller on the serial line');
+    return sim;
+  }
+  const client = mqtt.connect(o.mqttUrl, {
+    clientId: `armtwin-sim-${o.armId}-${process.pid}`,
+    ...(o.username ? { username: o.username, password: o.password } : {}),
+    will: simWill(o.armId),
+    ...linkOptions(),
+    queueQoSZero: false,
+  });
+  client.on('connect', () => {
+    // Frames are small: don't let Nagle's algorithm hold them back (~40 ms tails otherwise).
+    (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true);
+    log.info({ url: o.mqttUrl, arm: o.armId }, 'connected');
+  });
+  client.on('error', (err) => log.warn({ err: err.message }, 'mqtt error'));
+  const sim = startMqttSim(client, {
+    ...runnerOptions,
+    armId: o.armId,
+    profile,
+    operatorLeaseMs: o.operatorLeaseMs,
+  });
+  log.info(
+    {
+      arm: o.armId,
+      profile: o.profile,
+      report: o.report,
+      rate: o.rate,
+      healthRate: o.healthRate,
+      faults: sim.runner.faults,
+    },
+    'sim running',
+  );
+  return {
+    runner: sim.runner,
+    closed: new Promise<string>(() => {}),
+    async stop() {
+      await sim.stop();
+      log.info({ counters: sim.runner.counters, model: sim.runner.model.counters }, 'sim stopped');
+    },
+  };
+}
