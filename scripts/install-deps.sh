@@ -63,12 +63,14 @@ fi
 # own Python SDKs: ROBOTIS `dynamixel-sdk` and Feetech `feetech-servo-sdk` (both need only
 # pyserial). They live in a venv cached outside the clone, like influxd; a stamp file holds
 # the pinned requirements, so a changed pin rebuilds the venv and an unchanged one is kept.
-# tests/helpers/servo-sdk-python.ts finds it at the same path.
+# tests/helpers/servo-sdk-python.ts finds it at the same path. The same venv holds `rtb-data`
+# (Robotics Toolbox's robot descriptions: URDFs with STL and DAE meshes), whose third-party
+# robots tests/integration/robot-import.test.ts imports as a user would.
 PYENV_DIR="${ARMTWIN_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/armtwin}/pyenv"
-PYENV_REQS="dynamixel-sdk==4.1.0 feetech-servo-sdk==1.0.0 pyserial==3.5"
+PYENV_REQS="dynamixel-sdk==4.1.0 feetech-servo-sdk==1.0.0 pyserial==3.5 rtb-data==2.0.0"
 PYENV_STAMP="$PYENV_DIR/.armtwin-requirements"
 if [ -x "$PYENV_DIR/bin/python" ] && [ "$(cat "$PYENV_STAMP" 2>/dev/null)" = "$PYENV_REQS" ] \
-  && "$PYENV_DIR/bin/python" -c 'import dynamixel_sdk, scservo_sdk, serial' 2>/dev/null; then
+  && "$PYENV_DIR/bin/python" -c 'import dynamixel_sdk, scservo_sdk, serial, rtbdata' 2>/dev/null; then
   say "python venv: present ($PYENV_DIR: $PYENV_REQS)"
 else
   if ! command -v python3 >/dev/null; then
@@ -83,7 +85,7 @@ else
   mkdir -p "$(dirname "$PYENV_DIR")"
   python3 -m venv "$PYENV_DIR"
   "$PYENV_DIR/bin/python" -m pip install --quiet --disable-pip-version-check --no-input $PYENV_REQS
-  "$PYENV_DIR/bin/python" -c 'import dynamixel_sdk, scservo_sdk, serial'
+  "$PYENV_DIR/bin/python" -c 'import dynamixel_sdk, scservo_sdk, serial, rtbdata'
   printf '%s\n' "$PYENV_REQS" >"$PYENV_STAMP"
   say "python venv: ready ($PYENV_DIR)"
 fi

@@ -5,10 +5,12 @@
  * frame and that ffmpeg decodes; a killed ffmpeg is restarted and the open streams resume; with
  * a users file, an anonymous viewer is refused and a viewer's log-in is let in; a clean stop
  * removes the announcement, and so does the last will of a server that is killed (whose ffmpeg
- * then dies too). Every server and ffmpeg started here is stopped in afterAll.
+ * then dies too): the last two through the `armtwin camera` command. Every server and ffmpeg
+ * started here is stopped in afterAll.
  */
 import { spawn, type ChildProcess } from 'node:child_process';
 import { createHash } from 'node:crypto';
+import fs from 'node:fs';
 import path from 'node:path';
 import mqtt, { type MqttClient } from 'mqtt';
 import WebSocket from 'ws';
@@ -376,39 +378,54 @@ describe('camera server with a users file', () => {
   });
 });
 
-describe('a camera server that is killed', () => {
-  test('its last will removes the announcement, and its ffmpeg does not outlive it', async () => {
-    const options = {
-      cameras: [
-        { armId: 'arm1', camId: 'crash', label: 'Crash', source: 'testsrc', kinds: ['mjpeg'] },
-      ],
-      port: 0,
-      mqttUrl: broker().url,
-    };
-    const child = spawn(
-      process.execPath,
-      [
-        '--import',
-        'tsx',
-        path.join(REPO_ROOT, 'tests', 'helpers', 'camera-process.ts'),
-        JSON.stringify(options),
-      ],
-      { cwd: REPO_ROOT, stdio: ['ignore', 'pipe', 'inherit'] },
-    );
+describe('armtwin camera', () => {
+  const BIN = path.join(REPO_ROOT, 'apps', 'cli', 'bin', 'armtwin.mjs');
+  const topic = 'arm/arm1/camera/cli';
+
+  /** Starts the command; resolves with the process and the URL it prints once serving. */
+  async function command(): Promise<{ child: ChildProcess; url: string }> {
+    const args = ['camera', '--name', 'cli', '--label', 'CLI', '--source', 'testsrc'];
+    args.push('--kinds', 'mjpeg', '--fov', '45', '--port', '0', '--mqtt', broker().url);
+    const child = spawn(process.execPath, [BIN, ...args], {
+      cwd: REPO_ROOT,
+      stdio: ['ignore', 'pipe', 'inherit'],
+    });
     children.push(child);
-    const line = await new Promise<string>((resolve, reject) => {
+    const url = await new Promise<string>((resolve, reject) => {
       let text = '';
       child.stdout!.on('data', (d: Buffer) => {
         text += d.toString();
         if (text.includes('\n')) resolve(text.split('\n')[0]!);
       });
-      child.once('exit', (code) => reject(new Error(`camera process exited with ${code}`)));
+      child.once('exit', (code) => reject(new Error(`armtwin camera exited with ${code}`)));
     });
-    const { ffmpegPid } = JSON.parse(line) as { ffmpegPid: number };
-    const topic = 'arm/arm1/camera/crash';
+    return { child, url };
+  }
+  /** The ffmpeg the command runs (its only child process). */
+  const ffmpegOf = (pid: number) =>
+    Number(fs.readFileSync(`/proc/${pid}/task/${pid}/children`, 'utf8').trim().split(' ')[0]);
+
+  test('serves and announces one camera; SIGTERM removes the announcement and ends ffmpeg', async () => {
+    const { child, url } = await command();
+    expect(url).toMatch(/^http:\/\/127\.0\.0\.1:\d+\/camera\/cli\.mjpeg$/);
     const seen = await watchTopic(topic);
     await until('the retained announcement', () => seen.length >= 1);
-    expect(parseCameraMessage(topic, seen[0]!).type).toBe('camera');
+    const m = parseCameraMessage(topic, seen[0]!);
+    expect(m.type === 'camera' && m.camera).toMatchObject({ url, label: 'CLI', fovDeg: 45 });
+    const jpg = await fetch(url.replace(/\.mjpeg$/, '.jpg'));
+    expect(jpg.headers.get('content-type')).toBe('image/jpeg');
+    const ffmpegPid = ffmpegOf(child.pid!);
+    expect(alive(ffmpegPid)).toBe(true);
+    child.kill('SIGTERM');
+    await until('the empty payload', () => seen.at(-1)?.length === 0);
+    await until('ffmpeg gone', () => !alive(ffmpegPid), 5000);
+  });
+
+  test('killed outright: its last will removes the announcement, and its ffmpeg does not outlive it', async () => {
+    const { child } = await command();
+    const seen = await watchTopic(topic);
+    await until('the retained announcement', () => seen.at(-1)?.length);
+    const ffmpegPid = ffmpegOf(child.pid!);
     child.kill('SIGKILL');
     await until('the last will', () => seen.at(-1)?.length === 0);
     await until('its ffmpeg gone', () => !alive(ffmpegPid), 5000);

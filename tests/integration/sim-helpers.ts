@@ -56,6 +56,29 @@ export const armtwin = (args: string[], env?: Record<string, string>) =>
   runNode([ARMTWIN, ...args], env);
 
 /** A decoded status item: a top-level frame or a group, with the `$TIM` it came under. */
+/**
+ * `armtwin up` (through `script`, e.g. scripts/start.mjs or the CLI) on free HTTP and MQTT ports,
+ * resolved once it prints that it is running; fails with its output if it exits or takes 30 s.
+ */
+export async function startUpProcess(
+  script: string[],
+  args: string[],
+  ports: { httpPort: number; mqttPort: number },
+): Promise<Child> {
+  const up = runNode([
+    ...script,
+    ...args,
+    ...['--port', String(ports.httpPort), '--mqtt-port', String(ports.mqttPort)],
+  ]);
+  const deadline = Date.now() + 30_000;
+  while (!up.output().includes('armtwin is running')) {
+    if (Date.now() > deadline || up.proc.exitCode !== null)
+      throw new Error(`armtwin up did not start:\n${up.output()}`);
+    await new Promise((r) => setTimeout(r, 100));
+  }
+  return up;
+}
+
 export type StatusItem = { frame: Frame; time?: number } | { group: Group; time?: number };
 
 export class StatusWatcher {

@@ -7,7 +7,7 @@
 import mqtt from 'mqtt';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { freePorts } from '../helpers/services.ts';
-import { runNode, StatusWatcher, type Child } from './sim-helpers.ts';
+import { startUpProcess, StatusWatcher, type Child } from './sim-helpers.ts';
 
 let up: Child;
 let httpPort = 0;
@@ -16,21 +16,10 @@ const watchers: StatusWatcher[] = [];
 
 beforeAll(async () => {
   [httpPort = 0, mqttPort = 0] = await freePorts(2);
-  up = runNode([
-    'scripts/start.mjs',
-    '--no-middleware',
-    '--no-web',
-    '--port',
-    String(httpPort),
-    '--mqtt-port',
-    String(mqttPort),
-  ]);
-  const deadline = Date.now() + 30_000;
-  while (!up.output().includes('armtwin is running')) {
-    if (Date.now() > deadline || up.proc.exitCode !== null)
-      throw new Error(`armtwin up did not start:\n${up.output()}`);
-    await new Promise((r) => setTimeout(r, 100));
-  }
+  up = await startUpProcess(['scripts/start.mjs'], ['--no-middleware', '--no-web'], {
+    httpPort,
+    mqttPort,
+  });
 });
 
 afterAll(async () => {

@@ -5,6 +5,8 @@ import { registerSim } from './commands/sim.ts';
 import { registerGateway } from './commands/gateway.ts';
 import { registerBroker } from './commands/broker.ts';
 import { registerUp } from './commands/up.ts';
+import { registerCamera } from './commands/camera.ts';
+import { registerRobot } from './commands/robot.ts';
 import { registerDeployMosquitto, registerPasswd } from './commands/security.ts';
 
 /** Each command module adds itself to the program. */
@@ -15,6 +17,8 @@ const COMMANDS: ((program: Command) => void)[] = [
   registerGateway,
   registerBroker,
   registerUp,
+  registerCamera,
+  registerRobot,
   registerPasswd,
   registerDeployMosquitto,
 ];

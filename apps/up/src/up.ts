@@ -11,8 +11,10 @@
  * needs either the API token as a bearer token or a user's name and password (HTTP Basic).
  */
 import { randomBytes } from 'node:crypto';
+import fs from 'node:fs';
 import http from 'node:http';
 import https from 'node:https';
+import path from 'node:path';
 import {
   basicCredentials,
   whoamiAnswer,
@@ -22,8 +24,17 @@ import {
 } from '@armtwin/auth';
 import { startBroker, type Broker, type BrokerTls } from '@armtwin/broker';
 import { linkOptions } from '@armtwin/protocol';
-import { DEFAULT_PROFILE, loadSimProfile, simWill, startMqttSim, type MqttSim } from '@armtwin/sim';
+import {
+  DEFAULT_PROFILE,
+  loadSimProfile,
+  MODELS_DIR,
+  simWill,
+  startMqttSim,
+  type MqttSim,
+} from '@armtwin/sim';
+import { createCameraPart } from './camera-part.ts';
 import { ensureWebBuild, startMiddlewarePart, WEB_DIST, type StartedMiddleware } from './parts.ts';
+import { isModelRequest, modelFiles } from './model-files.ts';
 import { staticFiles } from './static-files.ts';
 
 export interface UpOptions {
@@ -56,6 +67,13 @@ export interface UpOptions {
   tls: BrokerTls | null;
   /** API_TOKEN for /api ('' with users = a random one, so only log-ins reach /api). */
   apiToken: string;
+  /**
+   * An extra folder of robot profiles (`--models DIR`): served at /models/ before
+   * public/models, and searched first for the arms' profiles.
+   */
+  modelsDir?: string;
+  /** A demo camera of the first arm (`--camera testsrc`, a device, a URL; '' = none). */
+  camera?: string;
   /** Progress lines for the operator. */
   say: (msg: string) => void;
   onFirst: (kind: string, message: string) => void;
@@ -81,7 +99,9 @@ const MIDDLEWARE_MISSING = JSON.stringify({
 
 export async function startUp(o: UpOptions): Promise<Up> {
   const armSpecs = o.arms?.length ? o.arms : [{ id: o.armId, profile: DEFAULT_PROFILE }];
-  const profiles = armSpecs.map((a) => loadSimProfile(a.profile)); // a bad profile fails here, before anything starts
+  const modelDirs = o.modelsDir ? [o.modelsDir, MODELS_DIR] : [MODELS_DIR];
+  // a bad profile fails here, before anything starts
+  const profiles = armSpecs.map((a) => loadSimProfile(a.profile, profileDir(modelDirs, a.profile)));
   const hasWeb = o.buildWeb ? ensureWebBuild(o.say) : false;
   const broker = await startBroker({
     host: o.host,
@@ -101,6 +121,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
     WEB_DIST,
     'The HUD is not built: run `npm run build -w @armtwin/web`.\n',
   );
+  const models = modelFiles(modelDirs);
   const api = async (req: http.IncomingMessage, res: http.ServerResponse) => {
     if (req.url === '/api/whoami') return whoami(req, res, broker.logins);
     if (broker.logins) await basicToBearer(req, broker.logins, apiToken);
@@ -111,7 +132,18 @@ export async function startUp(o: UpOptions): Promise<Up> {
     });
     res.end(mw ? JSON.stringify({ error: 'not found' }) : MIDDLEWARE_MISSING);
   };
+  const camera = o.camera
+    ? createCameraPart({
+        source: o.camera,
+        armId: armSpecs[0]!.id,
+        broker,
+        apiToken,
+        say: o.say,
+        onFirst: o.onFirst,
+      })
+    : null;
   const onRequest = (req: http.IncomingMessage, res: http.ServerResponse) => {
+    if (camera?.handleRequest(req, res)) return;
     if (req.url === '/api' || req.url?.startsWith('/api/')) {
       api(req, res).catch((err: unknown) => {
         o.onFirst('api', `api request failed: ${(err as Error).message}`);
@@ -119,18 +151,20 @@ export async function startUp(o: UpOptions): Promise<Up> {
       });
       return;
     }
-    files(req, res);
+    if (isModelRequest(req)) models(req, res);
+    else files(req, res);
   };
   const server = o.tls
     ? https.createServer({ ...o.tls, minVersion: 'TLSv1.2' }, onRequest)
     : http.createServer(onRequest);
-  broker.attach(server);
+  broker.attach(server, camera ? [camera.handleUpgrade] : []);
   try {
     await new Promise<void>((resolve, reject) => {
       server.once('error', reject);
       server.listen(o.httpPort, o.host, () => resolve());
     });
   } catch (err) {
+    await camera?.stop();
     await broker.close();
     throw (err as NodeJS.ErrnoException).code === 'EADDRINUSE'
       ? new Error(`HTTP port ${o.httpPort} is taken: set ARMTWIN_PORT to another port`)
@@ -140,6 +174,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
   const httpPort = typeof address === 'object' && address ? address.port : o.httpPort;
   const shownHost = o.host === '0.0.0.0' || o.host === '::' ? 'localhost' : o.host;
   const url = `${o.tls ? 'https' : 'http'}://${shownHost}:${httpPort}/`;
+  camera?.announce(url.slice(0, -1));
 
   const sims = armSpecs.map(({ id }, k) => {
     const client = broker.connectInProcess(
@@ -190,6 +225,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
   let stopping: Promise<void> | undefined;
   const stop = () =>
     (stopping ??= (async () => {
+      await camera?.stop();
       await Promise.all(sims.map((s) => s.stop()));
       const started = await middlewareReady;
       if (started) {
@@ -238,4 +274,9 @@ async function whoami(
 ): Promise<void> {
   const a = whoamiAnswer(logins ? await basicUser(req, logins) : 'anonymous-demo');
   res.writeHead(a.status, a.headers).end(a.body);
+}
+
+/** The first of `dirs` that holds `<name>/profile.json` (the last one otherwise, for its error). */
+function profileDir(dirs: readonly string[], name: string): string {
+  return dirs.find((d) => fs.existsSync(path.join(d, name, 'profile.json'))) ?? dirs.at(-1)!;
 }

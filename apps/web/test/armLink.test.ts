@@ -58,6 +58,23 @@ describe('ArmLink', () => {
   beforeEach(() => vi.useFakeTimers());
   afterEach(() => vi.useRealTimers());
 
+  it('a tap is subscribed on the same client (now, and at each connect) and gets its messages', () => {
+    const { client, link } = setup();
+    const got: string[] = [];
+    link.tap({
+      filter: 'arm/arm1/camera/+',
+      matches: (t) => t.startsWith('arm/arm1/camera/'),
+      onMessage: (t) => got.push(t),
+    });
+    expect(client.subscribed).toContain('arm/arm1/camera/+');
+    client.subscribed = [];
+    client.emit('connect');
+    expect(client.subscribed).toContain('arm/arm1/camera/+');
+    client.emit('message', 'arm/arm1/camera/front', new Uint8Array());
+    client.emit('message', 'arm/arm1/online', new TextEncoder().encode('1'));
+    expect(got).toEqual(['arm/arm1/camera/front']);
+  });
+
   it('connects with the credentials, keep-alive 60 s and reconnect 1 s, and subscribes status and online', () => {
     const { store, client, opts, link } = setup();
     expect(opts()).toMatchObject({

@@ -22,6 +22,7 @@ const VIEWER_READ = [
   'arm/+/sim/faults',
   'arm/+/profile',
   'arm/+/feedback',
+  'arm/+/camera/+',
 ] as const;
 
 export const ROLE_RULES: Record<Role, RoleRules> = {
@@ -38,6 +39,8 @@ export const ROLE_RULES: Record<Role, RoleRules> = {
       'arm/{arm}/sim/faults',
       'arm/{arm}/profile',
       'arm/{arm}/feedback',
+      // The arm's cameras (PROTOCOL.md §7): the camera server logs in as the arm's device.
+      'arm/{arm}/camera/+',
     ],
   },
   middleware: { read: ['arm/+/status', 'arm/+/control'], write: [] },

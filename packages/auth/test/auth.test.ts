@@ -86,6 +86,18 @@ describe('roles', () => {
     expect(canSubscribe(device, 'arm/arm1/status')).toBe(false);
   });
 
+  test("viewers and operators read the cameras; a device announces only its own arm's", () => {
+    for (const p of [viewer, operator]) {
+      expect(canSubscribe(p, 'arm/+/camera/+')).toBe(true);
+      expect(canSubscribe(p, 'arm/arm1/camera/front')).toBe(true);
+      expect(canPublish(p, 'arm/arm1/camera/front')).toBe(false);
+    }
+    expect(canPublish(device, 'arm/arm1/camera/front')).toBe(true);
+    expect(canPublish(device, 'arm/arm2/camera/front')).toBe(false);
+    expect(canPublish(device, 'arm/arm1/camera/front/x')).toBe(false);
+    expect(canSubscribe(mw, 'arm/+/camera/+')).toBe(false);
+  });
+
   test('middleware reads status and control, also through $share', () => {
     expect(canSubscribe(mw, '$share/g1/arm/+/status')).toBe(true);
     expect(canSubscribe(mw, '$share/g1/arm/+/control')).toBe(true);

@@ -46,6 +46,8 @@ describe('Mosquitto configuration', () => {
     expect(acl).toContain('topic write arm/+/control');
     expect(acl).toContain('user arm9\ntopic read arm/arm9/control');
     expect(acl).toContain('topic write arm/arm9/status');
+    expect(acl).toContain('topic read arm/+/camera/+');
+    expect(acl).toContain('topic write arm/arm9/camera/+');
     expect(acl).not.toMatch(/^pattern/m);
   });
 });

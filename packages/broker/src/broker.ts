@@ -9,12 +9,16 @@ import http from 'node:http';
 import type https from 'node:https';
 import net from 'node:net';
 import tls from 'node:tls';
+import type { Duplex } from 'node:stream';
 import { Aedes, type Client } from 'aedes';
 import { MqttClient, type IClientOptions } from 'mqtt';
 import { WebSocketServer, createWebSocketStream } from 'ws';
 import { LoginThrottle, type Principal, type Users } from '@armtwin/auth';
 import { MAX_PAYLOAD_BYTES } from '@armtwin/protocol';
 import { duplexPair, installPolicy, limitPacketSize, type AuthCounters } from './auth.ts';
+
+/** Takes an HTTP upgrade (returns true) or leaves it to the next handler. */
+export type UpgradeHandler = (req: http.IncomingMessage, socket: Duplex, head: Buffer) => boolean;
 
 export interface BrokerTls {
   /** PEM certificate chain and private key of the server. */
@@ -68,8 +72,11 @@ export interface Broker {
    * HTTP Basic log-ins with it too, so one lockout covers MQTT and `/api`.
    */
   logins: LoginThrottle | null;
-  /** Serves MQTT over WebSockets on this HTTP(S) server at `wsPath`. */
-  attach(server: http.Server | https.Server): void;
+  /**
+   * Serves MQTT over WebSockets on this HTTP(S) server at `wsPath`. `others` are offered each
+   * upgrade first (a camera's stream, say); an upgrade nobody takes is closed.
+   */
+  attach(server: http.Server | https.Server, others?: readonly UpgradeHandler[]): void;
   /**
    * An mqtt.js client connected in-process (no socket, no password) with the rights of
    * `principal`: how `armtwin up` runs its own simulated arm and middleware.
@@ -149,13 +156,21 @@ export async function startBroker(options: Partial<BrokerOptions> = {}): Promise
     authenticated: o.users !== null,
     counters,
     logins,
-    attach(server) {
+    attach(server, others = []) {
       // A WebSocket message carries one MQTT packet or a few; the exact bound is the parser's.
-      const wss = new WebSocketServer({ server, path: o.wsPath, maxPayload: 4 * o.maxPacketBytes });
+      const wss = new WebSocketServer({ noServer: true, maxPayload: 4 * o.maxPacketBytes });
       wss.on('connection', (ws, req) => {
         const stream = createWebSocketStream(ws);
         stream.on('error', () => ws.terminate());
         handle(stream, req);
+      });
+      const mqttUpgrade: UpgradeHandler = (req, socket, head) => {
+        if (new URL(req.url ?? '/', 'http://x').pathname !== o.wsPath) return false;
+        wss.handleUpgrade(req, socket, head, (ws) => wss.emit('connection', ws, req));
+        return true;
+      };
+      server.on('upgrade', (req, socket, head) => {
+        if (![...others, mqttUpgrade].some((take) => take(req, socket, head))) socket.destroy();
       });
       sockets.add(wss);
     },

@@ -225,10 +225,14 @@ export class BusGatewayCore {
     return this.joints.find((j) => j.id === id)!;
   }
 
-  /** Torque off, multi-turn where needed, goals = present, torque on (as wanted). */
-  private setUp(ids: number[]): void {
+  /**
+   * Torque off (at line open; not for a servo that comes back, which may only have missed
+   * reads), multi-turn where needed (refused harmlessly by a servo whose torque is on), goals =
+   * present positions, torque on (as wanted).
+   */
+  private setUp(ids: number[], torqueOff = true): void {
     if (ids.length === 0) return;
-    this.line.torque(false, ids);
+    if (torqueOff) this.line.torque(false, ids);
     for (const id of ids)
       if (this.joint(id).multiTurn)
         for (const w of multiTurnWrites(this.o.protocol)) this.line.config(id, w);
@@ -266,7 +270,7 @@ export class BusGatewayCore {
       this.nextPingMs = now + this.o.repingMs;
       this.line.ping(lost, (back) => {
         for (const id of back) this.found.add(id);
-        this.setUp(back);
+        this.setUp(back, false);
       });
     }
   }

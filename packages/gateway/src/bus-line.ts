@@ -3,7 +3,9 @@
  * at a time. A request that expects answers waits for them (the bus client's `feed`) or for its
  * time-out (`replyTimeoutMs` at the line's baud rate, then `expire`); one that does not (sync
  * writes) is written and the next one follows at once. Goals can be dropped from the queue and
- * urgent requests put at its head, so a stop beats anything queued.
+ * urgent requests put at its head, so a stop beats anything queued. After a time-out the line
+ * is drained for `BUS_DRAIN_MS` (bytes dropped, nothing sent, the client's reader started
+ * afresh), so a late answer is never taken for the next request's.
  */
 import {
   createBusClient,
@@ -14,6 +16,9 @@ import {
 } from '@armtwin/servo-bus';
 import { busCalibrations, type BusJoint } from './bus-servos.ts';
 import type { ConfigWrite } from './bus-writes.ts';
+
+/** Quiet time after a time-out, ms: late answers still on their way are dropped. */
+export const BUS_DRAIN_MS = 40;
 
 export type BusJobTag = 'ping' | 'positions' | 'health' | 'goal' | 'hold' | 'torque' | 'config';
 
@@ -40,6 +45,8 @@ export interface BusLineCounters {
   failed: number;
   /** Goals dropped from the queue by a stop. */
   droppedGoals: number;
+  /** Bytes dropped while draining after a time-out. */
+  drainedBytes: number;
 }
 
 type Positions = Extract<BusResult, { kind: 'positions' }>;
@@ -52,6 +59,7 @@ export class BusLine {
     timeouts: 0,
     failed: 0,
     droppedGoals: 0,
+    drainedBytes: 0,
   };
   ready = false;
   private client!: BusClient;
@@ -59,6 +67,7 @@ export class BusLine {
   private current: Job | undefined;
   private timer: unknown;
   private pumping = false;
+  private draining: unknown;
 
   constructor(
     private readonly protocol: BusProtocol,
@@ -76,6 +85,12 @@ export class BusLine {
     this.queue = [];
     this.current = undefined;
     this.ready = false;
+    this.io.clearTimeout(this.draining);
+    this.draining = undefined;
+    this.newClient();
+  }
+
+  private newClient(): void {
     this.client = createBusClient({
       protocol: this.protocol,
       servos: busCalibrations(this.joints),
@@ -158,6 +173,10 @@ export class BusLine {
   }
 
   fromSerial(chunk: Uint8Array): void {
+    if (this.draining !== undefined) {
+      this.counters.drainedBytes += chunk.length;
+      return;
+    }
     for (const r of this.client.feed(chunk)) this.finish(r);
   }
 
@@ -178,7 +197,7 @@ export class BusLine {
   }
 
   private pump(): void {
-    if (this.pumping) return;
+    if (this.pumping || this.draining !== undefined) return;
     this.pumping = true;
     try {
       while (!this.current && this.queue.length) {
@@ -200,7 +219,12 @@ export class BusLine {
             () => {
               this.timer = undefined;
               const r = this.client.expire();
-              if (r) this.counters.timeouts++;
+              this.counters.timeouts++;
+              this.newClient();
+              this.draining = this.io.setTimeout(() => {
+                this.draining = undefined;
+                this.pump();
+              }, BUS_DRAIN_MS);
               this.finish(r);
             },
             replyTimeoutMs(pending.expectedReplyBytes, this.baudRate),

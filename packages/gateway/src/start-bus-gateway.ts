@@ -9,7 +9,7 @@ import { fileURLToPath } from 'node:url';
 import mqtt, { type MqttClient } from 'mqtt';
 import { chainFromUrdf, parseProfile, type Profile } from '@armtwin/ik';
 import { createMotionRobot, type MotionRobot } from '@armtwin/motion';
-import { armTopics, linkOptions, SYSTEM_CLOCK } from '@armtwin/protocol';
+import { armTopics, linkOptions, SYSTEM_CLOCK, topic } from '@armtwin/protocol';
 import type { BusProtocol } from '@armtwin/servo-bus';
 import { busKmsSolver } from './bus-kms.ts';
 import {
@@ -31,7 +31,7 @@ export const BUS_MODELS_DIR = path.resolve(
 );
 
 /** The topic that turns torque off (`0`) and on (`1`): `arm/{id}/torque`, retained or not. */
-export const torqueTopic = (armId: string) => `arm/${armId}/torque`;
+export const torqueTopic = (armId: string) => topic(armId, 'torque');
 
 export interface BusGatewayStartOptions extends GatewayOptions {
   bus: BusProtocol;

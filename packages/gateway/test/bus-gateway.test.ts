@@ -45,6 +45,8 @@ function rig(protocol: BusProtocol, ids = [0, 1, 2, 3, 4, 5]) {
     onGroup: (g) => items.push({ group: g.frames }),
   });
   let open = true;
+  /** Answers arrive this late (ms); 0 = at once. */
+  let lateMs = 0;
   const core: BusGatewayCore = new BusGatewayCore(
     { armId: 'a1', protocol, profile: profile(), kms: busKmsSolver(createMotionRobot(profile())) },
     {
@@ -60,7 +62,9 @@ function rig(protocol: BusProtocol, ids = [0, 1, 2, 3, 4, 5]) {
         if (!open) return false;
         bus.advance(clock.now());
         const reply = bus.feed(data);
-        if (reply.length) core.fromSerial(reply);
+        if (reply.length === 0) return true;
+        if (lateMs > 0) clock.setTimeout(() => core.fromSerial(reply), lateMs);
+        else core.fromSerial(reply);
         return true;
       },
     },
@@ -83,7 +87,8 @@ function rig(protocol: BusProtocol, ids = [0, 1, 2, 3, 4, 5]) {
     if (value) core.serialOpened();
     else core.serialClosed();
   };
-  return { clock, bus, core, items, retained, angle, errors, setOpen };
+  const setLate = (ms: number) => (lateMs = ms);
+  return { clock, bus, core, items, retained, angle, errors, setOpen, setLate };
 }
 
 describe.each(['dynamixel', 'feetech'] as const)('bus gateway core on %s', (protocol) => {
@@ -177,6 +182,26 @@ describe.each(['dynamixel', 'feetech'] as const)('bus gateway core on %s', (prot
     expect(Math.hypot(tip.x - 150, tip.y - 50, tip.z - 120)).toBeLessThan(1);
     r.core.fromControl('$KMS:1000,0,100,500!');
     expect(r.items.at(-1)?.frame).toMatchObject({ type: 'kmsResult', code: 2 });
+  });
+
+  test('answers arriving after their time-out are drained, never taken for the next ones', () => {
+    const r = rig(protocol);
+    r.core.fromControl('#001A+030.00T0000!#003A-020.00T0000!');
+    r.clock.advance(500);
+    r.setLate(45); // just past the 40 ms margin
+    r.clock.advance(150);
+    r.setLate(0);
+    const from = r.items.length;
+    r.clock.advance(1000);
+    const groups = r.items.slice(from).flatMap((i) => (i.group ? [i.group] : []));
+    expect(groups.length).toBeGreaterThan(40);
+    for (const g of groups)
+      for (const f of g) {
+        if (f.type === 'angle') expect(f.deg).toBe(f.id === 1 ? 30 : f.id === 3 ? -20 : 0);
+        if (f.type === 'health') expect(f.temp).toBe(25);
+      }
+    expect(r.core.lineCounters.timeouts).toBeGreaterThan(0);
+    expect(r.core.found.size).toBe(6);
   });
 
   test('$PNG, PRAD and PRTV are answered', () => {

@@ -38,3 +38,4 @@ export {
 } from './ik.ts';
 export * from './profile/index.ts';
 export * from './numeric/index.ts';
+export * from './import/index.ts';

@@ -12,6 +12,7 @@ export const TOPIC_KINDS = [
   'request',
   'feedback',
   'sim',
+  'torque',
 ] as const;
 export type TopicKind = (typeof TOPIC_KINDS)[number];
 

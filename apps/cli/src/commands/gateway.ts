@@ -93,36 +93,27 @@ is on at start; 0 on arm/{id}/torque turns it off, 1 back on. $KMS goes through 
       const env = loadCliConfig();
       const log = createLogger('gateway', env.logLevel);
       const username = flags.username ?? env.mqttUsername;
-      if (flags.bus !== 'lsc') {
-        const bus = startBusGateway({
-          bus: flags.bus,
-          profile: flags.profile,
-          modelsDir: flags.models,
-          stateRate: flags.rate,
-          healthRate: flags.healthRate,
-          serialPath: flags.serial,
-          baudRate: flags.baud ?? DEFAULT_BUS_GATEWAY_OPTIONS.baudRate,
-          mqttUrl: flags.mqtt ?? env.mqttUrl,
-          armId: flags.arm,
-          operatorLeaseMs: flags.operatorLease,
-          ...(username ? { username, password: flags.password ?? env.mqttPassword } : {}),
-          onFirst: firstOnly(log),
-          log,
-        });
-        await untilSignal(log);
-        await bus.stop();
-        return;
-      }
-      const gw = startGateway({
+      const line = {
         serialPath: flags.serial,
-        baudRate: flags.baud ?? DEFAULT_GATEWAY_OPTIONS.baudRate,
         mqttUrl: flags.mqtt ?? env.mqttUrl,
         armId: flags.arm,
         operatorLeaseMs: flags.operatorLease,
         ...(username ? { username, password: flags.password ?? env.mqttPassword } : {}),
         onFirst: firstOnly(log),
         log,
-      });
+      };
+      const gw =
+        flags.bus === 'lsc'
+          ? startGateway({ ...line, baudRate: flags.baud ?? DEFAULT_GATEWAY_OPTIONS.baudRate })
+          : startBusGateway({
+              ...line,
+              bus: flags.bus,
+              profile: flags.profile,
+              modelsDir: flags.models,
+              stateRate: flags.rate,
+              healthRate: flags.healthRate,
+              baudRate: flags.baud ?? DEFAULT_BUS_GATEWAY_OPTIONS.baudRate,
+            });
       await untilSignal(log);
       await gw.stop();
     });

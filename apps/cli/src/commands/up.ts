@@ -1,3 +1,4 @@
+import path from 'node:path';
 import { InvalidArgumentError, type Command } from 'commander';
 import { DEFAULT_PROFILE, PROFILE_NAME } from '@armtwin/sim';
 import { runUp } from '@armtwin/up';
@@ -29,6 +30,8 @@ interface UpFlags {
   rate: number;
   web: boolean;
   middleware: boolean;
+  camera?: string;
+  models?: string;
 }
 
 export function registerUp(program: Command): void {
@@ -59,8 +62,16 @@ export function registerUp(program: Command): void {
       parseArms,
     )
     .option('--rate <hz>', 'state rate of the simulated arm, Hz', number('rate', 1, 1000), 50)
+    .option(
+      '--models <dir>',
+      'an extra folder of robot profiles, served at /models/ (before public/models) and read by --arms',
+    )
     .option('--no-web', 'do not build the HUD when apps/web/dist is missing')
     .option('--no-middleware', 'do not start the middleware')
+    .option(
+      '--camera <source>',
+      'a demo camera of the first arm through ffmpeg: testsrc, /dev/video0, rtsp://… or an MJPEG URL',
+    )
     .addHelpText(
       'after',
       `
@@ -93,6 +104,8 @@ Ctrl-C stops everything: the arm says offline, the middleware flushes, influxd s
         influxUrl: env.influxUrl,
         buildWeb: flags.web,
         middleware: flags.middleware,
+        ...(flags.camera ? { camera: flags.camera } : {}),
+        ...(flags.models ? { modelsDir: path.resolve(flags.models) } : {}),
         env: process.env,
         say,
         onFirst: firstOnly(log),

@@ -11,6 +11,7 @@ import { LoginPanel } from '../panels/Login/LoginPanel.tsx';
 import { FleetPanel } from '../panels/Fleet/FleetPanel.tsx';
 import { CommandPanel } from '../panels/Command/CommandPanel.tsx';
 import { PlanPanel } from '../panels/Plan/PlanPanel.tsx';
+import { CameraPanel } from '../panels/Camera/CameraPanel.tsx';
 
 export function App() {
   return (
@@ -29,6 +30,7 @@ export function App() {
         <EmergencyStopButton />
         <LoginPanel />
         <FleetPanel />
+        <CameraPanel />
         <StatusPanel />
         <HealthPanel />
         <ConnectionPanel />

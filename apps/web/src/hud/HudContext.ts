@@ -12,6 +12,8 @@ import type { PlanPreview } from '../panels/Plan/PlanPreview.ts';
 import type { PlanRunner } from '../panels/Plan/PlanRunner.ts';
 import type { WaypointEditor } from '../panels/Plan/WaypointEditor.ts';
 import type { RequestLog } from '../panels/Command/RequestLog.ts';
+import type { CameraHub } from '../cameras/CameraHub.ts';
+import type { CameraScreens } from '../scene/CameraScreens.ts';
 
 /** The Plan panel's plain objects. */
 export interface PlanTools {
@@ -40,6 +42,10 @@ export interface Hud {
   plan: PlanTools;
   /** Motion requests this page sent (Command box, Cartesian panel) and their feedback. */
   requests: RequestLog;
+  /** The selected arm's cameras (PROTOCOL.md §7), read on the arm link's client. */
+  cameras: CameraHub;
+  /** The cameras' screens in the 3D view, and "view through this camera". */
+  cameraScreens: CameraScreens;
   /** Controls another arm (the fleet list): saves it and reconnects. */
   selectArm(armId: string): void;
 }

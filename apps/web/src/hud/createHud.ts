@@ -1,7 +1,8 @@
 /**
  * The page's one composition root: builds every plain object the HUD runs on — settings, the
  * store, the target preview, the replay, the 3D view, the log-in session, the arm link, the
- * robots (fleet link and active robot), the Plan panel's objects and the request log — and
+ * robots (fleet link and active robot), the Plan panel's objects, the request log and the
+ * cameras — and
  * wires them to each other. Nothing below `hud/` builds or wires another part; `main.tsx` only
  * mounts what this returns.
  */
@@ -28,6 +29,8 @@ import { PlanRunner } from '../panels/Plan/PlanRunner.ts';
 import { WaypointEditor } from '../panels/Plan/WaypointEditor.ts';
 import { Waypoints } from '../panels/Plan/Waypoints.ts';
 import { RequestLog } from '../panels/Command/RequestLog.ts';
+import { CameraHub } from '../cameras/CameraHub.ts';
+import { CameraScreens } from '../scene/CameraScreens.ts';
 import type { Hud, PlanTools } from './HudContext.ts';
 import { installDebugHook } from './debugHook.ts';
 
@@ -80,6 +83,12 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
     editor: null,
   };
   const requests = new RequestLog();
+  // The cameras ride on the arm link's client: it is rebuilt for each arm and log-in, so the
+  // list follows the selected arm and reads with the page's credentials and role.
+  const cameras = new CameraHub();
+  const firstLink = new ArmLink(store, settings, connect, workerIntervals);
+  cameras.attach(firstLink);
+  const cameraScreens = new CameraScreens(viewer, cameras);
 
   const hud: Hud = {
     store,
@@ -90,7 +99,9 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
     robots,
     plan,
     requests,
-    link: new ArmLink(store, settings, connect, workerIntervals),
+    cameras,
+    cameraScreens,
+    link: firstLink,
     selectArm(armId: string) {
       const next = settingsForArm(hud.settings, armId);
       if (next) hud.reconnect(next);
@@ -102,6 +113,7 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
       const prev = hud.settings;
       hud.settings = next;
       hud.link = new ArmLink(store, next, connect, workerIntervals);
+      cameras.attach(hud.link);
       plan.runner.cancel(prev.armId === next.armId ? '' : 'stopped: another arm was selected');
       plan.preview.clear();
       robots.switched(prev, next);

@@ -49,6 +49,16 @@ const NATIVE_INTERVALS: IntervalTimers = {
 const now = () => performance.now();
 const decoder = new TextDecoder();
 
+/**
+ * Another reader of this link's client (the cameras of the arm, src/cameras/CameraHub.ts): its
+ * filter is subscribed at every connect, with the link's log-in; matching messages go to it.
+ */
+export interface LinkTap {
+  readonly filter: string;
+  matches(topic: string): boolean;
+  onMessage(topic: string, payload: Uint8Array): void;
+}
+
 export class ArmLink {
   readonly topics: ArmTopics;
   private client: MqttLike | null = null;
@@ -64,6 +74,7 @@ export class ArmLink {
   permissions: LinkPermissions = NO_PERMISSIONS;
   private events: LinkEvents = {};
   private connected = false;
+  private readonly taps: LinkTap[] = [];
 
   constructor(
     private readonly store: ArmStore,
@@ -110,6 +121,7 @@ export class ArmLink {
       client.subscribe([this.topics.status, this.topics.online], { qos: 0 }, (err) => {
         if (err) this.store.connectionError = `subscribe failed: ${err.message}`;
       });
+      this.subscribeTaps(client);
     });
     // A client this link has let go of (stop/release) still emits close/offline: the store is
     // the next link's by then, so those events are ignored.
@@ -147,6 +159,23 @@ export class ArmLink {
       }, OPERATOR_BEAT_MS);
   }
 
+  /** Adds a reader of this link's messages (subscribed now when connected, else at connect). */
+  tap(t: LinkTap): void {
+    this.taps.push(t);
+    if (this.client && this.connected) this.subscribeTaps(this.client, [t]);
+  }
+
+  private subscribeTaps(client: MqttLike, taps: readonly LinkTap[] = this.taps): void {
+    if (taps.length === 0) return;
+    client.subscribe(
+      taps.map((t) => t.filter),
+      { qos: 1 },
+      (err) => {
+        if (err) this.store.connectionError = `subscribe failed: ${err.message}`;
+      },
+    );
+  }
+
   /** The deadman's `1`: retained, QoS 1 (at connect, then as the beat). */
   private holdOperator(client: MqttLike): void {
     client.publish(this.topics.operator, '1', { qos: 1, retain: true });
@@ -165,6 +194,8 @@ export class ArmLink {
       const text = decoder.decode(payload).trim();
       this.store.armOnline = text === '1' ? true : text === '0' ? false : null;
       this.store.armOnlineText = this.store.armOnline === null ? text.slice(0, 80) : '';
+    } else {
+      for (const t of this.taps) if (t.matches(topic)) t.onMessage(topic, payload);
     }
   }
 

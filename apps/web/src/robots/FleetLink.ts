@@ -219,6 +219,7 @@ export class FleetLink {
       case 'operator':
       case 'request':
       case 'sim':
+      case 'torque':
         return;
       default:
         return unhandled(p.kind);

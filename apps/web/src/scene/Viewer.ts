@@ -13,7 +13,8 @@ import type { JointMap } from '../robots/robotSpec.ts';
 import { frameCamera, type GhostSource } from '../robots/sceneHooks.ts';
 import type { ReplayPlayer } from '../replay/ReplayPlayer.ts';
 import { ReplaySibling, siblingMaterial } from './ReplaySibling.ts';
-import { RobotModelLoader, solidMaterial } from './loadRobot.ts';
+import { RobotModelLoader, solidMaterial, type MeshFailure } from './loadRobot.ts';
+import { MeshFailureNote } from './MeshFailureNote.ts';
 import { createStage, type Stage } from './stage.ts';
 import { Ghost, ghostMaterial } from './Ghost.ts';
 import { PosedRobot } from './PosedRobot.ts';
@@ -40,6 +41,9 @@ export class Viewer {
   private sibling: ReplaySibling | null = null;
   private readonly marker: TargetMarker;
   private readonly picker: FloorPicker;
+  private readonly failureNote: MeshFailureNote;
+  /** The meshes of the loaded robot that could not be loaded (shown over the view). */
+  meshFailures: readonly MeshFailure[] = [];
   /** Drawn into the ghost instead of the target/commanded pose while active (the plan preview). */
   ghostSource: GhostSource | null = null;
   /** Called every frame (waypoint spheres, …); a hook returning true asks for a render. */
@@ -98,6 +102,7 @@ export class Viewer {
     this.stage = createStage(this.scene);
     this.marker = new TargetMarker(this.stage, target);
     this.picker = new FloorPicker(this.renderer.domElement, this.camera, this.stage, target);
+    this.failureNote = new MeshFailureNote(container);
   }
 
   /** The canvas's current pixel ratio (lowered while frames are slow). */
@@ -123,15 +128,21 @@ export class Viewer {
   /**
    * Loads a robot's URDF as the live arm, the ghost and (with a ReplayPlayer) the replay's
    * sibling, replacing any loaded before, all three posed through `joints` (the active robot's
-   * profile); rejects with a readable message.
+   * profile); rejects with a readable message when the URDF cannot be used. A mesh that does
+   * not load is left out, counted and named over the view (`meshFailures`), and the rest is drawn.
    */
   async load(urdfUrl: string, joints: JointMap): Promise<void> {
     const loader = new RobotModelLoader(urdfUrl);
-    const [robot, ghost, sibling] = await Promise.all([
+    const [built, builtGhost, builtSibling] = await Promise.all([
       loader.build(solidMaterial),
       loader.build(ghostMaterial),
       this.replay ? loader.build(siblingMaterial) : null,
     ]);
+    const robot = built.robot;
+    const ghost = builtGhost.robot;
+    const sibling = builtSibling?.robot ?? null;
+    this.meshFailures = built.failures;
+    this.failureNote.show(built.failures);
     for (const old of [this.live?.robot, this.ghost?.robot, this.sibling?.robot])
       old?.removeFromParent();
     this.live = new PosedRobot(robot, joints);

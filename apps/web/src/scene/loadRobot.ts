@@ -1,17 +1,32 @@
 /**
- * Loads the arm's URDF with urdf-loader and its STL meshes with an injected mesh loader
- * (three's STLLoader), and resolves only when every mesh is in, so the first frame shows the
- * whole arm. A missing URDF or mesh rejects with a message naming the file. Meshes are fetched
- * once and shared by every robot built from them (the live arm and the ghost).
+ * Loads the arm's URDF with urdf-loader and its meshes (STL, OBJ, DAE: `meshLoaders.ts`) with an
+ * injected mesh loader, and resolves when every mesh is in or has failed, so the first frame
+ * shows the whole arm. `package://<pkg>/<path>` is `<path>` in the model folder (the folder
+ * stands for every package); a relative path is relative to the URDF. A missing URDF rejects
+ * with a message naming the file; a bad mesh does not: it is left out of the arm and listed in
+ * `failures`, and the rest of the arm loads. Meshes are fetched once and shared by every robot
+ * built from them (the live arm and the ghost).
  */
 import * as THREE from 'three';
-import { STLLoader } from 'three/examples/jsm/loaders/STLLoader.js';
 import URDFLoader, { type URDFRobot } from 'urdf-loader';
+import { fetchMesh, OWN_MATERIALS } from './meshLoaders.ts';
 
 export type MaterialFactory = (urdfMaterial: THREE.Material) => THREE.Material;
 
+/** A mesh that could not be loaded: its URL and why. */
+export interface MeshFailure {
+  url: string;
+  message: string;
+}
+
+export interface BuiltRobot {
+  robot: URDFRobot;
+  /** The meshes left out, each once. */
+  failures: MeshFailure[];
+}
+
 export class RobotModelLoader {
-  private readonly geometries = new Map<string, Promise<THREE.BufferGeometry>>();
+  private readonly meshes = new Map<string, Promise<THREE.Object3D>>();
   private text: Promise<string> | null = null;
   private readonly baseUrl: string;
 
@@ -30,42 +45,62 @@ export class RobotModelLoader {
     return this.text;
   }
 
-  private geometry(url: string): Promise<THREE.BufferGeometry> {
-    let g = this.geometries.get(url);
-    if (!g) {
-      g = new STLLoader().loadAsync(url).catch((err: unknown) => {
-        throw new Error(
-          `could not load mesh ${url}: ${err instanceof Error ? err.message : String(err)}`,
-        );
-      });
-      this.geometries.set(url, g);
+  private mesh(url: string): Promise<THREE.Object3D> {
+    let m = this.meshes.get(url);
+    if (!m) {
+      m = fetchMesh(url);
+      this.meshes.set(url, m);
     }
-    return g;
+    return m;
   }
 
-  /** A robot whose every visual mesh has loaded, its materials made by `makeMaterial`. */
-  async build(makeMaterial: MaterialFactory): Promise<URDFRobot> {
+  /** A robot with every visual mesh that could be loaded, its materials made by `makeMaterial`. */
+  async build(makeMaterial: MaterialFactory): Promise<BuiltRobot> {
     const text = await this.fetchText();
     const pending: Promise<void>[] = [];
+    const failures: MeshFailure[] = [];
     const loader = new URDFLoader();
     loader.parseCollision = false;
     loader.workingPath = this.baseUrl;
+    loader.packages = () => this.baseUrl.replace(/\/$/, '');
     loader.loadMeshCb = (url, _manager, material, onLoad) => {
       pending.push(
-        this.geometry(url).then((geometry) => {
-          const mesh = new THREE.Mesh(geometry, makeMaterial(material));
-          mesh.castShadow = true;
-          mesh.receiveShadow = true;
-          onLoad(mesh);
-        }),
+        this.mesh(url).then(
+          (template) => onLoad(dress(template.clone(), material, makeMaterial)),
+          (err: unknown) => {
+            const message = err instanceof Error ? err.message : String(err);
+            if (!failures.some((f) => f.url === url)) failures.push({ url, message });
+          },
+        ),
       );
     };
     const robot = loader.parse(text);
     if (!robot || Object.keys(robot.joints).length === 0)
       throw new Error(`${this.urdfUrl}: no joints`);
     await Promise.all(pending);
-    return robot;
+    return { robot, failures };
   }
+}
+
+/**
+ * Gives every mesh of a loaded object a material from `makeMaterial`: the file's own colours for
+ * a DAE, the URDF's `<material>` otherwise (STL has none; an OBJ's .mtl is not read). Geometry stays shared with the cached template.
+ */
+function dress(
+  obj: THREE.Object3D,
+  urdfMaterial: THREE.Material,
+  makeMaterial: MaterialFactory,
+): THREE.Object3D {
+  obj.traverse((child) => {
+    if (!(child instanceof THREE.Mesh)) return;
+    const own = (Array.isArray(child.material) ? child.material[0] : child.material) as
+      THREE.Material | undefined;
+    const fromFile = obj.userData[OWN_MATERIALS] === true && own && 'color' in own;
+    child.material = makeMaterial(fromFile ? own : urdfMaterial);
+    child.castShadow = true;
+    child.receiveShadow = true;
+  });
+  return obj;
 }
 
 /** The live arm's look: the URDF colour on a lightly metallic surface. */

@@ -7,12 +7,12 @@
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { useStorageStatus } from './useStorageStatus.ts';
-import { CONNECTION_WORDS, armWords, fleetRejects, formatRate } from './words.ts';
+import { CONNECTION_WORDS, armWords, cameraRejects, fleetRejects, formatRate } from './words.ts';
 import { gapWords } from '../../mqtt/GapTracker.ts';
 import { droppedWords } from '../../store/readerErrors.ts';
 
 export function StatusPanel() {
-  const { store, settings, link, robots } = useHud();
+  const { store, settings, link, robots, cameras } = useHud();
   const storage = useStorageStatus();
   const s = useSampled(() => {
     const now = performance.now();
@@ -36,6 +36,9 @@ export function StatusPanel() {
       fleetDropped: robots.fleet.counters.dropped,
       fleetDroppedKinds: droppedWords(robots.fleet.counters.droppedByKind),
       fleetRejected: fleetRejects(robots.fleet.counters),
+      cameras: cameras.list.length,
+      cameraRejected: cameraRejects(cameras.rejectedTotal, cameras.rejected),
+      cameraLastRejection: cameras.lastRejection,
       published: store.counters.published,
       controllerError: store.lastControllerError,
     };
@@ -76,6 +79,11 @@ export function StatusPanel() {
           {s.fleetDropped} frame{s.fleetDropped === 1 ? '' : 's'} dropped
           {s.fleetDroppedKinds && <span className="dim"> ({s.fleetDroppedKinds})</span>}
           {s.fleetRejected && <span className="dim"> · {s.fleetRejected}</span>}
+        </dd>
+        <dt>Cameras</dt>
+        <dd data-testid="camera-rejects" title={s.cameraLastRejection}>
+          {s.cameras} announced
+          {s.cameraRejected && <span className="dim"> · {s.cameraRejected}</span>}
         </dd>
         <dt>Sent</dt>
         <dd>{s.published} commands</dd>

@@ -23,3 +23,12 @@ export function fleetRejects(c: { badProfiles: number; badFeedback: number }): s
   if (c.badFeedback > 0) parts.push(`${c.badFeedback} bad feedback`);
   return parts.join(', ');
 }
+
+/** `2 rejected (bad-url 1, bad-label 1)` ('' when none), from CameraHub's counts by reason. */
+export function cameraRejects(total: number, byReason: Record<string, number>): string {
+  if (total === 0) return '';
+  const parts = Object.entries(byReason)
+    .filter(([, n]) => n > 0)
+    .map(([k, n]) => `${k} ${n}`);
+  return `${total} rejected (${parts.join(', ')})`;
+}

@@ -1,0 +1,4 @@
+/** `armtwin robot import`'s pure core: a robot folder (URDF, meshes, profile.json) from a URDF. */
+export * from './derive-profile.ts';
+export * from './meshes.ts';
+export * from './plan-import.ts';

@@ -1,0 +1,104 @@
+/// <reference lib="dom" />
+/**
+ * Third-party robots imported as they come (rtb-data's KUKA LBR iiwa 14 with DAE meshes and ABB
+ * IRB 140 with STL meshes, both with `package://` paths) are drawn by the HUD in Chromium with no
+ * failed mesh: `armtwin robot import` into a temporary models folder, `armtwin up --models DIR
+ * --arms …` simulating both and serving their folders from disk, one page per arm.
+ */
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import type { Page } from '@playwright/test';
+import { REPO_ROOT } from '../helpers/services.ts';
+import { RTB_ROBOTS, rtbDataDir } from '../helpers/rtb-data.ts';
+import { expect, shot, test, type HudWindow } from './fixtures.ts';
+import { ensureHudBuilt } from './support/build-hud.ts';
+import { demoPassword, startUp, type UpProcess } from './support/up.ts';
+
+interface ImportWindow {
+  __armtwin?: {
+    ready?: boolean;
+    joints(): number[];
+    robots: { active: { spec: { name: string } } };
+    viewer: {
+      meshFailures: readonly { url: string; message: string }[];
+      world: { traverse(fn: (o: { isMesh?: boolean }) => void): void };
+    };
+  };
+}
+
+const ROBOTS = [
+  { arm: 'arm1', name: 'iiwa14', source: RTB_ROBOTS.iiwa14, servos: 7 },
+  { arm: 'arm2', name: 'irb140', source: RTB_ROBOTS.irb140, servos: 6 },
+] as const;
+
+let up: UpProcess;
+let models = '';
+
+// eslint-disable-next-line no-empty-pattern
+test.beforeAll(async ({}, testInfo) => {
+  test.setTimeout(180_000);
+  ensureHudBuilt();
+  models = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-e2e-models-'));
+  for (const r of ROBOTS)
+    execFileSync(
+      process.execPath,
+      [
+        path.join(REPO_ROOT, 'apps/cli/bin/armtwin.mjs'),
+        'robot',
+        'import',
+        path.join(rtbDataDir(), r.source),
+        '--name',
+        r.name,
+        '--models',
+        models,
+      ],
+      { cwd: REPO_ROOT, stdio: 'pipe' },
+    );
+  up = await startUp(
+    path.join(testInfo.project.outputDir, `armtwin-up-import-${process.pid}.log`),
+    ['--models', models, '--arms', ROBOTS.map((r) => `${r.arm}:${r.name}`).join(',')],
+  );
+});
+test.afterAll(async () => {
+  await up?.stop();
+  if (models) fs.rmSync(models, { recursive: true, force: true });
+});
+
+async function open(page: Page, arm: string) {
+  page.on('pageerror', (err) => console.error(`[page error] ${err.message}`));
+  await page.goto(`${up.url}?arm=${arm}`);
+  await page.waitForFunction(() => (window as unknown as HudWindow).__armtwin?.ready === true);
+  const form = page.getByRole('form', { name: 'Log in' });
+  await form.getByLabel('Username').fill('viewer');
+  await form.getByLabel('Password').fill(demoPassword('viewer'));
+  await form.getByRole('button', { name: 'Log in' }).click();
+}
+
+for (const r of ROBOTS)
+  test(`${r.name}: imported as it comes, drawn with every mesh`, async ({ page }, testInfo) => {
+    await open(page, r.arm);
+    const state = () =>
+      page.evaluate(() => {
+        const a = (window as unknown as ImportWindow).__armtwin!;
+        let meshes = 0;
+        a.viewer.world.traverse((o) => {
+          if (o.isMesh) meshes++;
+        });
+        return {
+          name: a.robots.active.spec.name,
+          joints: a.joints().length,
+          failures: a.viewer.meshFailures.map((f) => f.message),
+          meshes,
+        };
+      });
+    await expect.poll(async () => (await state()).name, { timeout: 30_000 }).toBe(r.name);
+    await expect.poll(async () => (await state()).joints, { timeout: 30_000 }).toBe(r.servos);
+    const s = await state();
+    expect(s.failures).toEqual([]);
+    // base + one visual per moving link, on the live arm and the ghost at least.
+    expect(s.meshes).toBeGreaterThanOrEqual(2 * (r.servos + 1));
+    await expect(page.getByTestId('mesh-failures')).toBeHidden();
+    await shot(page, testInfo, r.name);
+  });
