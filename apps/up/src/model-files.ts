@@ -5,10 +5,10 @@
  * first, then the repository's `public/models`); the first that holds the file answers.
  * A missing file is a 404 (never the HUD's index.html), and nothing outside the folders is served.
  */
-import fs from 'node:fs';
 import type http from 'node:http';
 import path from 'node:path';
 import type { Handler } from './static-files.ts';
+import { isFile, sendFile } from './send-file.ts';
 
 /** The URL prefix robot folders are served under. */
 export const MODELS_PREFIX = '/models/';
@@ -75,21 +75,6 @@ export function modelFiles(dirs: readonly string[]): Handler {
       return;
     }
     const type = MODEL_TYPES[path.extname(file).toLowerCase()] ?? 'application/octet-stream';
-    res.writeHead(200, { 'content-type': type, 'cache-control': 'no-cache' });
-    if (req.method === 'HEAD') {
-      res.end();
-      return;
-    }
-    fs.createReadStream(file)
-      .on('error', () => res.destroy())
-      .pipe(res);
+    sendFile(req, res, file, type, 'no-cache');
   };
-}
-
-function isFile(file: string): boolean {
-  try {
-    return fs.statSync(file).isFile();
-  } catch {
-    return false;
-  }
 }

@@ -2,9 +2,9 @@
  * Serves a built single-page app from a folder: files by path, `index.html` for any other GET
  * (client-side routes), a plain page saying what is missing when there is no build.
  */
-import fs from 'node:fs';
 import type http from 'node:http';
 import path from 'node:path';
+import { isFile, sendFile } from './send-file.ts';
 
 const TYPES: Record<string, string> = {
   '.html': 'text/html; charset=utf-8',
@@ -58,21 +58,6 @@ export function staticFiles(root: string, missing: string): Handler {
     const cache = file.includes(`${path.sep}assets${path.sep}`)
       ? 'public, max-age=31536000, immutable'
       : 'no-cache';
-    res.writeHead(200, { 'content-type': type, 'cache-control': cache });
-    if (req.method === 'HEAD') {
-      res.end();
-      return;
-    }
-    fs.createReadStream(file)
-      .on('error', () => res.destroy())
-      .pipe(res);
+    sendFile(req, res, file, type, cache);
   };
-}
-
-function isFile(file: string): boolean {
-  try {
-    return fs.statSync(file).isFile();
-  } catch {
-    return false;
-  }
 }

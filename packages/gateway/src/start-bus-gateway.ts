@@ -3,13 +3,11 @@
  * from disk, a `SerialLink` (reopens with back-off), an mqtt.js client (last will `0` on
  * `arm/{id}/online`) and `BusGatewayCore`, on the system clock.
  */
-import fs from 'node:fs';
-import path from 'node:path';
-import { fileURLToPath } from 'node:url';
-import mqtt, { type MqttClient } from 'mqtt';
-import { chainFromUrdf, parseProfile, type Profile } from '@armtwin/ik';
-import { createMotionRobot, type MotionRobot } from '@armtwin/motion';
-import { armTopics, linkOptions, SYSTEM_CLOCK, topic } from '@armtwin/protocol';
+import type { MqttClient } from 'mqtt';
+import type { Profile } from '@armtwin/ik';
+import type { MotionRobot } from '@armtwin/motion';
+import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
+import { armTopics, SYSTEM_CLOCK, topic } from '@armtwin/protocol';
 import type { BusProtocol } from '@armtwin/servo-bus';
 import { busKmsSolver } from './bus-kms.ts';
 import {
@@ -18,17 +16,14 @@ import {
   type BusGatewayOptions,
 } from './bus-gateway.ts';
 import { SerialLink } from './serial-link.ts';
-import { DEFAULT_GATEWAY_OPTIONS, type GatewayOptions } from './start-gateway.ts';
+import {
+  connectGatewayMqtt,
+  DEFAULT_GATEWAY_OPTIONS,
+  type GatewayOptions,
+} from './start-gateway.ts';
 
-/** The robots' folders: `public/models` at the repository root. */
-export const BUS_MODELS_DIR = path.resolve(
-  path.dirname(fileURLToPath(import.meta.url)),
-  '..',
-  '..',
-  '..',
-  'public',
-  'models',
-);
+/** The robots' folders (`public/models`). */
+export const BUS_MODELS_DIR = MODELS_DIR;
 
 /** The topic that turns torque off (`0`) and on (`1`): `arm/{id}/torque`, retained or not. */
 export const torqueTopic = (armId: string) => topic(armId, 'torque');
@@ -57,16 +52,8 @@ export function loadProfile(
   name: string,
   modelsDir: string = BUS_MODELS_DIR,
 ): { profile: Profile; robot: MotionRobot } {
-  if (!/^[a-z0-9_-]{1,32}$/.test(name)) throw new Error(`bad profile name "${name}"`);
-  const dir = path.join(modelsDir, name);
-  const file = path.join(dir, 'profile.json');
-  const parsed = parseProfile(JSON.parse(fs.readFileSync(file, 'utf8')) as unknown);
-  if (!parsed.ok) throw new Error(`${file}:\n  ${parsed.errors.join('\n  ')}`);
-  const { profile } = parsed;
-  if (profile.ik.kind !== 'numeric') return { profile, robot: createMotionRobot(profile) };
-  const built = chainFromUrdf(profile, fs.readFileSync(path.join(dir, profile.urdf), 'utf8'));
-  if (!built.ok) throw new Error(`profile ${name}: ${built.errors.join('; ')}`);
-  return { profile, robot: createMotionRobot(profile, built.chain) };
+  const { profile, robot } = readRobotFolder(name, modelsDir);
+  return { profile, robot };
 }
 
 export function startBusGateway(
@@ -85,16 +72,7 @@ export function startBusGateway(
   const { profile, robot } = loadProfile(o.profile, o.modelsDir);
   const topics = armTopics(o.armId);
   const torque = torqueTopic(o.armId);
-  const client = mqtt.connect(o.mqttUrl, {
-    clientId: `armtwin-gateway-${o.armId}-${process.pid}`,
-    ...(o.username ? { username: o.username, password: o.password ?? '' } : {}),
-    will: { topic: topics.online, payload: Buffer.from('0'), qos: 1, retain: true },
-    ...linkOptions({ keepalive: o.keepaliveS, reconnectPeriod: o.reconnectMs }),
-    queueQoSZero: false,
-  });
-  client.on('connect', () =>
-    (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true),
-  );
+  const client = connectGatewayMqtt(o);
   const link: SerialLink = new SerialLink(
     { ...o.serial, path: o.serialPath, baudRate: o.baudRate },
     {

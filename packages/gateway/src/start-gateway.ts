@@ -12,6 +12,7 @@ import {
   MQTT_RECONNECT_MS,
   OPERATOR_LEASE_MS,
   SYSTEM_CLOCK,
+  topic,
 } from '@armtwin/protocol';
 import { GatewayCore } from './gateway.ts';
 import { DEFAULT_SERIAL_LINK_OPTIONS, SerialLink, type SerialLinkOptions } from './serial-link.ts';
@@ -54,23 +55,31 @@ export interface Gateway {
   stop(): Promise<void>;
 }
 
+/**
+ * A gateway's MQTT client: its arm's `online` `0` as the last will, the shared link defaults,
+ * and no Nagle delay (frames are small; ~40 ms tails otherwise).
+ */
+export function connectGatewayMqtt(o: GatewayOptions): MqttClient {
+  const client = mqtt.connect(o.mqttUrl, {
+    clientId: `armtwin-gateway-${o.armId}-${process.pid}`,
+    ...(o.username ? { username: o.username, password: o.password ?? '' } : {}),
+    will: { topic: topic(o.armId, 'online'), payload: Buffer.from('0'), qos: 1, retain: true },
+    ...linkOptions({ keepalive: o.keepaliveS, reconnectPeriod: o.reconnectMs }),
+    queueQoSZero: false,
+  });
+  client.on('connect', () =>
+    (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true),
+  );
+  return client;
+}
+
 export function startGateway(
   options: Partial<GatewayOptions> & Pick<GatewayOptions, 'serialPath' | 'mqttUrl' | 'armId'>,
 ): Gateway {
   const o: GatewayOptions = { ...DEFAULT_GATEWAY_OPTIONS, ...options };
   const { log } = o;
   const topics = armTopics(o.armId);
-  const client = mqtt.connect(o.mqttUrl, {
-    clientId: `armtwin-gateway-${o.armId}-${process.pid}`,
-    ...(o.username ? { username: o.username, password: o.password ?? '' } : {}),
-    will: { topic: topics.online, payload: Buffer.from('0'), qos: 1, retain: true },
-    ...linkOptions({ keepalive: o.keepaliveS, reconnectPeriod: o.reconnectMs }),
-    queueQoSZero: false,
-  });
-  // Frames are small: don't let Nagle's algorithm hold them back (~40 ms tails otherwise).
-  client.on('connect', () =>
-    (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true),
-  );
+  const client = connectGatewayMqtt(o);
   const link: SerialLink = new SerialLink(
     { ...o.serial, path: o.serialPath, baudRate: o.baudRate },
     {

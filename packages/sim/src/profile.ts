@@ -10,32 +10,19 @@
  * speed from `servoTable(profile)`, written as §2 angles with polarity +1, which round-trip to
  * exactly the same pulses (a prismatic axis included).
  */
-import fs from 'node:fs';
-import path from 'node:path';
-import { fileURLToPath } from 'node:url';
 import {
   armProfileFromProfile,
   chainFromUrdf,
-  parseProfile,
   pulseEquivalentArm,
   type Profile,
 } from '@armtwin/ik';
 import { createMotionRobot, solveTip, type MotionRobot } from '@armtwin/motion';
+import { MODELS_DIR, PROFILE_NAME, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { PWM_CENTRE } from '@armtwin/protocol';
 import type { KmsSolver, SimModelOptions } from './options.ts';
 
-/** The robots' folders: `public/models` at the repository root. */
-export const MODELS_DIR = path.resolve(
-  path.dirname(fileURLToPath(import.meta.url)),
-  '..',
-  '..',
-  '..',
-  'public',
-  'models',
-);
+export { MODELS_DIR, PROFILE_NAME };
 export const DEFAULT_PROFILE = 'armtwin5';
-/** A profile name is a folder name: `[a-z0-9_-]{1,32}` (so it can never leave MODELS_DIR). */
-export const PROFILE_NAME = /^[a-z0-9_-]{1,32}$/;
 /**
  * Largest announcement published on `arm/{id}/profile`, bytes: well under the broker's packet
  * bound (`maxPacketBytes`, 64 KiB) and the sim's own payload bound. track6's is about 3 KB.
@@ -90,26 +77,6 @@ export function simProfile(profile: Profile, raw: unknown, urdf?: string): SimPr
 
 /** Reads `<modelsDir>/<name>/profile.json` (and its URDF); throws with every problem found. */
 export function loadSimProfile(name: string, modelsDir = MODELS_DIR): SimProfile {
-  if (!PROFILE_NAME.test(name)) throw new Error(`profile name must match ${PROFILE_NAME.source}`);
-  const dir = path.join(modelsDir, name);
-  const file = path.join(dir, 'profile.json');
-  if (!fs.existsSync(file)) {
-    const have = fs.existsSync(modelsDir)
-      ? fs
-          .readdirSync(modelsDir)
-          .filter((d) => fs.existsSync(path.join(modelsDir, d, 'profile.json')))
-      : [];
-    throw new Error(
-      `no profile "${name}" (${file} is missing; profiles: ${have.join(', ') || 'none'})`,
-    );
-  }
-  const raw: unknown = JSON.parse(fs.readFileSync(file, 'utf8'));
-  const parsed = parseProfile(raw);
-  if (!parsed.ok) throw new Error(`${file}:\n  ${parsed.errors.join('\n  ')}`);
-  const { profile } = parsed;
-  const urdf =
-    profile.ik.kind === 'numeric'
-      ? fs.readFileSync(path.join(dir, profile.urdf), 'utf8')
-      : undefined;
+  const { profile, raw, urdf } = readRobotFolder(name, modelsDir);
   return simProfile(profile, raw, urdf);
 }
