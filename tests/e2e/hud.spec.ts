@@ -63,7 +63,7 @@ test('model: the arm renders, the canvas is not blank', async ({ hud }, testInfo
   await shot(page, testInfo, 'model');
 });
 
-test('model: a model that fails to load shows an error, not a blank page', async ({
+test('model: a mesh that fails to load is named on the page, and the rest of the arm is drawn', async ({
   page,
   stack,
 }, testInfo) => {
@@ -71,8 +71,22 @@ test('model: a model that fails to load shows an error, not a blank page', async
     route.fulfill({ status: 404, body: 'gone' }),
   );
   await page.goto(`${stack.web.url}?broker=${encodeURIComponent(stack.broker.wsUrl)}&arm=nobody`);
+  const note = page.getByTestId('mesh-failures');
+  await expect(note).toContainText('1 mesh failed to load');
+  await expect(note).toContainText('forearm.stl');
+  await page.waitForFunction(() => (window as unknown as HudWindow).__armtwin?.ready === true);
+  await expect(page.getByRole('button', { name: 'Emergency stop' })).toBeVisible();
+  await shot(page, testInfo, 'mesh-error');
+});
+
+test('model: a robot description that fails to load shows an error, not a blank page', async ({
+  page,
+  stack,
+}, testInfo) => {
+  await page.route('**/armtwin5.urdf', (route) => route.fulfill({ status: 404, body: 'gone' }));
+  await page.goto(`${stack.web.url}?broker=${encodeURIComponent(stack.broker.wsUrl)}&arm=nobody`);
   await expect(page.getByRole('alert')).toContainText('The arm model failed to load');
-  await expect(page.getByRole('alert')).toContainText('forearm.stl');
+  await expect(page.getByRole('alert')).toContainText('armtwin5.urdf');
   await expect(page.getByRole('button', { name: 'Emergency stop' })).toBeVisible();
   await shot(page, testInfo, 'model-error');
 });

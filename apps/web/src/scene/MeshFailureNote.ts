@@ -13,10 +13,12 @@ export class MeshFailureNote {
     this.el.dataset.testid = 'mesh-failures';
     this.el.setAttribute('role', 'status');
     Object.assign(this.el.style, {
+      // Top centre: the one edge of the view that no panel covers.
       position: 'absolute',
-      left: '8px',
-      bottom: '8px',
-      maxWidth: '60%',
+      left: '50%',
+      top: '8px',
+      transform: 'translateX(-50%)',
+      maxWidth: '40%',
       padding: '4px 8px',
       font: '12px system-ui, sans-serif',
       color: '#ffd6d6',
