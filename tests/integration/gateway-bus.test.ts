@@ -8,7 +8,6 @@
  * survives the line going away and coming back. The profile is armtwin5 with its wrist roll
  * (004) a ±360° bus servo, written to a temporary models folder.
  */
-import { spawn, type ChildProcess } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -17,6 +16,7 @@ import type { Frame } from '@armtwin/protocol';
 import { MODELS_DIR } from '@armtwin/sim';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
+import { serialLine } from './serial-line.ts';
 
 const broker = useMosquitto();
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-bus-'));
@@ -41,42 +41,19 @@ describe.each(['dynamixel', 'feetech'] as const)('armtwin gateway --bus %s', (bu
   const HOST_SIDE = path.join(dir, `${bus}-gateway`);
   const ARM_SIDE = path.join(dir, `${bus}-arm`);
   const profileArgs = ['--profile', PROFILE, '--models', MODELS, '--baud', '1000000'];
-  let socat: ChildProcess | undefined;
-  let sim: Child | undefined;
+  const line = serialLine(
+    HOST_SIDE,
+    ARM_SIDE,
+    (armSide) => ['sim', '--bus', bus, '--serial', armSide, ...profileArgs],
+    'simulated servo bus on the serial line',
+  );
   let gateway: Child;
   let w: StatusWatcher;
   /** Every status payload as it came, for the exact text of frames. */
   const payloads: string[] = [];
 
-  async function startLine(): Promise<void> {
-    socat = spawn(
-      'socat',
-      ['-d', '-d', `pty,raw,echo=0,link=${HOST_SIDE}`, `pty,raw,echo=0,link=${ARM_SIDE}`],
-      { stdio: 'ignore' },
-    );
-    const deadline = Date.now() + 5000;
-    while (!(fs.existsSync(HOST_SIDE) && fs.existsSync(ARM_SIDE))) {
-      if (Date.now() > deadline) throw new Error('socat made no pty pair');
-      await new Promise((r) => setTimeout(r, 50));
-    }
-    const c = (sim = armtwin(['sim', '--bus', bus, '--serial', ARM_SIDE, ...profileArgs]));
-    while (!c.output().includes('simulated servo bus on the serial line')) {
-      if (Date.now() > deadline + 15_000) throw new Error(`bus sim did not start:\n${c.output()}`);
-      await new Promise((r) => setTimeout(r, 50));
-    }
-  }
-
-  async function stopLine(): Promise<void> {
-    const s = socat;
-    socat = undefined;
-    if (s && s.exitCode === null) {
-      const gone = new Promise((r) => s.once('exit', r));
-      s.kill('SIGTERM');
-      await gone;
-    }
-    await sim?.stop('SIGKILL');
-    sim = undefined;
-  }
+  const startLine = () => line.start();
+  const stopLine = () => line.stop();
 
   /** State groups (every servo's angle) after item `from`: the angle of servo `id` in each. */
   function angles(id: number, from = 0): number[] {

@@ -3,7 +3,6 @@
  * controller (`armtwin sim --serial`) on the far side, through a real Mosquitto: frames both
  * ways, the port disappearing and coming back, the broker restarting.
  */
-import { spawn, type ChildProcess } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -12,6 +11,7 @@ import { OPERATOR_BEAT_MS } from '@armtwin/protocol';
 import { rawOperator } from '../helpers/raw-operator.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
+import { serialLine } from './serial-line.ts';
 
 const ARM = 'gwtest';
 const broker = useMosquitto();
@@ -19,44 +19,17 @@ const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-pty-'));
 const HOST_SIDE = path.join(dir, 'gateway');
 const ARM_SIDE = path.join(dir, 'arm');
 
-let socat: ChildProcess | undefined;
-let controller: Child | undefined;
+const line = serialLine(
+  HOST_SIDE,
+  ARM_SIDE,
+  (armSide) => ['sim', '--serial', armSide, '--rate', '20'],
+  'simulated controller on the serial line',
+);
 let gateway: Child;
 let w: StatusWatcher;
 let seq = 0;
-
-async function startLine(): Promise<void> {
-  socat = spawn(
-    'socat',
-    ['-d', '-d', `pty,raw,echo=0,link=${HOST_SIDE}`, `pty,raw,echo=0,link=${ARM_SIDE}`],
-    {
-      stdio: 'ignore',
-    },
-  );
-  const deadline = Date.now() + 5000;
-  while (!(fs.existsSync(HOST_SIDE) && fs.existsSync(ARM_SIDE))) {
-    if (Date.now() > deadline) throw new Error('socat made no pty pair');
-    await new Promise((r) => setTimeout(r, 50));
-  }
-  const c = (controller = armtwin(['sim', '--serial', ARM_SIDE, '--rate', '20']));
-  while (!c.output().includes('simulated controller on the serial line')) {
-    if (Date.now() > deadline + 15_000)
-      throw new Error(`fake controller did not start:\n${c.output()}`);
-    await new Promise((r) => setTimeout(r, 50));
-  }
-}
-
-async function stopLine(): Promise<void> {
-  const s = socat;
-  socat = undefined;
-  if (s && s.exitCode === null) {
-    const gone = new Promise((r) => s.once('exit', r));
-    s.kill('SIGTERM');
-    await gone;
-  }
-  await controller?.stop('SIGKILL');
-  controller = undefined;
-}
+const startLine = () => line.start();
+const stopLine = () => line.stop();
 
 const online = (value: string) => () =>
   w.retained.get(`arm/${ARM}/online`) === value ? true : undefined;

@@ -175,9 +175,10 @@ describe.each(CASES)(
     test('a goal written at a speed is reached, the position passing through on the way', () => {
       const goal = result.goal as { seconds: number; final: number; in_between: number };
       expect(goal.final).toBe(3072);
+      // 1024 ticks at 50 × 0.229 rev/min (Dynamixel, 1.3 s) or 400 steps/s (Feetech, 2.6 s): slow
+      // enough that the SDK's polls see it on the way even on a loaded machine. No time is
+      // asserted: the positions in between show it moved at a speed rather than jumped.
       expect(goal.in_between).toBeGreaterThan(0);
-      // 1024 ticks at 200 × 0.229 rev/min (Dynamixel) or 1500 steps/s (Feetech): 0.33 s or 0.68 s
-      expect(goal.seconds).toBeGreaterThan(protocol === 'dynamixel' ? 0.2 : 0.5);
     });
 
     test('GroupSyncWrite moves both servos, GroupSyncRead watches them get there', () => {

@@ -8,7 +8,7 @@
 import type http from 'node:http';
 import path from 'node:path';
 import type { Handler } from './static-files.ts';
-import { isFile, sendFile } from './send-file.ts';
+import { isFile, readPath, sendFile } from './send-file.ts';
 
 /** The URL prefix robot folders are served under. */
 export const MODELS_PREFIX = '/models/';
@@ -48,17 +48,8 @@ export function modelFilePath(dir: string, pathname: string): string | null {
 /** A handler for `/models/…` reading from `dirs` (first match wins) on every request. */
 export function modelFiles(dirs: readonly string[]): Handler {
   return (req, res) => {
-    if (req.method !== 'GET' && req.method !== 'HEAD') {
-      res.writeHead(405, { allow: 'GET, HEAD' }).end();
-      return;
-    }
-    let pathname: string;
-    try {
-      pathname = decodeURIComponent(new URL(req.url ?? '/', 'http://x').pathname);
-    } catch {
-      res.writeHead(400).end();
-      return;
-    }
+    const pathname = readPath(req, res);
+    if (pathname === null) return;
     const candidates = dirs.map((d) => modelFilePath(d, pathname));
     if (candidates.some((c) => c === null)) {
       res.writeHead(403, { 'content-type': 'text/plain; charset=utf-8' }).end('forbidden\n');

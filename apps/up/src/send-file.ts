@@ -1,4 +1,4 @@
-/** Sending one file from disk, for the HUD's files and the robots' folders. */
+/** Reading a GET's path and sending one file from disk, for the HUD's files and the robots' folders. */
 import fs from 'node:fs';
 import type http from 'node:http';
 
@@ -26,4 +26,21 @@ export function sendFile(
   fs.createReadStream(file)
     .on('error', () => res.destroy())
     .pipe(res);
+}
+
+/**
+ * The decoded path of a GET or HEAD request, or null after answering 405 (another method) or
+ * 400 (a path that does not decode).
+ */
+export function readPath(req: http.IncomingMessage, res: http.ServerResponse): string | null {
+  if (req.method !== 'GET' && req.method !== 'HEAD') {
+    res.writeHead(405, { allow: 'GET, HEAD' }).end();
+    return null;
+  }
+  try {
+    return decodeURIComponent(new URL(req.url ?? '/', 'http://x').pathname);
+  } catch {
+    res.writeHead(400).end();
+    return null;
+  }
 }

@@ -4,7 +4,7 @@
  */
 import type http from 'node:http';
 import path from 'node:path';
-import { isFile, sendFile } from './send-file.ts';
+import { isFile, readPath, sendFile } from './send-file.ts';
 
 const TYPES: Record<string, string> = {
   '.html': 'text/html; charset=utf-8',
@@ -33,17 +33,8 @@ export type Handler = (req: http.IncomingMessage, res: http.ServerResponse) => v
 export function staticFiles(root: string, missing: string): Handler {
   const base = path.resolve(root);
   return (req, res) => {
-    if (req.method !== 'GET' && req.method !== 'HEAD') {
-      res.writeHead(405, { allow: 'GET, HEAD' }).end();
-      return;
-    }
-    let pathname: string;
-    try {
-      pathname = decodeURIComponent(new URL(req.url ?? '/', 'http://x').pathname);
-    } catch {
-      res.writeHead(400).end();
-      return;
-    }
+    const pathname = readPath(req, res);
+    if (pathname === null) return;
     let file = path.join(base, pathname);
     if (file !== base && !file.startsWith(base + path.sep)) {
       res.writeHead(403).end();

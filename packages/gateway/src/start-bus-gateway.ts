@@ -19,6 +19,7 @@ import { SerialLink } from './serial-link.ts';
 import {
   connectGatewayMqtt,
   DEFAULT_GATEWAY_OPTIONS,
+  wireGatewayMqtt,
   type GatewayOptions,
 } from './start-gateway.ts';
 
@@ -106,23 +107,7 @@ export function startBusGateway(
     write: (data) => link.write(Buffer.from(data.buffer, data.byteOffset, data.byteLength)),
     onFirst: o.onFirst,
   });
-  client.on('connect', () => {
-    log?.info({ arm: o.armId }, 'broker connected');
-    core.brokerConnected(true);
-    client.subscribe(
-      [topics.control, topics.operator, torque],
-      { qos: 1 },
-      (err) => err && o.onFirst('subscribe', err.message),
-    );
-  });
-  client.on('close', () => core.brokerConnected(false));
-  client.on('offline', () => log?.warn('broker unreachable; reconnecting'));
-  client.on('error', (err) => o.onFirst(`mqtt:${err.message}`, `mqtt: ${err.message}`));
-  client.on('message', (topic, payload) => {
-    if (topic === topics.control) core.fromControl(payload);
-    else if (topic === topics.operator) core.fromOperator(payload);
-    else if (topic === torque) core.fromTorque(payload);
-  });
+  wireGatewayMqtt(client, o, core, { [torque]: (p) => core.fromTorque(p) });
   link.start();
   log?.info(
     { arm: o.armId, bus: o.bus, profile: o.profile, ids: core.joints.map((j) => j.id) },

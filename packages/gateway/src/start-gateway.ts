@@ -73,6 +73,44 @@ export function connectGatewayMqtt(o: GatewayOptions): MqttClient {
   return client;
 }
 
+/** What a gateway's core takes from MQTT. */
+export interface GatewayMqttCore {
+  brokerConnected(connected: boolean): void;
+  fromControl(payload: Buffer): void;
+  fromOperator(payload: Buffer): void;
+}
+
+/**
+ * Subscribes the arm's control and operator topics (and `extra`: topic → handler) at every
+ * connect, hands their messages to `core`, and tells it when the broker comes and goes.
+ */
+export function wireGatewayMqtt(
+  client: MqttClient,
+  o: Pick<GatewayOptions, 'armId' | 'log' | 'onFirst'>,
+  core: GatewayMqttCore,
+  extra: Record<string, (payload: Buffer) => void> = {},
+): void {
+  const topics = armTopics(o.armId);
+  const handlers: Record<string, (payload: Buffer) => void> = {
+    [topics.control]: (p) => core.fromControl(p),
+    [topics.operator]: (p) => core.fromOperator(p),
+    ...extra,
+  };
+  client.on('connect', () => {
+    o.log?.info({ arm: o.armId }, 'broker connected');
+    core.brokerConnected(true);
+    client.subscribe(
+      Object.keys(handlers),
+      { qos: 1 },
+      (err) => err && o.onFirst('subscribe', err.message),
+    );
+  });
+  client.on('close', () => core.brokerConnected(false));
+  client.on('offline', () => o.log?.warn('broker unreachable; reconnecting'));
+  client.on('error', (err) => o.onFirst(`mqtt:${err.message}`, `mqtt: ${err.message}`));
+  client.on('message', (topic, payload) => handlers[topic]?.(payload));
+}
+
 export function startGateway(
   options: Partial<GatewayOptions> & Pick<GatewayOptions, 'serialPath' | 'mqttUrl' | 'armId'>,
 ): Gateway {
@@ -106,22 +144,7 @@ export function startGateway(
     },
     o.operatorLeaseMs,
   );
-  client.on('connect', () => {
-    log?.info({ arm: o.armId }, 'broker connected');
-    core.brokerConnected(true);
-    client.subscribe(
-      [topics.control, topics.operator],
-      { qos: 1 },
-      (err) => err && o.onFirst('subscribe', err.message),
-    );
-  });
-  client.on('close', () => core.brokerConnected(false));
-  client.on('offline', () => log?.warn('broker unreachable; reconnecting'));
-  client.on('error', (err) => o.onFirst(`mqtt:${err.message}`, `mqtt: ${err.message}`));
-  client.on('message', (topic, payload) => {
-    if (topic === topics.control) core.fromControl(payload);
-    else if (topic === topics.operator) core.fromOperator(payload);
-  });
+  wireGatewayMqtt(client, o, core);
   link.start();
   return {
     core,

@@ -10,6 +10,8 @@ import sys
 import time
 from importlib.metadata import version
 
+from sdk_check import make_txrx, ping_checks, wait_until
+
 import dynamixel_sdk.port_handler as dxl_port
 from dynamixel_sdk import (COMM_SUCCESS, DXL_HIBYTE, DXL_HIWORD, DXL_LOBYTE, DXL_LOWORD, GroupSyncRead,
                            GroupSyncWrite, PacketHandler, PortHandler)
@@ -28,41 +30,21 @@ if not port.openPort() or not port.setBaudRate(int(sys.argv[2])):
     sys.exit("cannot open " + sys.argv[1])
 
 
-def txrx(fn, *args):
-    """One SDK call; a lost answer is asked again (a host does), at most 3 times, and counted."""
-    for _ in range(4):
-        r = fn(port, *args)
-        comm = r[1] if len(r) == 3 else r[0]
-        if comm == COMM_SUCCESS:
-            return r
-        out["retries"] += 1
-        time.sleep(0.05)
-        port.clearPort()
-    raise RuntimeError("%s%r: %s" % (fn.__name__, args, ph.getTxRxResult(comm)))
+def settle():
+    """After a lost answer: let a late one land, then drop it."""
+    time.sleep(0.05)
+    port.clearPort()
+
+
+txrx = make_txrx(port, ph, out, COMM_SUCCESS, settle)
 
 
 def as_signed(v):
     return v - (1 << 32) if v >= 1 << 31 else v
 
 
-def wait_until(check, timeout=10.0):
-    start = time.monotonic()
-    polls = 0
-    while time.monotonic() - start < timeout:
-        polls += 1
-        if check():
-            return {"seconds": round(time.monotonic() - start, 3), "polls": polls}
-        time.sleep(0.02)
-    raise RuntimeError("not reached in %.0f s" % timeout)
-
-
 # PING: model number and firmware come with the answer.
-out["ping"] = {}
-for i in (1, 2):
-    model, _, error = txrx(ph.ping, i)
-    out["ping"][i] = {"model": model, "error": error}
-_, comm, _ = ph.ping(port, 3)
-out["ping_absent"] = ph.getTxRxResult(comm)
+ping_checks(txrx, ph, port, out)
 found, comm = ph.broadcastPing(port)
 out["broadcast_ping"] = {str(k): v[0] for k, v in sorted(found.items())}
 
@@ -80,7 +62,7 @@ for i in (1, 2):
 out["torque_on"] = [txrx(ph.read1ByteTxRx, i, ADDR_TORQUE)[0] for i in (1, 2)]
 
 # A goal at a profile velocity, watched until reached.
-txrx(ph.write4ByteTxRx, 1, ADDR_PROFILE_VELOCITY, 200)
+txrx(ph.write4ByteTxRx, 1, ADDR_PROFILE_VELOCITY, 50)
 txrx(ph.write4ByteTxRx, 1, ADDR_GOAL, 3072)
 seen = []
 

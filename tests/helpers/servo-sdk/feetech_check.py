@@ -11,6 +11,8 @@ import sys
 import time
 from importlib.metadata import version
 
+from sdk_check import make_txrx, ping_checks, wait_until
+
 import scservo_sdk.port_handler as scs_port
 from scservo_sdk import (COMM_SUCCESS, SCS_HIBYTE, SCS_HIWORD, SCS_LOBYTE, SCS_LOWORD, SCS_TOHOST, SCS_TOSCS,
                          GroupSyncRead, GroupSyncWrite, PacketHandler, PortHandler)
@@ -35,36 +37,11 @@ def settle():
     port.ser.reset_input_buffer()
 
 
-def txrx(fn, *args):
-    """One SDK call; a lost answer is asked again (a host does), at most 3 times, and counted."""
-    for _ in range(4):
-        r = fn(port, *args)
-        comm = r[1] if len(r) == 3 else r[0]
-        if comm == COMM_SUCCESS:
-            return r
-        out["retries"] += 1
-        settle()
-    raise RuntimeError("%s%r: %s" % (fn.__name__, args, ph.getTxRxResult(comm)))
-
-
-def wait_until(check, timeout=10.0):
-    start = time.monotonic()
-    polls = 0
-    while time.monotonic() - start < timeout:
-        polls += 1
-        if check():
-            return {"seconds": round(time.monotonic() - start, 3), "polls": polls}
-        time.sleep(0.02)
-    raise RuntimeError("not reached in %.0f s" % timeout)
+txrx = make_txrx(port, ph, out, COMM_SUCCESS, settle)
 
 
 # PING (this SDK then READs the model number at address 3).
-out["ping"] = {}
-for i in (1, 2):
-    model, _, error = txrx(ph.ping, i)
-    out["ping"][i] = {"model": model, "error": error}
-_, comm, _ = ph.ping(port, 3)
-out["ping_absent"] = ph.getTxRxResult(comm)
+ping_checks(txrx, ph, port, out)
 settle()
 
 # Present position, temperature, voltage (0.1 V).
@@ -81,7 +58,7 @@ for i in (1, 2):
 out["torque_on"] = [txrx(ph.read1ByteTxRx, i, ADDR_TORQUE)[0] for i in (1, 2)]
 
 # A goal at a goal speed (steps/s), watched until reached.
-txrx(ph.write2ByteTxRx, 1, ADDR_GOAL_SPEED, 1500)
+txrx(ph.write2ByteTxRx, 1, ADDR_GOAL_SPEED, 400)
 txrx(ph.write2ByteTxRx, 1, ADDR_GOAL, 3072)
 seen = []
 

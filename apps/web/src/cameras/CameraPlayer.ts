@@ -4,6 +4,8 @@
  * Subclasses (./MjpegPlayer.ts, ./H264Player.ts) only open the stream; frames never touch React
  * state — the panel samples `stats` a few times a second.
  */
+import type { CameraCredentials } from './streamUrl.ts';
+
 export interface CameraPlayerOptions {
   /** First reconnect delay, ms; doubled after each failure up to `maxBackoffMs`. */
   minBackoffMs: number;
@@ -51,6 +53,9 @@ export abstract class CameraPlayer {
 
   constructor(
     readonly canvas: HTMLCanvasElement,
+    /** The stream; a subclass checks its scheme again where it is opened. */
+    protected readonly url: URL,
+    protected readonly credentials: CameraCredentials,
     opts: Partial<CameraPlayerOptions> = {},
   ) {
     this.opts = { ...DEFAULT_CAMERA_PLAYER_OPTIONS, ...opts };

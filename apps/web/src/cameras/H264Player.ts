@@ -5,8 +5,8 @@
  * so is every frame after it until the next key frame (a delta frame needs the one before it).
  */
 import { codecOfAccessUnit, decodeH264Message } from '@armtwin/camera/client';
-import { CameraPlayer, type CameraPlayerOptions } from './CameraPlayer.ts';
-import { withQueryAuth, type CameraCredentials } from './streamUrl.ts';
+import { CameraPlayer } from './CameraPlayer.ts';
+import { withQueryAuth } from './streamUrl.ts';
 
 /** Whether this page can decode `h264-ws` (WebCodecs exists only in a secure context). */
 export const hasVideoDecoder = (): boolean => typeof globalThis.VideoDecoder === 'function';
@@ -15,15 +15,6 @@ export class H264Player extends CameraPlayer {
   private ws: WebSocket | null = null;
   private decoder: VideoDecoder | null = null;
   private needKey = true;
-
-  constructor(
-    canvas: HTMLCanvasElement,
-    private readonly url: URL,
-    private readonly credentials: CameraCredentials,
-    opts: Partial<CameraPlayerOptions> = {},
-  ) {
-    super(canvas, opts);
-  }
 
   protected open(gen: number): void {
     // Checked again at the sink: only ws(s) is ever opened.

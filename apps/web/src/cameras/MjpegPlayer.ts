@@ -6,22 +6,13 @@
  * meanwhile only the newest waits, the others are dropped and counted.
  */
 import { createMultipartParser, multipartBoundary } from '@armtwin/camera/client';
-import { CameraPlayer, type CameraPlayerOptions } from './CameraPlayer.ts';
-import { basicToken, type CameraCredentials } from './streamUrl.ts';
+import { CameraPlayer } from './CameraPlayer.ts';
+import { basicToken } from './streamUrl.ts';
 
 export class MjpegPlayer extends CameraPlayer {
   private abort: AbortController | null = null;
   private decoding = false;
   private pending: Uint8Array<ArrayBuffer> | null = null;
-
-  constructor(
-    canvas: HTMLCanvasElement,
-    private readonly url: URL,
-    private readonly credentials: CameraCredentials,
-    opts: Partial<CameraPlayerOptions> = {},
-  ) {
-    super(canvas, opts);
-  }
 
   protected open(gen: number): void {
     const abort = new AbortController();

@@ -1,0 +1,61 @@
+/**
+ * A serial line for gateway tests: a socat pseudo-terminal pair with a simulated device
+ * (`armtwin sim --serial …`) on its far end. `start()` makes the pair and starts the device,
+ * resolved once it says `ready`; `stop()` takes both away (the line "unplugged").
+ */
+import { spawn, type ChildProcess } from 'node:child_process';
+import fs from 'node:fs';
+import { armtwin, type Child } from './sim-helpers.ts';
+
+export interface SerialLine {
+  /** The gateway's end. */
+  hostSide: string;
+  start(): Promise<void>;
+  stop(): Promise<void>;
+}
+
+/**
+ * `simArgs(armSide)` are the device's `armtwin` arguments; `ready` is the line it prints once it
+ * listens on the port.
+ */
+export function serialLine(
+  hostSide: string,
+  armSide: string,
+  simArgs: (armSide: string) => string[],
+  ready: string,
+): SerialLine {
+  let socat: ChildProcess | undefined;
+  let device: Child | undefined;
+  return {
+    hostSide,
+    async start() {
+      socat = spawn(
+        'socat',
+        ['-d', '-d', `pty,raw,echo=0,link=${hostSide}`, `pty,raw,echo=0,link=${armSide}`],
+        { stdio: 'ignore' },
+      );
+      const deadline = Date.now() + 5000;
+      while (!(fs.existsSync(hostSide) && fs.existsSync(armSide))) {
+        if (Date.now() > deadline) throw new Error('socat made no pty pair');
+        await new Promise((r) => setTimeout(r, 50));
+      }
+      const c = (device = armtwin(simArgs(armSide)));
+      while (!c.output().includes(ready)) {
+        if (Date.now() > deadline + 15_000)
+          throw new Error(`the simulated device did not start:\n${c.output()}`);
+        await new Promise((r) => setTimeout(r, 50));
+      }
+    },
+    async stop() {
+      const s = socat;
+      socat = undefined;
+      if (s && s.exitCode === null) {
+        const gone = new Promise((r) => s.once('exit', r));
+        s.kill('SIGTERM');
+        await gone;
+      }
+      await device?.stop('SIGKILL');
+      device = undefined;
+    },
+  };
+}
