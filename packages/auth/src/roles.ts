@@ -29,10 +29,17 @@ export const ROLE_RULES: Record<Role, RoleRules> = {
   viewer: { read: VIEWER_READ, write: [] },
   operator: {
     read: VIEWER_READ,
-    write: ['arm/+/control', 'arm/+/operator', 'arm/+/request', 'arm/+/sim'],
+    // `arm/+/torque`: a bus arm's torque off (`0`) and on (`1`), through its gateway.
+    write: ['arm/+/control', 'arm/+/operator', 'arm/+/request', 'arm/+/sim', 'arm/+/torque'],
   },
   device: {
-    read: ['arm/{arm}/control', 'arm/{arm}/operator', 'arm/{arm}/sim', 'arm/{arm}/request'],
+    read: [
+      'arm/{arm}/control',
+      'arm/{arm}/operator',
+      'arm/{arm}/sim',
+      'arm/{arm}/request',
+      'arm/{arm}/torque',
+    ],
     write: [
       'arm/{arm}/status',
       'arm/{arm}/online',

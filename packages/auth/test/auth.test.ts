@@ -98,6 +98,13 @@ describe('roles', () => {
     expect(canSubscribe(mw, 'arm/+/camera/+')).toBe(false);
   });
 
+  test("an operator turns a bus arm's torque off and on; only that arm's device hears it", () => {
+    expect(canPublish(operator, 'arm/arm1/torque')).toBe(true);
+    expect(canPublish(viewer, 'arm/arm1/torque')).toBe(false);
+    expect(canSubscribe(device, 'arm/arm1/torque')).toBe(true);
+    expect(canSubscribe(device, 'arm/arm2/torque')).toBe(false);
+  });
+
   test('middleware reads status and control, also through $share', () => {
     expect(canSubscribe(mw, '$share/g1/arm/+/status')).toBe(true);
     expect(canSubscribe(mw, '$share/g1/arm/+/control')).toBe(true);
