@@ -412,7 +412,13 @@ describe('armtwin camera', () => {
     await until('the retained announcement', () => seen.length >= 1);
     const m = parseCameraMessage(topic, seen[0]!);
     expect(m.type === 'camera' && m.camera).toMatchObject({ url, label: 'CLI', fovDeg: 45 });
-    const jpg = await fetch(url.replace(/\.mjpeg$/, '.jpg'));
+    // The latest picture: 503 "no picture yet" until ffmpeg's first frame is in, then a JPEG.
+    let jpg = await fetch(url.replace(/\.mjpeg$/, '.jpg'));
+    for (const end = Date.now() + 15_000; jpg.status === 503 && Date.now() < end;) {
+      await sleep(100);
+      jpg = await fetch(url.replace(/\.mjpeg$/, '.jpg'));
+    }
+    expect(jpg.status).toBe(200);
     expect(jpg.headers.get('content-type')).toBe('image/jpeg');
     const ffmpegPid = ffmpegOf(child.pid!);
     expect(alive(ffmpegPid)).toBe(true);

@@ -68,8 +68,9 @@ seen = []
 
 
 def reached_single():
-    pos = as_signed(txrx(ph.read4ByteTxRx, 1, ADDR_PRESENT)[0])
+    # Moving first: a servo already stopped when asked is where the next read finds it.
     moving = txrx(ph.read1ByteTxRx, 1, ADDR_MOVING)[0]
+    pos = as_signed(txrx(ph.read4ByteTxRx, 1, ADDR_PRESENT)[0])
     seen.append(pos)
     return moving == 0 and abs(pos - 3072) <= 10
 

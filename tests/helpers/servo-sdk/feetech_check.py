@@ -64,8 +64,9 @@ seen = []
 
 
 def reached_single():
-    pos = SCS_TOHOST(txrx(ph.read2ByteTxRx, 1, ADDR_PRESENT)[0], 15)
+    # Moving first: a servo already stopped when asked is where the next read finds it.
     moving = txrx(ph.read1ByteTxRx, 1, ADDR_MOVING)[0]
+    pos = SCS_TOHOST(txrx(ph.read2ByteTxRx, 1, ADDR_PRESENT)[0], 15)
     seen.append(pos)
     return moving == 0 and abs(pos - 3072) <= 10
 
