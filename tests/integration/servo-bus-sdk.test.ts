@@ -1,29 +1,77 @@
 /**
- * The emulated servo buses of `@armtwin/servo-bus`, proved with the vendors' own SDKs, which
- * nobody here wrote: a socat pty pair is the serial line, `tests/helpers/serve-servo-bus.ts`
- * serves the emulated bus on one end, and Python scripts on the other drive it with ROBOTIS's
- * `dynamixel-sdk` and Feetech's `feetech-servo-sdk` (ping, present position, temperature and
- * voltage, torque, a goal watched until reached, GroupSyncWrite/GroupSyncRead, the status error
- * byte). The SDKs live in the venv `scripts/install-deps.sh` makes; without it this test fails.
+ * The simulator's servo buses (`armtwin sim --bus dynamixel|feetech --serial PATH`), proved with
+ * the vendors' own SDKs, which nobody here wrote: a socat pty pair is the serial line, the sim
+ * answers on one end as a bus of its profile's servos, and Python scripts on the other drive it
+ * with ROBOTIS's `dynamixel-sdk` and Feetech's `feetech-servo-sdk` (ping, present position,
+ * temperature and voltage, torque, a goal watched until reached, GroupSyncWrite/GroupSyncRead,
+ * the status error byte). The profile (two servos, ids 001 and 002, on a two-joint URDF) is
+ * written to a temporary models folder; the sim's fault flags set what the sensors read. The
+ * SDKs live in the venv `scripts/install-deps.sh` makes; without it this test fails.
  */
-import { execFile, spawn, type ChildProcess } from 'node:child_process';
+import { execFile } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { promisify } from 'node:util';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import type { EmulatedServoSpec } from '@armtwin/servo-bus';
 import { REPO_ROOT } from '../helpers/files.ts';
 import { servoSdkPython } from '../helpers/servo-sdk-python.ts';
+import { serialLine } from './serial-line.ts';
 
 const run = promisify(execFile);
-const HELPERS = path.join(REPO_ROOT, 'tests', 'helpers');
+const SDK_CHECKS = path.join(REPO_ROOT, 'tests', 'helpers', 'servo-sdk');
+const PROFILE = 'sdk2';
+/** Servo 002's home angle: 2048 − 45° × 4096/360 = tick 1536. */
+const HOME_002_DEG = -45;
+
+const URDF = `<?xml version="1.0"?>
+<robot name="${PROFILE}">
+  <link name="base"/>
+  <link name="upper"/>
+  <link name="tip"/>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="upper"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 0 1"/>
+    <limit lower="-3.1" upper="3.1" effort="1" velocity="3"/>
+  </joint>
+  <joint name="j2" type="revolute">
+    <parent link="upper"/><child link="tip"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 1 0"/>
+    <limit lower="-3.1" upper="3.1" effort="1" velocity="3"/>
+  </joint>
+</robot>
+`;
+
+const servo = (id: string, joint: string) => ({
+  id,
+  name: joint,
+  joint,
+  type: 'revolute',
+  units: 'angle',
+  min: -175,
+  max: 175,
+  maxSpeed: 180,
+});
+
+const PROFILE_JSON = {
+  format: 'armtwin-profile/1',
+  name: PROFILE,
+  title: 'Two bus servos for the vendor SDK checks',
+  urdf: `${PROFILE}.urdf`,
+  ik: { kind: 'numeric', baseLink: 'base', tipLink: 'tip' },
+  servos: [servo('001', 'j1'), servo('002', 'j2')],
+  poses: { home: { unit: 'servo', servos: { '001': 0, '002': HOME_002_DEG } } },
+};
 
 interface Case {
   protocol: 'dynamixel' | 'feetech';
   script: string;
   baud: number;
-  servos: EmulatedServoSpec[];
+  /** The sim's fault flags: what the sensors read. */
+  faults: string[];
+  /** Model number PING answers (the emulator's default model of each protocol). */
+  model: number;
+  present: Record<'1' | '2', { temperature: number; voltage: number }>;
 }
 
 const CASES: Case[] = [
@@ -31,139 +79,93 @@ const CASES: Case[] = [
     protocol: 'dynamixel',
     script: 'dynamixel_check.py',
     baud: 57_600, // the X-series' factory baud rate
-    servos: [
-      { id: 1, model: 'XM430-W350', temperatureC: 36, voltageV: 12.2 },
-      { id: 2, model: 'XL430-W250', position: 1500, temperatureC: 41, voltageV: 11.1 },
-    ],
+    faults: ['--overheat', '2:41'],
+    model: 1020, // XM430-W350
+    present: { '1': { temperature: 25, voltage: 12 }, '2': { temperature: 41, voltage: 12 } },
   },
   {
     protocol: 'feetech',
     script: 'feetech_check.py',
     baud: 1_000_000, // the STS3215's factory baud rate
-    servos: [
-      { id: 1, model: 'STS3215', temperatureC: 33, voltageV: 7.4 },
-      { id: 2, model: 'STS3215', position: 1500, temperatureC: 35, voltageV: 7.2 },
-    ],
+    faults: ['--overheat', '2:35', '--undervolt', '7200'],
+    model: 777, // STS3215
+    present: { '1': { temperature: 25, voltage: 7.2 }, '2': { temperature: 35, voltage: 7.2 } },
   },
 ];
 
-async function until(what: string, ok: () => boolean, timeoutMs: number): Promise<void> {
-  const deadline = Date.now() + timeoutMs;
-  while (!ok()) {
-    if (Date.now() > deadline) throw new Error(`${what} after ${timeoutMs} ms`);
-    await new Promise((r) => setTimeout(r, 50));
-  }
-}
-
-async function stop(child: ChildProcess | undefined): Promise<void> {
-  if (!child || child.exitCode !== null || child.signalCode !== null) return;
-  const gone = new Promise((r) => child.once('exit', r));
-  child.kill('SIGTERM');
-  const timer = setTimeout(() => child.kill('SIGKILL'), 5000);
-  await gone;
-  clearTimeout(timer);
-}
-
+const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-servo-sdk-'));
+const MODELS = path.join(dir, 'models');
 let python: string;
+
 beforeAll(() => {
   python = servoSdkPython();
+  fs.mkdirSync(path.join(MODELS, PROFILE), { recursive: true });
+  fs.writeFileSync(path.join(MODELS, PROFILE, `${PROFILE}.urdf`), URDF);
+  fs.writeFileSync(path.join(MODELS, PROFILE, 'profile.json'), JSON.stringify(PROFILE_JSON));
 });
 
+afterAll(() => fs.rmSync(dir, { recursive: true, force: true }));
+
 describe.each(CASES)(
-  '$protocol: the vendor SDK against the emulated bus',
-  ({ protocol, script, baud, servos }) => {
-    let dir = '';
-    let socat: ChildProcess | undefined;
-    let serve: ChildProcess | undefined;
-    let serveLog = '';
+  '$protocol: the vendor SDK against `armtwin sim --bus $protocol`',
+  ({ protocol, script, baud, faults, model, present }) => {
+    const hostSide = path.join(dir, `${protocol}-host`);
+    const line = serialLine(
+      hostSide,
+      path.join(dir, `${protocol}-bus`),
+      (busSide) => [
+        'sim',
+        '--bus',
+        protocol,
+        '--serial',
+        busSide,
+        '--baud',
+        String(baud),
+        '--profile',
+        PROFILE,
+        '--models',
+        MODELS,
+        ...faults,
+      ],
+      'simulated servo bus on the serial line',
+    );
     let result: Record<string, unknown>;
 
     beforeAll(async () => {
-      dir = fs.mkdtempSync(path.join(os.tmpdir(), `armtwin-servo-${protocol}-`));
-      const hostSide = path.join(dir, 'host');
-      const busSide = path.join(dir, 'bus');
-      socat = spawn(
-        'socat',
-        ['-d', '-d', `pty,raw,echo=0,link=${hostSide}`, `pty,raw,echo=0,link=${busSide}`],
-        { stdio: 'ignore' },
-      );
-      await until(
-        'socat made no pty pair',
-        () => fs.existsSync(hostSide) && fs.existsSync(busSide),
-        5000,
-      );
-      serve = spawn(
-        process.execPath,
-        [
-          '--import',
-          'tsx',
-          path.join(HELPERS, 'serve-servo-bus.ts'),
-          '--protocol',
-          protocol,
-          '--port',
-          busSide,
-          '--baud',
-          String(baud),
-          '--servos',
-          JSON.stringify(servos),
-        ],
-        { cwd: REPO_ROOT, stdio: ['ignore', 'pipe', 'pipe'] },
-      );
-      serve.stdout!.on('data', (d: Buffer) => (serveLog += d.toString()));
-      serve.stderr!.on('data', (d: Buffer) => (serveLog += d.toString()));
-      await until(
-        `the emulated bus did not start:\n${serveLog}`,
-        () => serveLog.includes('servo bus ready'),
-        20_000,
-      );
+      await line.start();
       try {
         const { stdout } = await run(
           python,
-          [path.join(HELPERS, 'servo-sdk', script), hostSide, String(baud)],
+          [path.join(SDK_CHECKS, script), hostSide, String(baud)],
           { timeout: 90_000 },
         );
         result = JSON.parse(stdout.trim().split('\n').at(-1)!) as Record<string, unknown>;
       } catch (err) {
         const e = err as { stdout?: string; stderr?: string; message: string };
-        throw new Error(
-          `${script} failed: ${e.message}\n${e.stdout ?? ''}${e.stderr ?? ''}\nbus log:\n${serveLog}`,
-          { cause: err },
-        );
+        throw new Error(`${script} failed: ${e.message}\n${e.stdout ?? ''}${e.stderr ?? ''}`, {
+          cause: err,
+        });
       }
       console.log(`${script}: ${JSON.stringify(result)}`);
     });
 
-    afterAll(async () => {
-      await stop(serve);
-      await stop(socat);
-      if (dir) fs.rmSync(dir, { recursive: true, force: true });
-    });
+    afterAll(() => line.stop());
 
     test('PING finds both servos with their model numbers, and nothing at id 3', () => {
-      const models = protocol === 'dynamixel' ? [1020, 1060] : [777, 777];
       expect(result.ping).toEqual({
-        '1': { model: models[0], error: 0 },
-        '2': { model: models[1], error: 0 },
+        '1': { model, error: 0 },
+        '2': { model, error: 0 },
       });
       expect(result.ping_absent).toBe('[TxRxResult] There is no status packet!');
-      if (protocol === 'dynamixel') expect(result.broadcast_ping).toEqual({ '1': 1020, '2': 1060 });
+      if (protocol === 'dynamixel')
+        expect(result.broadcast_ping).toEqual({ '1': model, '2': model });
     });
 
-    test('present position, temperature and voltage read as the bus was set up', () => {
+    test("present position, temperature and voltage: the profile's home pose and the sim's sensors", () => {
       const extra = protocol === 'feetech' ? { error: 0 } : {};
       expect(result.present).toEqual({
-        '1': {
-          position: servos[0]!.position ?? 2048,
-          temperature: servos[0]!.temperatureC,
-          voltage: servos[0]!.voltageV,
-          ...extra,
-        },
-        '2': {
-          position: servos[1]!.position,
-          temperature: servos[1]!.temperatureC,
-          voltage: servos[1]!.voltageV,
-          ...extra,
-        },
+        '1': { position: 2048, ...present['1'], ...extra },
+        '2': { position: 2048 + (HOME_002_DEG * 4096) / 360, ...present['2'], ...extra },
       });
     });
 

@@ -3,8 +3,14 @@
  * frames, the last readings by servo (for `PRAD`/`PRTV` and the speeds of timed moves), servo
  * error flags as `$ERR` when they change, and which servos have missed too many reads in a row.
  */
-import { encodeAngle, encodeControllerError, encodeGroup, encodeHealth } from '@armtwin/protocol';
-import { degreesToTicks, type BusResult } from '@armtwin/servo-bus';
+import {
+  encodeAngle,
+  encodeControllerError,
+  encodeGroup,
+  encodeHealth,
+  MV_MAX,
+} from '@armtwin/protocol';
+import { degreesPerTick, type BusResult } from '@armtwin/servo-bus';
 import type { BusGoal } from './bus-servos.ts';
 
 /** Reads in a row a servo may miss before it counts as gone. */
@@ -22,16 +28,17 @@ export class BusReports {
   readonly health = new Map<number, { temp: number; mv: number }>();
   private readonly problems = new Map<number, string>();
   private readonly misses = new Map<number, number>();
-  /** The last goal written to each servo, as commanded and in ticks. */
-  private readonly commanded = new Map<number, { ticks: number; degrees: number }>();
+  /** The last goal written to each servo, degrees as commanded. */
+  private readonly commanded = new Map<number, number>();
 
   /** Goals as written, so a servo that reaches one reports it exactly. */
   remember(goals: readonly BusGoal[]): void {
-    for (const g of goals)
-      this.commanded.set(g.id, {
-        ticks: degreesToTicks(g.degrees, { id: g.id }),
-        degrees: g.degrees,
-      });
+    for (const g of goals) this.commanded.set(g.id, g.degrees);
+  }
+
+  /** Forgets the goals (a new calibration reads the same ticks as other angles). */
+  forgetGoals(): void {
+    this.commanded.clear();
   }
 
   /**
@@ -42,8 +49,10 @@ export class BusReports {
   positionFrames(r: Positions): string {
     const frames: string[] = [];
     for (const s of r.servos) {
+      // On the goal's tick: the read angle is within half a tick of the goal's.
       const c = this.commanded.get(s.id);
-      const degrees = c && c.ticks === s.ticks ? c.degrees : s.degrees;
+      const onGoal = c !== undefined && Math.abs(c - s.degrees) < degreesPerTick(s) / 2;
+      const degrees = onGoal ? c : s.degrees;
       this.positions.set(s.id, degrees);
       if (Math.abs(degrees) <= 999.99) frames.push(encodeAngle(s.id, degrees));
     }
@@ -51,7 +60,7 @@ export class BusReports {
   }
 
   /**
-   * The health group `{#000T025V7400!…}` (mV capped at the frame's 9999), then `$ERR` for each
+   * The health group `{#000T025V7400!…}` (a 12 V supply is `V12000`, capped at `MV_MAX`), then `$ERR` for each
    * servo whose error flags changed to something; [] when nobody answered.
    */
   healthFrames(r: Health): string[] {
@@ -59,7 +68,7 @@ export class BusReports {
     const errors: string[] = [];
     for (const s of r.servos) {
       const temp = Math.min(999, Math.max(0, Math.round(s.temperatureC)));
-      const mv = Math.min(9999, Math.max(0, Math.round(s.voltageV * 1000)));
+      const mv = Math.min(MV_MAX, Math.max(0, Math.round(s.voltageV * 1000)));
       this.health.set(s.id, { temp, mv });
       frames.push(encodeHealth(s.id, temp, mv));
       const problems = s.status.problems.join(' ');

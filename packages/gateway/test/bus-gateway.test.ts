@@ -18,7 +18,7 @@ import {
   type BusProtocol,
   type EmulatedBus,
 } from '@armtwin/servo-bus';
-import { BusGatewayCore, BUS_MODELS_DIR, busKmsSolver } from '../src/index.ts';
+import { BusGatewayCore, BUS_MODELS_DIR, busFloorKeepOut, busKmsSolver } from '../src/index.ts';
 
 /** armtwin5 with its wrist roll (004) able to turn ±360°. */
 function profile(): Profile {
@@ -48,7 +48,13 @@ function rig(protocol: BusProtocol, ids = [0, 1, 2, 3, 4, 5]) {
   /** Answers arrive this late (ms); 0 = at once. */
   let lateMs = 0;
   const core: BusGatewayCore = new BusGatewayCore(
-    { armId: 'a1', protocol, profile: profile(), kms: busKmsSolver(createMotionRobot(profile())) },
+    {
+      armId: 'a1',
+      protocol,
+      profile: profile(),
+      kms: busKmsSolver(createMotionRobot(profile())),
+      keepOut: busFloorKeepOut(createMotionRobot(profile())),
+    },
     {
       now: () => clock.now(),
       setTimeout: (fn, ms) => clock.setTimeout(fn, ms),
@@ -120,9 +126,9 @@ describe.each(['dynamixel', 'feetech'] as const)('bus gateway core on %s', (prot
     expect(half).toBeLessThan(35);
     r.clock.advance(700);
     expect(Math.abs(r.angle(1)! - 45)).toBeLessThan(0.1);
-    r.core.fromControl('#002P2500T0000!'); // 135° at the profile's top speed
+    r.core.fromControl('#002P0500T0000!'); // −135° at the profile's top speed (+135° would put the hand under the floor)
     r.clock.advance(1000);
-    expect(Math.abs(r.angle(2)! - 135)).toBeLessThan(0.1);
+    expect(Math.abs(r.angle(2)! + 135)).toBeLessThan(0.1);
   });
 
   test('a ±360° joint goes multi-turn and +350.00° comes back as +350.00', () => {
@@ -184,6 +190,20 @@ describe.each(['dynamixel', 'feetech'] as const)('bus gateway core on %s', (prot
     expect(r.items.at(-1)?.frame).toMatchObject({ type: 'kmsResult', code: 2 });
   });
 
+  test('goals that would put the hand below the floor are refused ($ERR, $KMS:1!), counted', () => {
+    const r = rig(protocol);
+    r.core.fromControl('#001A-090.00T0200!'); // upper arm and forearm level: tip at z 100
+    r.clock.advance(1000);
+    expect(r.angle(1)).toBeCloseTo(-90, 1);
+    r.core.fromControl('#002A-090.00T0200!'); // forearm down: tip at z −148
+    r.core.fromControl('$KMS:200,0,-50,800!'); // reachable, but under the floor
+    expect(r.items.at(-1)?.frame).toMatchObject({ type: 'kmsResult', code: 1 });
+    r.clock.advance(1000);
+    expect(r.errors()).toEqual([expect.stringMatching(/^floor: tip 148\.0 mm below the floor/)]);
+    expect(r.angle(2)).toBe(0);
+    expect(r.core.control.counters.refused.floor).toBe(2);
+  });
+
   test('answers arriving after their time-out are drained, never taken for the next ones', () => {
     const r = rig(protocol);
     r.core.fromControl('#001A+030.00T0000!#003A-020.00T0000!');
@@ -211,7 +231,7 @@ describe.each(['dynamixel', 'feetech'] as const)('bus gateway core on %s', (prot
     expect(replies).toMatchObject([
       { type: 'ping', seq: 7 },
       { type: 'angle', id: 3, deg: 0 },
-      { type: 'health', id: 3, temp: 25, mv: protocol === 'dynamixel' ? 9999 : 7400 },
+      { type: 'health', id: 3, temp: 25, mv: protocol === 'dynamixel' ? 12000 : 7400 },
     ]);
   });
 

@@ -28,7 +28,7 @@ export const FRAME_PATTERNS = {
   readPosition: /^#(\d{3})PRAD!$/,
   readHealth: /^#(\d{3})PRTV!$/,
   stop: /^#(\d{3})PDST!$/,
-  health: /^#(\d{3})T(\d{1,4})V(\d{1,5})!$/,
+  health: /^#(\d{3})T(\d{1,4})V(\d{1,6})!$/,
   kms: new RegExp(`^\\$KMS:${NUM},${NUM},${NUM}(?:,${NUM})?,(\\d{1,5}(?:\\.\\d{1,6})?)!$`),
   kmsResult: /^\$KMS:(\d{1,3})!$/,
   ping: /^\$PNG:(\d{1,11})!$/,

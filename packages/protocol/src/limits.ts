@@ -20,4 +20,9 @@ export const KMS_COORD_MAX = 99_999;
 /** Largest IK status code the reader accepts in `$KMS:c!` (room for codes beyond §4). */
 export const KMS_CODE_MAX = 99;
 export const TEMP_MAX = 999;
-export const MV_MAX = 9999;
+/**
+ * Largest supply voltage in a health frame, mV. Four digits up to 9999 mV as §1 shows; a supply
+ * of 10 V or more (a 12 V Dynamixel bus) is written with five (`V12000`), up to 65 535 mV
+ * (docs/protocol.md, "Health frames above 9.999 V").
+ */
+export const MV_MAX = 65_535;

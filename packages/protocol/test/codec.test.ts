@@ -23,6 +23,8 @@ const FRAMES: [string, Frame][] = [
   ['$PNG:0!', { type: 'ping', seq: 0 }],
   ['#000P2500!', { type: 'position', id: 0, pwm: 2500 }],
   ['#001T045V7400!', { type: 'health', id: 1, temp: 45, mv: 7400 }],
+  // A 12 V bus supply: five digits from 10 V up (docs/protocol.md).
+  ['#001T036V12000!', { type: 'health', id: 1, temp: 36, mv: 12000 }],
   ['$KMS:2!', { type: 'kmsResult', code: 2 }],
   ['$TIM:1700000000000!', { type: 'time', ms: 1700000000000 }],
   ['$ERR:limit 001!', { type: 'controllerError', text: 'limit 001' }],
@@ -59,8 +61,17 @@ describe('frame codec', () => {
     () => encodePosition(255, 1500),
     () => encodeKms(Number.NaN, 0, 0, 100),
     () => encodeKms(0, 0, 0, 100, 181),
+    () => encodeHealth(1, 36, 65_536),
   ])('encoder #%# rejects out-of-range input with a ProtocolError', (encode) => {
     expect(encode).toThrow(ProtocolError);
+  });
+
+  it('a supply above 65 535 mV is out of range, not malformed', () => {
+    expect(decodeFrame('#001T036V65536!')).toMatchObject({
+      ok: false,
+      error: { kind: 'out-of-range' },
+    });
+    expect(decodeFrame('#001T036V65535!')).toMatchObject({ ok: true, frame: { mv: 65_535 } });
   });
 
   it('a controller error text can never break framing', () => {

@@ -4,6 +4,10 @@
  * or metres for a prismatic joint). The live arm, the ghost and the replay's sibling each pose
  * through one, built from the same map, so any robot a profile describes moves the same way in
  * all three. `pose` runs every frame: no allocation.
+ *
+ * Every joint is drawn where it is put, past its URDF limits: the twin shows what the arm
+ * reports (a ±360° bus servo whose URDF says ±135°, PROTOCOL.md §8), and limits are checked
+ * where commands are made and again at the controller, not by hiding a pose in the drawing.
  */
 import type { URDFJoint, URDFRobot } from 'urdf-loader';
 import type { JointMap } from '../robots/robotSpec.ts';
@@ -17,6 +21,9 @@ export class PosedRobot {
     private readonly map: JointMap,
   ) {
     this.joints = map.names.map((n) => robot.joints[n]);
+    // urdf-loader clamps revolute and prismatic joints to their limits unless told not to;
+    // mimic joints follow through `setJointValue`, so they are freed as well.
+    for (const joint of Object.values(robot.joints)) joint.ignoreLimits = true;
   }
 
   /** Servos this robot is posed by (the profile's). */

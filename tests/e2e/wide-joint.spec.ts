@@ -1,0 +1,85 @@
+/// <reference lib="dom" />
+/**
+ * A bus servo that turns further than its URDF says is drawn where the arm reports it: armtwin5
+ * with its wrist roll (004) a ±360° angle servo (PROTOCOL.md §8) in the profile, while the URDF
+ * keeps ±135°. The twin shows what the arm reports; limits are the controller's business, so
+ * urdf-loader must not clamp the drawn joint to the URDF's range. `armtwin up --models DIR`
+ * simulates the arm and serves the folder; an operator's MQTT client sends the move.
+ */
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import type { Page } from '@playwright/test';
+import { REPO_ROOT } from '../helpers/services.ts';
+import { expect, shot, test, type HudWindow } from './fixtures.ts';
+import { ensureHudBuilt } from './support/build-hud.ts';
+import { ArmWatcher, demoPassword, startUp, type UpProcess } from './support/up.ts';
+
+const PROFILE = 'wide5';
+let up: UpProcess;
+let models = '';
+
+// eslint-disable-next-line no-empty-pattern
+test.beforeAll(async ({}, testInfo) => {
+  test.setTimeout(120_000);
+  ensureHudBuilt();
+  models = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-e2e-wide-'));
+  const dir = path.join(models, PROFILE);
+  fs.cpSync(path.join(REPO_ROOT, 'public/models/armtwin5'), dir, { recursive: true });
+  const profile = JSON.parse(fs.readFileSync(path.join(dir, 'profile.json'), 'utf8')) as {
+    name: string;
+    servos: Record<string, unknown>[];
+  };
+  profile.name = PROFILE;
+  profile.servos[4] = { ...profile.servos[4], units: 'angle', min: -360, max: 360 };
+  fs.writeFileSync(path.join(dir, 'profile.json'), JSON.stringify(profile));
+  up = await startUp(path.join(testInfo.project.outputDir, `armtwin-up-wide-${process.pid}.log`), [
+    '--models',
+    models,
+    '--arms',
+    `arm1:${PROFILE}`,
+  ]);
+});
+
+test.afterAll(async () => {
+  await up?.stop();
+  if (models) fs.rmSync(models, { recursive: true, force: true });
+});
+
+/** The URDF joint values the live arm is drawn with, rad. */
+const drawnJoints = (page: Page) =>
+  page.evaluate(() =>
+    (window as unknown as { __armtwin: { joints(): number[] } }).__armtwin.joints(),
+  );
+
+test('a ±360° bus joint at +350° is drawn at +350°, past its URDF limit of 135°', async ({
+  page,
+}, testInfo) => {
+  await page.goto(`${up.url}?arm=arm1`);
+  await page.waitForFunction(() => (window as unknown as HudWindow).__armtwin?.ready === true);
+  const form = page.getByRole('form', { name: 'Log in' });
+  await form.getByLabel('Username').fill('viewer');
+  await form.getByLabel('Password').fill(demoPassword('viewer'));
+  await form.getByRole('button', { name: 'Log in' }).click();
+  await expect
+    .poll(() =>
+      page.evaluate(
+        () =>
+          (window as unknown as { __armtwin: { robots: { active: { spec: { name: string } } } } })
+            .__armtwin.robots.active.spec.name,
+      ),
+    )
+    .toBe(PROFILE);
+
+  const operator = await ArmWatcher.connect(up.mqttUrl, 'arm1', 'operator');
+  try {
+    await operator.client.publishAsync('arm/arm1/control', '#004A+350.00T0800!', { qos: 1 });
+    // URDF joint values in rad: the wrist roll's (servo 004) reaches 350° and is not held at 135°.
+    await expect
+      .poll(async () => ((await drawnJoints(page))[4]! * 180) / Math.PI, { timeout: 15_000 })
+      .toBeCloseTo(350, 1);
+    await shot(page, testInfo, 'wrist-roll-350');
+  } finally {
+    await operator.close();
+  }
+});
