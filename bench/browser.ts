@@ -15,17 +15,18 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { angleFromPwm } from '@armtwin/protocol';
 import { DEMO_ARM } from '@armtwin/ik';
-import { connectMqtt, REPO, startSim } from './lib/stack.ts';
+import { connectMqtt, startSim } from './lib/stack.ts';
 import { sleep, until } from './lib/proc.ts';
 import { serveStatic } from './lib/static.ts';
 import { blankPageFrames, installProbe, type ProbeResult } from './lib/page-probe.ts';
 import { round, summarize } from './lib/stats.ts';
 import { barChartSvg } from './lib/svg.ts';
 import { fmt, type BenchContext, type Row, type Section, type SectionOutput } from './lib/types.ts';
-import { CHROMIUM_ARGS, CHROMIUM_PATH } from '../tests/helpers/chromium.ts';
+import { CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
+import { HUD_DIST, hudPrecheck, hudReady, openHudBrowser } from './lib/hud-browser.ts';
 
 const ARM = 'bench-hud';
-const DIST = path.join(REPO, 'apps', 'web', 'dist');
+const DIST = HUD_DIST;
 const SERVOS = 6;
 /** The scripted trajectory: poses (µs, servos 000–005) visited in turn, each move 1000 ms. */
 const POSES = [
@@ -109,13 +110,9 @@ export const browserSection: Section = {
   id: 'browser',
   title: 'HUD in headless Chromium at 6 servos × 250 Hz',
   precheck() {
-    if (!fs.existsSync(path.join(DIST, 'index.html')))
-      return 'HUD not built: apps/web/dist/index.html missing (npm run build)';
-    if (!fs.existsSync(CHROMIUM_PATH)) return `${CHROMIUM_PATH} not found`;
-    return null;
+    return hudPrecheck();
   },
   async run(ctx: BenchContext): Promise<SectionOutput> {
-    const { chromium } = await import('playwright-core');
     const windowS = ctx.quick ? 15 : 45;
     const blankS = ctx.quick ? 4 : 8;
     const web = await serveStatic(DIST);
@@ -124,22 +121,9 @@ export const browserSection: Section = {
     const rec = new Recorder();
     client.on('message', (_t, payload) => rec.feed(payload));
     await client.subscribeAsync(`arm/${ARM}/status`, { qos: 0 });
-    const browser = await chromium.launch({
-      executablePath: CHROMIUM_PATH,
-      headless: true,
-      args: CHROMIUM_ARGS,
-      timeout: 60_000,
-    });
+    const { browser, page, cdp, pageErrors } = await openHudBrowser();
     let trajectory: NodeJS.Timeout | undefined;
     try {
-      const context = await browser.newContext({ viewport: { width: 1280, height: 800 } });
-      // tsx wraps named functions in __name(); the page needs it to exist.
-      await context.addInitScript({ content: 'globalThis.__name = (f) => f;' });
-      const page = await context.newPage();
-      const pageErrors: string[] = [];
-      page.on('pageerror', (e) => pageErrors.push(e.message));
-      const cdp = await context.newCDPSession(page);
-      await cdp.send('Performance.enable');
       const taskS = async () => {
         const { metrics } = (await cdp.send('Performance.getMetrics')) as {
           metrics: { name: string; value: number }[];
@@ -167,11 +151,7 @@ export const browserSection: Section = {
       const url = `${web.url}?broker=${encodeURIComponent(ctx.broker.wsUrl)}&arm=${ARM}`;
       ctx.log(`browser: HUD at ${url}`);
       await page.goto(url);
-      await page.waitForFunction(
-        () => (window as { __armtwin?: { ready: boolean } }).__armtwin?.ready === true,
-        null,
-        { timeout: 60_000 },
-      );
+      await hudReady(page);
       const live = await until(
         () =>
           page.evaluate(() => {

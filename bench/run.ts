@@ -26,6 +26,7 @@ import { ingestSection } from './ingest.ts';
 import { cpuSection } from './cpu.ts';
 import { browserSection } from './browser.ts';
 import { deadmanSection } from './deadman.ts';
+import { cameraSection } from './camera.ts';
 
 const SECTIONS: Section[] = [
   rttSection,
@@ -34,14 +35,16 @@ const SECTIONS: Section[] = [
   browserSection,
   deadmanSection,
   ikSection,
+  cameraSection,
 ];
 /** Broker settings for every section (recorded in the JSON): see BENCHMARKS.md on Nagle. */
 export const BROKER_EXTRA = ['set_tcp_nodelay true', 'max_queued_messages 1000000'];
-const NEEDS_SERVICES = new Set(['rtt', 'ingest', 'cpu', 'browser', 'deadman']);
+const NEEDS_BROKER = new Set(['rtt', 'ingest', 'cpu', 'browser', 'deadman', 'camera']);
+const NEEDS_INFLUX = new Set(['ingest', 'cpu']);
 
 const USAGE = `usage: npm run bench [-- --quick] [-- --only ${SECTIONS.map((s) => s.id).join(',')}] [-- --keep-logs] [-- --no-md]
   --quick      shorter runs (< 5 min): 5,000 pings at 1 kHz, short ramps and windows
-  --only a,b   run only these sections
+  --only a,b   run only these sections (e.g. --only camera: the camera section alone, ≈ 2 min)
   --keep-logs  keep child-process logs (printed at the end)
   --no-md      do not rewrite BENCHMARKS.md (the JSON and SVGs are still written)`;
 
@@ -82,9 +85,12 @@ async function main(): Promise<number> {
   let influx: InfluxService | undefined;
   const results: RunRecord['sections'] = {};
   try {
-    if (sections.some((s) => NEEDS_SERVICES.has(s.id))) {
-      log('starting Mosquitto and influxd');
+    if (sections.some((s) => NEEDS_BROKER.has(s.id))) {
+      log('starting Mosquitto');
       broker = await startMosquitto({ extraConfig: BROKER_EXTRA });
+    }
+    if (sections.some((s) => NEEDS_INFLUX.has(s.id))) {
+      log('starting influxd');
       influx = await startInflux();
     }
     const ctx: BenchContext = {

@@ -2,6 +2,7 @@
 # Installs what the tests need, only when it is missing; idempotent, never asks.
 #   - Debian packages: mosquitto, mosquitto-clients, chromium, socat, ffmpeg (and golang-go if no Go)
 #   - influxd 1.8.10 (scripts/build-influxd.sh: built once per machine, linked into .tools/bin)
+#   - influxd 2.7.11 (scripts/build-influxd2.sh: Go + Rust's cargo, built once, .tools/bin/influxd2)
 #   - a Python venv with the servo vendors' SDKs (dynamixel-sdk, feetech-servo-sdk), cached outside the clone
 #   - node_modules (`npm ci`) when missing or older than package-lock.json
 # Tests never use port 1883; the system Mosquitto service that the Debian package starts is
@@ -58,6 +59,16 @@ if ! bash "$ROOT/scripts/build-influxd.sh"; then
   bash "$ROOT/scripts/build-influxd.sh"
 fi
 
+# --- influxd 2.7.11 --------------------------------------------------------------------
+# The storage tests run against 1.8 and 2.7. 2.7's Flux engine is Rust, so cargo is needed too.
+# Built and tested here with rustup's stable 1.95; Debian's cargo, installed when there is no
+# cargo at all, is the fall-back (not tried on this machine, which has rustup).
+if ! bash "$ROOT/scripts/build-influxd2.sh"; then
+  say "influxd 2.7: installing cargo (Rust) for its Flux engine"
+  apt_install cargo
+  bash "$ROOT/scripts/build-influxd2.sh"
+fi
+
 # --- Python venv for the servo-bus SDK tests -------------------------------------------
 # tests/integration/servo-bus-sdk.test.ts drives the emulated servo buses with the vendors'
 # own Python SDKs: ROBOTIS `dynamixel-sdk` and Feetech `feetech-servo-sdk` (both need only
@@ -65,12 +76,13 @@ fi
 # the pinned requirements, so a changed pin rebuilds the venv and an unchanged one is kept.
 # tests/helpers/servo-sdk-python.ts finds it at the same path. The same venv holds `rtb-data`
 # (Robotics Toolbox's robot descriptions: URDFs with STL and DAE meshes), whose third-party
-# robots tests/integration/robot-import.test.ts imports as a user would.
+# robots tests/integration/robot-import.test.ts imports as a user would, and Foxglove's `mcap`
+# reader, which checks the files `armtwin export` writes (tests/integration/export-mcap.test.ts).
 PYENV_DIR="${ARMTWIN_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/armtwin}/pyenv"
-PYENV_REQS="dynamixel-sdk==4.1.0 feetech-servo-sdk==1.0.0 pyserial==3.5 rtb-data==2.0.0"
+PYENV_REQS="dynamixel-sdk==4.1.0 feetech-servo-sdk==1.0.0 pyserial==3.5 rtb-data==2.0.0 mcap==1.6.0"
 PYENV_STAMP="$PYENV_DIR/.armtwin-requirements"
 if [ -x "$PYENV_DIR/bin/python" ] && [ "$(cat "$PYENV_STAMP" 2>/dev/null)" = "$PYENV_REQS" ] \
-  && "$PYENV_DIR/bin/python" -c 'import dynamixel_sdk, scservo_sdk, serial, rtbdata' 2>/dev/null; then
+  && "$PYENV_DIR/bin/python" -c 'import dynamixel_sdk, scservo_sdk, serial, rtbdata, mcap.reader' 2>/dev/null; then
   say "python venv: present ($PYENV_DIR: $PYENV_REQS)"
 else
   if ! command -v python3 >/dev/null; then
@@ -85,7 +97,7 @@ else
   mkdir -p "$(dirname "$PYENV_DIR")"
   python3 -m venv "$PYENV_DIR"
   "$PYENV_DIR/bin/python" -m pip install --quiet --disable-pip-version-check --no-input $PYENV_REQS
-  "$PYENV_DIR/bin/python" -c 'import dynamixel_sdk, scservo_sdk, serial, rtbdata'
+  "$PYENV_DIR/bin/python" -c 'import dynamixel_sdk, scservo_sdk, serial, rtbdata, mcap.reader'
   printf '%s\n' "$PYENV_REQS" >"$PYENV_STAMP"
   say "python venv: ready ($PYENV_DIR)"
 fi

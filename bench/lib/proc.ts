@@ -158,3 +158,29 @@ export function findPid(needle: string): number | undefined {
   }
   return undefined;
 }
+
+/** The pids of `pid`'s live descendants (children, grandchildren …), from /proc/<pid>/stat ppids. */
+export function descendants(pid: number): number[] {
+  const parent = new Map<number, number>();
+  for (const d of fs.readdirSync('/proc')) {
+    if (!/^\d+$/.test(d)) continue;
+    try {
+      const stat = fs.readFileSync(`/proc/${d}/stat`, 'utf8');
+      // After the ")" that closes the command name: state, then ppid.
+      parent.set(Number(d), Number(stat.slice(stat.lastIndexOf(')') + 2).split(' ')[1]));
+    } catch {
+      // gone
+    }
+  }
+  const out: number[] = [];
+  const todo = [pid];
+  while (todo.length) {
+    const p = todo.pop()!;
+    for (const [child, pp] of parent) {
+      if (pp !== p) continue;
+      out.push(child);
+      todo.push(child);
+    }
+  }
+  return out;
+}

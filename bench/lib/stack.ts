@@ -131,7 +131,6 @@ export async function startMiddleware(
   };
 }
 
-
 /** `SELECT count(field) FROM measurement WHERE arm = …` in `db` (0 when empty). */
 export async function countPoints(
   influxUrl: string,

@@ -125,6 +125,45 @@ test.describe('cameras', () => {
     await expect(h264).toHaveCount(0);
   });
 
+  test('a folded Cameras panel closes the stream and the picture holds; unfolded, it plays again', async ({
+    hud,
+    arm,
+    stack,
+  }) => {
+    test.setTimeout(90_000);
+    const { page } = hud;
+    cam = await startCamera(arm.id);
+    client = await mqtt.connectAsync(stack.broker.url, { reconnectPeriod: 0 });
+    const topic = `arm/${arm.id}/camera/mj`;
+    // No pose: no screen in the 3D view, so the panel is the only place it is shown.
+    await client.publishAsync(
+      topic,
+      JSON.stringify({ url: `${cam.url}/camera/front.mjpeg`, kind: 'mjpeg', label: 'Front' }),
+      { qos: 1, retain: true },
+    );
+    const view = cameraRegion(page, 'Front');
+    await expectPixelsChange(view);
+    const viewers = () => cam!.server.stats().cameras[0]!.streams.mjpeg!.viewers.length;
+    expect(viewers()).toBe(1);
+    const fold = page.locator('.panel.cameras > summary');
+
+    await fold.click();
+    await expect(view).toBeHidden();
+    // The server sees the request closed, and the page draws no more frames (the folded view is
+    // out of the accessibility tree: found by its camera id).
+    await expect.poll(viewers, { timeout: 10_000 }).toBe(0);
+    const folded = page.locator('section[data-camid="mj"]');
+    const still = await canvasHash(folded);
+    await sleep(1500);
+    expect(await canvasHash(folded)).toBe(still);
+
+    await fold.click();
+    await expect.poll(viewers, { timeout: 10_000 }).toBe(1);
+    await expectPixelsChange(view);
+    await client.publishAsync(topic, '', { qos: 1, retain: true });
+    await expect(view).toHaveCount(0);
+  });
+
   test('a posed camera has a screen in the 3D view, and the view looks through it', async ({
     hud,
     arm,

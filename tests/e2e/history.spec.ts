@@ -7,13 +7,20 @@
  * tracking table, the alarm log, a CSV download — and the replay's sibling arm must take the
  * recorded pose (`window.__armtwin.replay.angles`, and the three.js joint itself).
  */
+import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
+import path from 'node:path';
 import type { Page } from '@playwright/test';
-import { angleFromPwm, pwmFromAngle } from '@armtwin/protocol';
+import { angleFromPwm, encodeGroup, encodeHealth, pwmFromAngle } from '@armtwin/protocol';
 import { DEMO_ARM } from '@armtwin/ik';
 import { shot } from './fixtures.ts';
 import { expect, historyGet, test } from './history-fixtures.ts';
 import { until } from './support/sim.ts';
+import { REPO_ROOT } from '../helpers/files.ts';
+import { servoSdkPython } from '../helpers/servo-sdk-python.ts';
+
+/** Reads an MCAP file with Foxglove's Python `mcap` library and prints what is in it. */
+const MCAP_CHECK = path.join(REPO_ROOT, 'tests/helpers/mcap_check.py');
 
 const NAMES = DEMO_ARM.servos.map((s) => s.name);
 /** 45° as stored: the angle of the pulse the sim reports (whole µs), 44.955°. */
@@ -123,6 +130,28 @@ test('history: the panel shows what the simulator has just produced', async ({
   expect(csv[0]).toBe(`time_ms,time_utc,${NAMES.join(',')}`);
   expect(csv.length).toBeGreaterThan(3);
 
+  // The loaded range as MCAP, read back with Foxglove's own Python library: every servo's
+  // samples, and joint states that have the elbow at 45°.
+  const [mcap] = await Promise.all([
+    page.waitForEvent('download'),
+    page.getByRole('button', { name: 'Download MCAP' }).click(),
+  ]);
+  expect(mcap.suggestedFilename()).toMatch(new RegExp(`^${arm.id}-.*\\.mcap$`));
+  const read = JSON.parse(
+    execFileSync(servoSdkPython(), [MCAP_CHECK, await mcap.path()], {
+      maxBuffer: 256 * 1024 * 1024,
+    }).toString(),
+  ) as {
+    topics: Record<string, { schema: string; count: number }>;
+    last_joint_states?: { joints: { name: string; position: number }[] };
+  };
+  for (const n of [0, 1, 2, 3, 4, 5])
+    expect(read.topics[`/arm/${arm.id}/servo/00${n}`]?.count).toBeGreaterThan(0);
+  expect(read.topics[`/arm/${arm.id}/joint_states`]?.schema).toBe('foxglove.JointStates');
+  expect(read.topics['/tf']?.count).toBe(read.topics[`/arm/${arm.id}/joint_states`]?.count);
+  const elbow = read.last_joint_states?.joints.find((j) => j.name === 'elbow');
+  expect((elbow!.position * 180) / Math.PI).toBeCloseTo(45, 0);
+
   await page.getByRole('tab', { name: 'Tracking & alarms' }).click();
   const elbowRow = page.getByTestId('tracking-002');
   await expect(elbowRow).toContainText('Elbow');
@@ -134,6 +163,38 @@ test('history: the panel shows what the simulator has just produced', async ({
     'Elbow',
   );
   await shot(page, testInfo, 'history-tables');
+});
+
+test('history: servos stored by an earlier profile under this arm id are named, not drawn', async ({
+  hud,
+  arm,
+  stack,
+}, testInfo) => {
+  const { page } = hud;
+  // An earlier 7-axis robot under the same arm id left servos 006 and 007 in storage.
+  const earlier = encodeGroup([encodeHealth(6, 31, 7300), encodeHealth(7, 32, 7300)]);
+  await arm.observer.client.publishAsync(`arm/${arm.id}/status`, earlier, { qos: 1 });
+  await expect
+    .poll(
+      async () =>
+        (
+          await historyGet<{ series: { id: string }[] }>(stack, 'series', {
+            arm: arm.id,
+            start: '-5m',
+            field: 'temp',
+          })
+        ).series.map((x) => x.id),
+      { timeout: 30_000 },
+    )
+    .toContain('007');
+  await openHistory(page);
+  await expect.poll(() => chart(page, 'temp'), { timeout: 15_000 }).not.toBeNull();
+  expect((await chart(page, 'temp'))!.labels).toEqual(NAMES);
+  expect((await chart(page, 'volt'))!.labels).toEqual(NAMES);
+  await expect(page.getByTestId('history-others')).toHaveText(
+    `Not shown: servos 006, 007, recorded under ${arm.id} but not in its current profile (armtwin5).`,
+  );
+  await shot(page, testInfo, 'history-others');
 });
 
 test('history: an API failure is shown as text, not a blank panel', async ({ hud }, testInfo) => {

@@ -124,6 +124,74 @@ test('jog: a slider moves the simulator and the twin follows; sliders work from 
   await shot(page, testInfo, 'jog');
 });
 
+test('jog: a focused slider follows the arm when something else moves its joint', async ({
+  hud,
+  arm,
+}, testInfo) => {
+  const { page } = hud;
+  const elbow = page.getByRole('slider', { name: 'Elbow', exact: true });
+  await elbow.focus();
+  for (let i = 0; i < 5; i++) await page.keyboard.press('ArrowRight');
+  const five = pwmFromAngle(5, 1);
+  await until(() => arm.observer.pwm[2] === five, 10_000, `the sim's elbow at ${five} µs`);
+  await expect(elbow).toHaveValue('5');
+  // Another operator (or a command, or a plan) moves the elbow back; the slider keeps focus.
+  await arm.observer.client.publishAsync(`arm/${arm.id}/control`, '#002P1500T0200!', { qos: 1 });
+  await until(() => arm.observer.pwm[2] === 1500, 10_000, "the sim's elbow back at 1500 µs");
+  await expect(elbow).toBeFocused();
+  await expect(elbow).toHaveValue('0');
+  await shot(page, testInfo, 'jog-follows');
+});
+
+test('floor: a target or jog below the floor is refused in the page, with the reason', async ({
+  hud,
+  arm,
+}, testInfo) => {
+  const { page } = hud;
+  const since = Date.now();
+  // Command box: reachable by the IK, but the hand would end 11 mm under the floor.
+  const box = page.getByRole('textbox', { name: 'Command' });
+  await box.fill('move to 200 0 -50');
+  await page.getByRole('button', { name: 'Send', exact: true }).click();
+  await expect(page.getByTestId('command-error')).toHaveText(
+    /^Not sent: tip \d+\.\d mm below the floor \(z -\d+\.\d < 0\)\.$/,
+  );
+  await expect(page.getByTestId('command-entry')).toHaveCount(0);
+  // Cartesian panel: the preview says so, and Move sends nothing.
+  await page.getByLabel('X', { exact: true }).fill('200');
+  await page.getByLabel('Y', { exact: true }).fill('0');
+  await page.getByLabel('Z', { exact: true }).fill('-50');
+  await expect(page.getByTestId('ik-preview')).toHaveText(
+    /^Unreachable: tip \d+\.\d mm below the floor \(z -\d+\.\d < 0\) \(code 24\)\.$/,
+  );
+  await page.getByRole('button', { name: 'Move' }).click();
+  await expect(page.getByTestId('kms-refusal')).toContainText('below the floor');
+  // Jog: upper arm level is fine (hand at z 100); the forearm down from there is not.
+  await page.getByRole('slider', { name: 'Shoulder', exact: true }).fill('-90');
+  const level = pwmFromAngle(-90, 1);
+  await until(() => arm.observer.pwm[1] === level, 10_000, `the sim's shoulder at ${level} µs`);
+  await page.getByRole('slider', { name: 'Elbow', exact: true }).fill('-90');
+  await expect(page.getByTestId('jog-refusal')).toHaveText(
+    /^Not sent: tip \d+\.\d mm below the floor/,
+  );
+  await page.waitForTimeout(1000);
+  expect(arm.observer.pwm[2]).toBe(1500);
+  expect(arm.observer.commands(since)).toEqual([`#001P${String(level).padStart(4, '0')}T0100!`]);
+  await shot(page, testInfo, 'floor-refused');
+});
+
+test('cartesian: the target starts at the tip of the arm, which it reaches', async ({ hud }) => {
+  const { page } = hud;
+  // armtwin5 at home points straight up: its tip is at (0, 0, 453).
+  await expect(page.getByLabel('X', { exact: true })).toHaveValue('0');
+  await expect(page.getByLabel('Y', { exact: true })).toHaveValue('0');
+  await expect(page.getByLabel('Z', { exact: true })).toHaveValue('453');
+  // Retyped as it stands (a value put back unchanged is not an edit), the target is reachable.
+  await page.getByLabel('Z', { exact: true }).fill('');
+  await page.getByLabel('Z', { exact: true }).fill('453');
+  await expect(page.getByTestId('ik-preview')).toContainText('Reachable');
+});
+
 test('cartesian: an unreachable target shows the reason and publishes nothing', async ({
   hud,
   arm,

@@ -16,6 +16,14 @@ import { expect, shot, test, type HudWindow } from './fixtures.ts';
 import { ensureHudBuilt } from './support/build-hud.ts';
 import { demoPassword, startUp, type UpProcess } from './support/up.ts';
 
+type Xyz = { x: number; y: number; z: number };
+/** The parts of a three.js object the view check reads (no three.js import in the test). */
+interface Object3DLike {
+  isMesh?: boolean;
+  matrixWorld: { elements: number[] };
+  geometry?: { boundingBox: { min: Xyz; max: Xyz } | null; computeBoundingBox(): void };
+}
+
 interface ImportWindow {
   __armtwin?: {
     ready?: boolean;
@@ -24,8 +32,53 @@ interface ImportWindow {
     viewer: {
       meshFailures: readonly { url: string; message: string }[];
       world: { traverse(fn: (o: { isMesh?: boolean }) => void): void };
+      liveRobot: {
+        updateMatrixWorld(force: boolean): void;
+        traverse(fn: (o: Object3DLike) => void): void;
+      } | null;
+      camera: {
+        matrixWorldInverse: { elements: number[] };
+        projectionMatrix: { elements: number[] };
+      };
     };
   };
+}
+
+/**
+ * How far out of the 3D view the live arm reaches: the largest |x| or |y|, in normalised device
+ * coordinates, over the corners of every mesh's bounding box (≤ 1: the whole arm is in view).
+ */
+function armExtentInView(page: Page): Promise<number> {
+  return page.evaluate(() => {
+    const v = (window as unknown as ImportWindow).__armtwin!.viewer;
+    const robot = v.liveRobot!;
+    robot.updateMatrixWorld(true);
+    const mul = (m: number[], p: number[]) =>
+      [0, 1, 2, 3].map(
+        (r) => m[r]! * p[0]! + m[4 + r]! * p[1]! + m[8 + r]! * p[2]! + m[12 + r]! * p[3]!,
+      );
+    let worst = 0;
+    robot.traverse((o) => {
+      if (!o.isMesh || !o.geometry) return;
+      if (!o.geometry.boundingBox) o.geometry.computeBoundingBox();
+      const b = o.geometry.boundingBox!;
+      for (let i = 0; i < 8; i++) {
+        const local = [
+          i & 1 ? b.max.x : b.min.x,
+          i & 2 ? b.max.y : b.min.y,
+          i & 4 ? b.max.z : b.min.z,
+          1,
+        ];
+        const world = mul(o.matrixWorld.elements, local);
+        const clip = mul(
+          v.camera.projectionMatrix.elements,
+          mul(v.camera.matrixWorldInverse.elements, world),
+        );
+        worst = Math.max(worst, Math.abs(clip[0]! / clip[3]!), Math.abs(clip[1]! / clip[3]!));
+      }
+    });
+    return worst;
+  });
 }
 
 const ROBOTS = [
@@ -100,5 +153,17 @@ for (const r of ROBOTS)
     // base + one visual per moving link, on the live arm and the ghost at least.
     expect(s.meshes).toBeGreaterThanOrEqual(2 * (r.servos + 1));
     await expect(page.getByTestId('mesh-failures')).toBeHidden();
+    // Framed by its size: the whole arm (over 1 m tall) is in the view, top included.
+    const extent = await armExtentInView(page);
+    expect(extent).toBeGreaterThan(0.3); // and not a speck in the distance
+    expect(extent).toBeLessThan(1);
+    // The Cartesian panel starts at a point this arm reaches: where its tip is.
+    const z = page.getByLabel('Z', { exact: true });
+    await expect(z).not.toHaveValue('150');
+    expect(Number(await z.inputValue())).toBeGreaterThan(300);
+    const tipZ = await z.inputValue();
+    await z.fill('');
+    await z.fill(tipZ);
+    await expect(page.getByTestId('ik-preview')).toContainText('Reachable');
     await shot(page, testInfo, r.name);
   });

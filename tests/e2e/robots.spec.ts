@@ -8,11 +8,12 @@
  */
 import type { Page, TestInfo } from '@playwright/test';
 import { parseProfile, posePwm, pwmFromServo, type Profile } from '@armtwin/ik';
+import { angleFromPwm, pwmFromAngle } from '@armtwin/protocol';
 import { createMotionRobot, tipPose } from '@armtwin/motion';
 import fs from 'node:fs';
 import path from 'node:path';
 import { REPO_ROOT } from '../helpers/services.ts';
-import { expect, shot, test, type Stack } from './fixtures.ts';
+import { expect, shot, test, type HudWindow, type Stack } from './fixtures.ts';
 import { ArmObserver, startSim, until, type SimProcess } from './support/sim.ts';
 
 interface RobotsWindow {
@@ -147,13 +148,32 @@ test('robots: armtwin5 and track6 both load and animate; the fleet list switches
     await page.waitForTimeout(500);
     await shot(page, testInfo, 'track6');
 
-    // And back to the 5-axis arm.
+    // And back to the 5-axis arm, at rest with its elbow at 45°. Its model is held back until
+    // the page has the arm's status (a big model loads after the last report): drawn at the
+    // reported pose as soon as it loads, not at zero until the arm next moves.
+    let release = () => {};
+    const held = new Promise<void>((resolve) => (release = resolve));
+    await page.route('**/models/armtwin5/**', async (route) => {
+      await held;
+      await route.continue();
+    });
     await mine.click();
+    await expect
+      .poll(() =>
+        page.evaluate(() => (window as unknown as HudWindow).__armtwin!.store.rendered[2]),
+      )
+      .toBeCloseTo(angleFromPwm(pwmFromAngle(45, 1), 1), 1);
+    release();
     await expect
       .poll(() => activeRobot(page), { timeout: 15_000 })
       .toMatchObject({
         name: 'armtwin5',
+        planner: true,
       });
+    await page.unroute('**/models/armtwin5/**');
+    await expect
+      .poll(async () => (await joints(page))[2] ?? NaN, { timeout: 3000 })
+      .toBeCloseTo((45 * Math.PI) / 180, 2);
     await expect(page.getByRole('slider')).toHaveCount(6);
     await expect(page.getByTestId('freshness')).toHaveText('Data is live.');
   } finally {
@@ -258,6 +278,8 @@ test('plan: a Cartesian path through 2 waypoints previews on the ghost and execu
   await page.getByRole('button', { name: 'Execute', exact: true }).click();
   await expect(page.getByTestId('plan-run')).toContainText('Executing');
   await expect(page.getByTestId('plan-run')).toHaveText(/^Done/, { timeout: 20_000 });
+  // The plan is over: the ghost goes (the arm is where it showed).
+  await expect(page.getByTestId('ghost-shows')).toContainText('hidden');
   // Streamed as timed groups on the control topic, and the arm is at the last waypoint.
   const groups = arm.observer.commands(since).filter((t) => t.startsWith('{#'));
   expect(groups.length).toBeGreaterThan(10);

@@ -5,6 +5,7 @@
  */
 import { afterAll, beforeAll } from 'vitest';
 import { startInflux, type InfluxOptions, type InfluxService } from './influx.ts';
+import { startInflux2, type Influx2Service } from './influx2.ts';
 import { startMosquitto, type MosquittoOptions, type MosquittoService } from './mosquitto.ts';
 
 interface TaskLike {
@@ -47,3 +48,25 @@ export function useMosquitto(opts?: MosquittoOptions): () => MosquittoService {
 export function useInflux(opts?: InfluxOptions): () => InfluxService {
   return useService('influxd', () => startInflux(opts));
 }
+
+/** A throwaway InfluxDB 2.7 (set up, token auth on) for the enclosing file or describe. */
+export function useInflux2(): () => Influx2Service {
+  return useService('influxd2', startInflux2);
+}
+
+/** What a client needs of either server through the v2 API (1.8: org '' and token ''). */
+export interface InfluxEndpoint {
+  url: string;
+  org: string;
+  bucket: string;
+  token: string;
+}
+
+/**
+ * The InfluxDB servers the storage tests run against, each started per describe:
+ * `describe.each(INFLUX_SERVERS)('InfluxDB $version', ({ use }) => { const influx = use(); … })`.
+ */
+export const INFLUX_SERVERS: { version: string; use: () => () => InfluxEndpoint }[] = [
+  { version: '1.8', use: () => useInflux() },
+  { version: '2.7', use: () => useInflux2() },
+];

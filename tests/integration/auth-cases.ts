@@ -35,6 +35,7 @@ export const SUBSCRIBE_CASES: [User, string, string, boolean][] = [
   ['viewer', 'arm/+/camera/+', 'arm/arm1/camera/front', true],
   ['operator', 'arm/arm1/camera/+', 'arm/arm1/camera/front', true],
   ['arm1', 'arm/arm1/camera/+', 'arm/arm1/camera/front', false],
+  ['viewer', 'arm/+/camera/+/calibration', 'arm/arm1/camera/front/calibration', true],
   ['viewer', 'arm/+/control', 'arm/arm1/control', false],
   ['viewer', 'arm/arm1/sim', 'arm/arm1/sim', false],
   ['viewer', 'arm/#', 'arm/arm1/control', false],
@@ -78,6 +79,9 @@ export const PUBLISH_CASES: [User, string, boolean][] = [
   ['arm1', 'arm/arm2/camera/front', false],
   ['viewer', 'arm/arm1/camera/front', false],
   ['operator', 'arm/arm1/camera/front', false],
+  ['operator', 'arm/arm1/camera/front/calibration', true],
+  ['viewer', 'arm/arm1/camera/front/calibration', false],
+  ['arm1', 'arm/arm1/camera/front/calibration', false],
   ['arm1', 'arm/arm2/status', false],
   ['arm1', 'arm/arm2/online', false],
   ['arm1', 'arm/arm1/control', false],
@@ -124,7 +128,10 @@ export async function checkLogins(connect: Connect): Promise<void> {
 function writerFor(topic: string): User {
   const [, arm, ...rest] = topic.split('/');
   const kind = rest.join('/');
-  return ['control', 'operator', 'request', 'sim'].includes(kind) ? 'operator' : (arm as User);
+  // A camera's calibration is an operator's to write; the rest of the arm's topics its device's.
+  return ['control', 'operator', 'request', 'sim'].includes(kind) || kind.endsWith('/calibration')
+    ? 'operator'
+    : (arm as User);
 }
 
 /** Subscribes each case's user; publishes each probe; checks what was delivered to whom. */

@@ -1,15 +1,15 @@
 /**
  * Every Flux query in deploy/grafana/dashboards/armtwin.json (panels and variables), with
- * Grafana's macros replaced by real values, run against a real influxd on known data.
+ * Grafana's macros replaced by real values, run on known data against real InfluxDB servers:
+ * 1.8 and 2.7 (the same answers from both).
  */
 import fs from 'node:fs';
 import path from 'node:path';
 import { InfluxDB } from '@influxdata/influxdb-client';
 import { beforeAll, describe, expect, test } from 'vitest';
 import { REPO_ROOT } from '../helpers/files.ts';
-import { useInflux } from '../helpers/use-services.ts';
+import { INFLUX_SERVERS } from '../helpers/use-services.ts';
 
-const influx = useInflux();
 const DASHBOARD = path.join(REPO_ROOT, 'deploy', 'grafana', 'dashboards', 'armtwin.json');
 const T0 = Date.UTC(2024, 0, 1);
 const WINDOW_S = 10;
@@ -55,98 +55,102 @@ const COMMANDS: [number, number][] = [
   [33, 25],
 ];
 
-beforeAll(async () => {
-  const { url, token, org, bucket } = influx();
-  const w = new InfluxDB({ url, token }).getWriteApi(org, bucket, 'ms');
-  for (let s = 0; s < 60; s++) {
-    const t = T0 + s * 1000;
-    for (const id of [0, 1]) {
-      w.writeRecord(
-        `servo,arm=arm1,id=00${id} temp=${temp(id, s)},volt=${volt(id, s)},angle=${s + id} ${t}`,
-      );
+describe.each(INFLUX_SERVERS)('InfluxDB $version', ({ use }) => {
+  const influx = use();
+
+  beforeAll(async () => {
+    const { url, token, org, bucket } = influx();
+    const w = new InfluxDB({ url, token }).getWriteApi(org, bucket, 'ms');
+    for (let s = 0; s < 60; s++) {
+      const t = T0 + s * 1000;
+      for (const id of [0, 1]) {
+        w.writeRecord(
+          `servo,arm=arm1,id=00${id} temp=${temp(id, s)},volt=${volt(id, s)},angle=${s + id} ${t}`,
+        );
+      }
+      w.writeRecord(`servo,arm=arm2,id=000 temp=99,volt=5,angle=-90 ${t}`);
     }
-    w.writeRecord(`servo,arm=arm2,id=000 temp=99,volt=5,angle=-90 ${t}`);
+    for (const [s, angle] of COMMANDS)
+      w.writeRecord(`command,arm=arm1,id=000 pwm=1500i,angle=${angle},ms=100i ${T0 + s * 1000}`);
+    await w.close();
+  });
+
+  /** Runs one dashboard query; rows keep only the columns a panel would plot. */
+  async function run(q: FluxQuery) {
+    const { url, token, org, bucket } = influx();
+    return new InfluxDB({ url, token })
+      .getQueryApi(org)
+      .collectRows<Record<string, unknown>>(substitute(q.query, bucket));
   }
-  for (const [s, angle] of COMMANDS)
-    w.writeRecord(`command,arm=arm1,id=000 pwm=1500i,angle=${angle},ms=100i ${T0 + s * 1000}`);
-  await w.close();
-});
 
-/** Runs one dashboard query; rows keep only the columns a panel would plot. */
-async function run(q: FluxQuery) {
-  const { url, token, org, bucket } = influx();
-  return new InfluxDB({ url, token })
-    .getQueryApi(org)
-    .collectRows<Record<string, unknown>>(substitute(q.query, bucket));
-}
+  const find = (re: RegExp) => {
+    const q = dashboardQueries().find((x) => re.test(x.where));
+    if (!q) throw new Error(`no query matching ${re}`);
+    return q;
+  };
 
-const find = (re: RegExp) => {
-  const q = dashboardQueries().find((x) => re.test(x.where));
-  if (!q) throw new Error(`no query matching ${re}`);
-  return q;
-};
-
-/** Window end times (Grafana's default `_stop`) for the six 10 s windows. */
-const windowEnds = Array.from({ length: 6 }, (_, k) => T0 + (k + 1) * WINDOW_S * 1000);
-const ms = (t: unknown) => Date.parse(String(t));
-const windowed = (f: (s: number) => number, agg: (xs: number[]) => number) =>
-  Array.from({ length: 6 }, (_, k) =>
-    agg(Array.from({ length: WINDOW_S }, (_, j) => f(k * WINDOW_S + j))),
-  );
-const mean = (xs: number[]) => xs.reduce((a, b) => a + b, 0) / xs.length;
-
-describe('deploy/grafana/dashboards/armtwin.json', () => {
-  test('refreshes every 5 s, has the $arm variable and the three panels', () => {
-    const dash = JSON.parse(fs.readFileSync(DASHBOARD, 'utf8'));
-    expect(dash.refresh).toBe('5s');
-    expect(dash.templating.list.map((v: { name: string }) => v.name)).toEqual(['arm']);
-    expect(dash.panels).toHaveLength(3);
-    expect(dashboardQueries().map((q) => q.where)).toHaveLength(5);
-    const volt = dash.panels.find((p: { title: string }) => /voltage/i.test(p.title));
-    expect(volt.fieldConfig.defaults.thresholds.steps).toEqual([
-      { color: 'red', value: null },
-      { color: 'green', value: 6.5 },
-    ]);
-  });
-
-  test.each(dashboardQueries().map((q) => [q.where, q] as const))(
-    '%s runs on the real influxd and returns rows',
-    async (_where, q) => {
-      expect((await run(q)).length).toBeGreaterThan(0);
-    },
-  );
-
-  test('the $arm variable lists every arm once', async () => {
-    const rows = await run(find(/^variable arm/));
-    expect(rows.map((r) => r._value).sort()).toEqual(['arm1', 'arm2']);
-  });
-
-  test('temperature: exact mean per window, one series per servo id, only $arm', async () => {
-    const rows = await run(find(/temperature/));
-    for (const id of [0, 1]) {
-      const mine = rows.filter((r) => r.id === `00${id}`);
-      expect(mine.map((r) => ms(r._time))).toEqual(windowEnds);
-      expect(mine.map((r) => r._value)).toEqual(windowed((s) => temp(id, s), mean));
-    }
-    expect(rows).toHaveLength(12);
-  });
-
-  test('bus voltage: one series, the lowest servo reading per window', async () => {
-    const rows = await run(find(/voltage/));
-    expect(rows.map((r) => ms(r._time))).toEqual(windowEnds);
-    expect(rows.map((r) => r._value)).toEqual([7.3, 7.3, 6.2, 7.3, 6.0, 7.3]);
-    expect(new Set(rows.map((r) => r.arm))).toEqual(new Set(['arm1']));
-  });
-
-  test('angles: actual mean per window per id, and the last commanded target per window', async () => {
-    const actual = await run(find(/Joint angles.* \/ A$/));
-    expect(actual.filter((r) => r.id === '001').map((r) => r._value)).toEqual(
-      windowed((s) => s + 1, mean),
+  /** Window end times (Grafana's default `_stop`) for the six 10 s windows. */
+  const windowEnds = Array.from({ length: 6 }, (_, k) => T0 + (k + 1) * WINDOW_S * 1000);
+  const ms = (t: unknown) => Date.parse(String(t));
+  const windowed = (f: (s: number) => number, agg: (xs: number[]) => number) =>
+    Array.from({ length: 6 }, (_, k) =>
+      agg(Array.from({ length: WINDOW_S }, (_, j) => f(k * WINDOW_S + j))),
     );
-    const commanded = await run(find(/Joint angles.* \/ B$/));
-    expect(commanded.map((r) => [ms(r._time), r._value, r.id])).toEqual([
-      [windowEnds[0], 10, '000'],
-      [windowEnds[3], 25, '000'],
-    ]);
+  const mean = (xs: number[]) => xs.reduce((a, b) => a + b, 0) / xs.length;
+
+  describe('deploy/grafana/dashboards/armtwin.json', () => {
+    test('refreshes every 5 s, has the $arm variable and the three panels', () => {
+      const dash = JSON.parse(fs.readFileSync(DASHBOARD, 'utf8'));
+      expect(dash.refresh).toBe('5s');
+      expect(dash.templating.list.map((v: { name: string }) => v.name)).toEqual(['arm']);
+      expect(dash.panels).toHaveLength(3);
+      expect(dashboardQueries().map((q) => q.where)).toHaveLength(5);
+      const volt = dash.panels.find((p: { title: string }) => /voltage/i.test(p.title));
+      expect(volt.fieldConfig.defaults.thresholds.steps).toEqual([
+        { color: 'red', value: null },
+        { color: 'green', value: 6.5 },
+      ]);
+    });
+
+    test.each(dashboardQueries().map((q) => [q.where, q] as const))(
+      '%s runs on the real influxd and returns rows',
+      async (_where, q) => {
+        expect((await run(q)).length).toBeGreaterThan(0);
+      },
+    );
+
+    test('the $arm variable lists every arm once', async () => {
+      const rows = await run(find(/^variable arm/));
+      expect(rows.map((r) => r._value).sort()).toEqual(['arm1', 'arm2']);
+    });
+
+    test('temperature: exact mean per window, one series per servo id, only $arm', async () => {
+      const rows = await run(find(/temperature/));
+      for (const id of [0, 1]) {
+        const mine = rows.filter((r) => r.id === `00${id}`);
+        expect(mine.map((r) => ms(r._time))).toEqual(windowEnds);
+        expect(mine.map((r) => r._value)).toEqual(windowed((s) => temp(id, s), mean));
+      }
+      expect(rows).toHaveLength(12);
+    });
+
+    test('bus voltage: one series, the lowest servo reading per window', async () => {
+      const rows = await run(find(/voltage/));
+      expect(rows.map((r) => ms(r._time))).toEqual(windowEnds);
+      expect(rows.map((r) => r._value)).toEqual([7.3, 7.3, 6.2, 7.3, 6.0, 7.3]);
+      expect(new Set(rows.map((r) => r.arm))).toEqual(new Set(['arm1']));
+    });
+
+    test('angles: actual mean per window per id, and the last commanded target per window', async () => {
+      const actual = await run(find(/Joint angles.* \/ A$/));
+      expect(actual.filter((r) => r.id === '001').map((r) => r._value)).toEqual(
+        windowed((s) => s + 1, mean),
+      );
+      const commanded = await run(find(/Joint angles.* \/ B$/));
+      expect(commanded.map((r) => [ms(r._time), r._value, r.id])).toEqual([
+        [windowEnds[0], 10, '000'],
+        [windowEnds[3], 25, '000'],
+      ]);
+    });
   });
 });

@@ -71,7 +71,7 @@ describe('armtwin sim over Mosquitto', () => {
     // |cos β| > 1 below the reach needs d < 7 mm, where |cos A| > 1 already gives code 3.
     const targets: [number, number, number, number?][] = [
       [150, 50, 120],
-      [-150, -200, -50],
+      [-150, -200, 50],
       [0, 0, 453, 90],
       [-300, -200, -200], // 1
       [-300, -200, -50], // 2
@@ -94,6 +94,11 @@ describe('armtwin sim over Mosquitto', () => {
       });
     }
     expect([...seen].sort()).toEqual([0, 1, 2, 3, 4, 6, 7, 8]);
+    // Reachable by §4, but with the hand under the floor: refused with §4's floor code, 1.
+    expect(solveIk(-150, -200, -50).code).toBe(0);
+    const from = w.items.length;
+    await w.send('$KMS:-150,-200,-50,0300!');
+    expect((await w.frame((f) => f.type === 'kmsResult', from)).frame).toMatchObject({ code: 1 });
   });
 
   test('nothing moves when $KMS is refused; the pose is reached when accepted', async () => {
@@ -133,13 +138,14 @@ describe('armtwin sim over Mosquitto', () => {
   });
 
   test('#255PDST! stops every servo within one state period', async () => {
-    await sendStamped('{#001P1000T0000!#002P1000T0000!}');
+    // Forearm pointing up at both ends (a pose with the hand under the floor is refused).
+    await sendStamped('{#001P1000T0000!#002P2000T0000!}');
     await w.until(
-      () => (w.positions(2).at(-1)?.[1] === 1000 ? true : undefined),
+      () => (w.positions(2).at(-1)?.[1] === 2000 ? true : undefined),
       5000,
       'start pose',
     );
-    const { t: start } = await sendStamped('{#001P2000T2000!#002P2000T2000!}');
+    const { t: start } = await sendStamped('{#001P2000T2000!#002P1000T2000!}');
     await w.until(() => w.positions(1).find(([time]) => time > start + 300), 5000, 'motion');
     const { t: stopAt, from } = await sendStamped('#255PDST!');
     await new Promise((r) => setTimeout(r, 400));

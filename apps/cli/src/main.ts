@@ -1,5 +1,6 @@
 import { Command, CommanderError } from 'commander';
 import { registerDecode } from './commands/decode.ts';
+import { registerExport } from './commands/export.ts';
 import { registerIk } from './commands/ik.ts';
 import { registerSim } from './commands/sim.ts';
 import { registerGateway } from './commands/gateway.ts';
@@ -12,6 +13,7 @@ import { registerDeployMosquitto, registerPasswd } from './commands/security.ts'
 /** Each command module adds itself to the program. */
 const COMMANDS: ((program: Command) => void)[] = [
   registerDecode,
+  registerExport,
   registerIk,
   registerSim,
   registerGateway,

@@ -7,7 +7,7 @@ import type { MqttClient } from 'mqtt';
 import { LoginThrottle, loadUsers } from '@armtwin/auth';
 import { ConfigError, type MiddlewareConfig } from './config.ts';
 import { InfluxDB } from '@influxdata/influxdb-client';
-import { createHistoryHandler } from './history/index.ts';
+import { createHistoryHandler, type HistoryHandlerDeps } from './history/index.ts';
 import { createHttpHandler, type HealthReport, type HttpHandler } from './http.ts';
 import { createInfluxWriter, type InfluxWriter } from './influx.ts';
 import { Ingest } from './ingest.ts';
@@ -39,6 +39,8 @@ export interface MiddlewareDeps {
   now?: () => number;
   /** Open the HTTP port (default true). The orchestrator mounts `handler` instead. */
   listen?: boolean;
+  /** A profile's robot for the history API's MCAP export (default: `public/models`). */
+  robotFor?: HistoryHandlerDeps['robotFor'];
 }
 
 export interface Middleware {
@@ -180,6 +182,7 @@ export async function startMiddleware(
           timeout: 30_000,
         }).getQueryApi(config.influxOrg),
         bucket: config.influxBucket,
+        ...(deps.robotFor ? { robotFor: deps.robotFor } : {}),
         onError: (err) =>
           once.warn(
             'history-query-failed',

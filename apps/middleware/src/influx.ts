@@ -103,10 +103,15 @@ export function createInfluxWriter(opts: InfluxWriterOptions): InfluxWriter {
       }
     },
     async ensureBucket() {
-      // 2.x answers `X-Influxdb-Version: v2.x.y`; 1.x says `1.8.10` (or `unknown` when built
-      // from source without version flags, like .tools/bin/influxd).
+      // 2.x answers `X-Influxdb-Version: v2.x.y`; 1.x says `1.8.10`. A build from source without
+      // version flags says `unknown` (1.x, like .tools/bin/influxd) or `dev` (2.x): then only
+      // 2.x has the setup endpoint.
       const v = await version();
-      if (!isV2(v)) {
+      const v2 =
+        isV2(v) ||
+        (!/^v?1\./.test(v) &&
+          (await fetch(`${url}/api/v2/setup`, { signal: AbortSignal.timeout(opts.timeoutMs) })).ok);
+      if (!v2) {
         const db = opts.bucket.split('/')[0] ?? opts.bucket;
         const headers: Record<string, string> = { ...authHeader };
         if (opts.token.includes(':')) {

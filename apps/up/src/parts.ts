@@ -56,6 +56,8 @@ export interface MiddlewareLink {
   connect: ConnectFn;
   /** API_TOKEN ('' = open API). */
   apiToken: string;
+  /** The folders of robot profiles, searched in order (for the history API's MCAP export). */
+  modelDirs: readonly string[];
 }
 
 export interface StartedMiddleware {
@@ -103,7 +105,18 @@ export async function startMiddlewarePart(
   }
   const config: MiddlewareConfig = { ...mod.loadConfig(env), ...overrides };
   try {
-    const middleware = await mod.startMiddleware(config, { listen: false, connect: link.connect });
+    const { loadRecordingRobot } = await import('@armtwin/middleware/export');
+    const robotFor = (name: string) =>
+      loadRecordingRobot(
+        name,
+        link.modelDirs.find((d) => fs.existsSync(path.join(d, name, 'profile.json'))) ??
+          link.modelDirs[0],
+      );
+    const middleware = await mod.startMiddleware(config, {
+      listen: false,
+      connect: link.connect,
+      robotFor,
+    });
     const storage = config.influxUrl
       ? `InfluxDB at ${config.influxUrl}${influx ? ` (local influxd, data in ${path.relative(REPO_ROOT, LOCAL_INFLUX_DATA)})` : ''}`
       : 'NONE: no INFLUX_URL and no local influxd could be started, so nothing is stored';

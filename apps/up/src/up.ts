@@ -1,7 +1,8 @@
 /**
  * `armtwin up` (what `npm start` runs): the embedded broker, ONE HTTP(S) server (the HUD's
- * files, MQTT over WebSockets at /mqtt, the middleware under /api), the simulated arm, and the
- * middleware with its storage, each as far as it exists. The arm and the middleware connect to
+ * files, MQTT over WebSockets at /mqtt, the middleware under /api, and the operators' writes to
+ * robot folders under /api/robots: ./calibration-route.ts, ./import-route.ts), the simulated
+ * arm, and the middleware with its storage, each as far as it exists. The arm and the middleware connect to
  * the broker in-process (no socket, no password) with the device and middleware roles.
  * `stop()` takes them down in order: the sim says offline, the middleware flushes, influxd
  * stops, the broker and server close.
@@ -33,6 +34,8 @@ import {
   type MqttSim,
 } from '@armtwin/sim';
 import { createCameraPart } from './camera-part.ts';
+import { calibrationRoute, isCalibrationRequest, type Authorize } from './calibration-route.ts';
+import { importRoute, isImportRequest } from './import-route.ts';
 import { ensureWebBuild, startMiddlewarePart, WEB_DIST, type StartedMiddleware } from './parts.ts';
 import { isModelRequest, modelFiles } from './model-files.ts';
 import { staticFiles } from './static-files.ts';
@@ -122,8 +125,20 @@ export async function startUp(o: UpOptions): Promise<Up> {
     'The HUD is not built: run `npm run build -w @armtwin/web`.\n',
   );
   const models = modelFiles(modelDirs);
+  const calibration = calibrationRoute({
+    dirs: modelDirs,
+    authorize: operatorOnly(broker.logins),
+    onFirst: o.onFirst,
+  });
+  const robotImport = importRoute({
+    modelsDir: modelDirs[0]!,
+    authorize: operatorOnly(broker.logins),
+    onFirst: o.onFirst,
+  });
   const api = async (req: http.IncomingMessage, res: http.ServerResponse) => {
     if (req.url === '/api/whoami') return whoami(req, res, broker.logins);
+    if (isCalibrationRequest(req)) return calibration.handle(req, res);
+    if (isImportRequest(req)) return robotImport.handle(req, res);
     if (broker.logins) await basicToBearer(req, broker.logins, apiToken);
     if (mw?.middleware.handler(req, res)) return;
     res.writeHead(mw ? 404 : 503, {
@@ -204,6 +219,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
           connect: (_url, opts) =>
             broker.connectInProcess({ name: 'middleware', role: 'middleware' }, opts),
           apiToken,
+          modelDirs,
         },
         o.influxUrl,
         o.env,
@@ -264,6 +280,18 @@ async function basicUser(req: http.IncomingMessage, logins: LoginThrottle): Prom
   const creds = basicCredentials(req.headers.authorization);
   if (!creds) return { ok: false, lockedMs: 0 };
   return logins.login(req.socket.remoteAddress ?? 'unknown', creds.name, creds.password);
+}
+
+/** Writing a robot's files is an operator's right (anyone in the anonymous local demo). */
+function operatorOnly(logins: LoginThrottle | null): Authorize {
+  return async (req) => {
+    if (!logins) return { ok: true };
+    const who = await basicUser(req, logins);
+    if (!who.ok) return { ok: false, status: 401, error: 'log in as an operator' };
+    if (who.principal.role !== 'operator')
+      return { ok: false, status: 403, error: `${who.principal.role}s may not change a robot` };
+    return { ok: true };
+  };
 }
 
 /** `GET /api/whoami`, for the HUD (`whoamiAnswer`): the anonymous demo is an operator. */

@@ -23,6 +23,8 @@ const VIEWER_READ = [
   'arm/+/profile',
   'arm/+/feedback',
   'arm/+/camera/+',
+  // A camera's calibration (docs/protocol.md § Cameras): the pose and fov operators set by eye.
+  'arm/+/camera/+/calibration',
 ] as const;
 
 export const ROLE_RULES: Record<Role, RoleRules> = {
@@ -30,7 +32,16 @@ export const ROLE_RULES: Record<Role, RoleRules> = {
   operator: {
     read: VIEWER_READ,
     // `arm/+/torque`: a bus arm's torque off (`0`) and on (`1`), through its gateway.
-    write: ['arm/+/control', 'arm/+/operator', 'arm/+/request', 'arm/+/sim', 'arm/+/torque'],
+    // `arm/+/camera/+/calibration`: a camera's pose and fov as set by eye (retained), never
+    // the announcement itself, which only the camera's device may write.
+    write: [
+      'arm/+/control',
+      'arm/+/operator',
+      'arm/+/request',
+      'arm/+/sim',
+      'arm/+/torque',
+      'arm/+/camera/+/calibration',
+    ],
   },
   device: {
     read: [

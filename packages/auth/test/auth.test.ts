@@ -98,6 +98,16 @@ describe('roles', () => {
     expect(canSubscribe(mw, 'arm/+/camera/+')).toBe(false);
   });
 
+  test('an operator writes a camera calibration; a viewer reads it, a device does neither', () => {
+    const topic = 'arm/arm1/camera/front/calibration';
+    expect(canPublish(operator, topic)).toBe(true);
+    expect(canPublish(viewer, topic)).toBe(false);
+    expect(canPublish(device, topic)).toBe(false);
+    for (const p of [viewer, operator])
+      expect(canSubscribe(p, 'arm/arm1/camera/+/calibration')).toBe(true);
+    expect(canSubscribe(mw, 'arm/+/camera/+/calibration')).toBe(false);
+  });
+
   test("an operator turns a bus arm's torque off and on; only that arm's device hears it", () => {
     expect(canPublish(operator, 'arm/arm1/torque')).toBe(true);
     expect(canPublish(viewer, 'arm/arm1/torque')).toBe(false);

@@ -49,6 +49,8 @@ export const ANNOUNCEMENT_REJECTIONS = [
   'bad-pose',
   'bad-fov',
   'bad-alternates',
+  // A calibration (./calibration.ts) whose `by` or `at` is not what it must be.
+  'bad-calibration',
 ] as const;
 export type AnnouncementRejection = (typeof ANNOUNCEMENT_REJECTIONS)[number];
 
@@ -142,11 +144,17 @@ function checkLabel(label: unknown): string | null {
 /** Same point, or no direction to look in. */
 const degenerate = (p: CameraPose) => p.position.every((v, i) => v === p.lookAt[i]);
 
+/** A payload read as a JSON object, or why not (shared with ./calibration.ts). */
+export type JsonObjectResult =
+  | { type: 'object'; object: Record<string, unknown> }
+  | { type: 'removed' }
+  | { type: 'rejected'; reason: AnnouncementRejection; message: string };
+
 /**
- * Parses the retained payload of `arm/{armId}/camera/{camId}`. Never throws. Text or bytes
- * (UTF-8); an empty payload is `removed`.
+ * The first checks of every camera payload: empty = removed; at most `MAX_ANNOUNCEMENT_BYTES`;
+ * UTF-8 JSON; an object (`what` names its fields in the message).
  */
-export function parseAnnouncement(payload: string | Uint8Array): AnnouncementResult {
+export function readJsonObject(payload: string | Uint8Array, what: string): JsonObjectResult {
   if (payload.length === 0) return { type: 'removed' };
   // UTF-8 never takes fewer bytes than UTF-16 code units, so a long string is too large at once.
   const size =
@@ -156,7 +164,11 @@ export function parseAnnouncement(payload: string | Uint8Array): AnnouncementRes
         ? payload.length
         : new TextEncoder().encode(payload).length;
   if (size > MAX_ANNOUNCEMENT_BYTES)
-    return reject('too-large', `payload is over ${MAX_ANNOUNCEMENT_BYTES} bytes`);
+    return {
+      type: 'rejected',
+      reason: 'too-large',
+      message: `payload is over ${MAX_ANNOUNCEMENT_BYTES} bytes`,
+    };
   let json: unknown;
   try {
     const text =
@@ -165,12 +177,38 @@ export function parseAnnouncement(payload: string | Uint8Array): AnnouncementRes
         : new TextDecoder('utf-8', { fatal: true }).decode(payload);
     json = JSON.parse(text);
   } catch {
-    return reject('not-json', 'payload is not UTF-8 JSON');
+    return { type: 'rejected', reason: 'not-json', message: 'payload is not UTF-8 JSON' };
   }
   const shape = SHAPE.safeParse(json);
   if (!shape.success || Array.isArray(json))
-    return reject('not-object', 'payload must be a JSON object {url, kind, label, …}');
-  const o = shape.data;
+    return {
+      type: 'rejected',
+      reason: 'not-object',
+      message: `payload must be a JSON object ${what}`,
+    };
+  return { type: 'object', object: shape.data };
+}
+
+/** A §7 `pose`, or null when it is not one (two different points, |v| ≤ MAX_POSE_MM). */
+export function readPose(v: unknown): CameraPose | null {
+  const pose = POSE.safeParse(v);
+  if (!pose.success || degenerate(pose.data)) return null;
+  return { position: pose.data.position, lookAt: pose.data.lookAt };
+}
+export const BAD_POSE_MESSAGE = `pose must be {position: [x, y, z], lookAt: [x, y, z]} in mm (|v| ≤ ${MAX_POSE_MM}), two different points`;
+
+/** A §7 `fovDeg`: a number of degrees strictly between 0 and 180. */
+export const isFovDeg = (v: unknown): v is number => typeof v === 'number' && v > 0 && v < 180;
+export const BAD_FOV_MESSAGE = 'fovDeg must be a number of degrees between 0 and 180';
+
+/**
+ * Parses the retained payload of `arm/{armId}/camera/{camId}`. Never throws. Text or bytes
+ * (UTF-8); an empty payload is `removed`.
+ */
+export function parseAnnouncement(payload: string | Uint8Array): AnnouncementResult {
+  const read = readJsonObject(payload, '{url, kind, label, …}');
+  if (read.type !== 'object') return read;
+  const o = read.object;
   const streamProblem = checkStream(o.url, o.kind);
   if (streamProblem) return streamProblem;
   const labelProblem = checkLabel(o.label);
@@ -182,17 +220,12 @@ export function parseAnnouncement(payload: string | Uint8Array): AnnouncementRes
     alternates: [],
   };
   if (o.pose !== undefined) {
-    const pose = POSE.safeParse(o.pose);
-    if (!pose.success || degenerate(pose.data))
-      return reject(
-        'bad-pose',
-        `pose must be {position: [x, y, z], lookAt: [x, y, z]} in mm (|v| ≤ ${MAX_POSE_MM}), two different points`,
-      );
-    camera.pose = { position: pose.data.position, lookAt: pose.data.lookAt };
+    const pose = readPose(o.pose);
+    if (!pose) return reject('bad-pose', BAD_POSE_MESSAGE);
+    camera.pose = pose;
   }
   if (o.fovDeg !== undefined) {
-    if (typeof o.fovDeg !== 'number' || !(o.fovDeg > 0 && o.fovDeg < 180))
-      return reject('bad-fov', 'fovDeg must be a number of degrees between 0 and 180');
+    if (!isFovDeg(o.fovDeg)) return reject('bad-fov', BAD_FOV_MESSAGE);
     camera.fovDeg = o.fovDeg;
   }
   if (o.alternates !== undefined) {

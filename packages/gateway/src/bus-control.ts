@@ -4,7 +4,8 @@
  * nothing) and `T…` turned into a speed; `#IIIPDST!` / `#255PDST!` hold position now and drop
  * queued goals; `#IIIPRAD!` / `#IIIPRTV!` are answered from the last reads; `$PNG` is echoed.
  * `$KMS` goes through the profile's IK (`./bus-kms.ts`) when one is given, answered `$KMS:c!`
- * and moved only with 0. Refusals are `$ERR` replies.
+ * and moved only with 0. Refusals are `$ERR` replies. Goals that would put the tool or a joint
+ * below the floor are refused (`$ERR:floor …`, `$KMS:1!`), as the simulator refuses them.
  */
 import {
   createReader,
@@ -16,7 +17,7 @@ import {
   SERVO_ID_ALL,
   type Frame,
 } from '@armtwin/protocol';
-import { KMS_LIMIT_CODE, type BusKmsSolver } from './bus-kms.ts';
+import { KMS_FLOOR_CODE, KMS_LIMIT_CODE, type BusKeepOut, type BusKmsSolver } from './bus-kms.ts';
 import {
   angleGoal,
   goalFor,
@@ -51,6 +52,7 @@ export class BusControl {
     private readonly target: BusControlTarget,
     private readonly joints: readonly BusJoint[],
     private readonly kmsSolver?: BusKmsSolver,
+    private readonly keepOut?: BusKeepOut,
   ) {
     this.reader = createReader({
       onFrame: (f) => this.frame(f),
@@ -128,7 +130,7 @@ export class BusControl {
   private kms(x: number, y: number, z: number, alpha: number | undefined, ms: number): void {
     if (!this.kmsSolver) return this.refuse('kms', KMS_REPLY);
     if (!this.target.ready) return this.refuse('not-ready', NOT_READY_REPLY);
-    const now = this.joints.map((j) => this.target.positions.get(j.id) ?? NaN);
+    const now = this.positionsNow();
     const r = this.kmsSolver(x, y, z, alpha, now);
     const goals: BusGoal[] = [];
     let code = r.code;
@@ -139,6 +141,10 @@ export class BusControl {
         if (g.ok) goals.push(g.goal);
         else code = KMS_LIMIT_CODE;
       });
+    if (code === 0 && this.floorReason(now, goals)) {
+      code = KMS_FLOOR_CODE;
+      this.counters.refused.floor = (this.counters.refused.floor ?? 0) + 1;
+    }
     this.replies.push(encodeKmsResult(code));
     if (code === 0 && goals.length) this.target.writeGoals(goals);
     else this.counters.refused.kms = (this.counters.refused.kms ?? 0) + 1;
@@ -163,6 +169,20 @@ export class BusControl {
         goals.push(r.goal);
       }
     }
+    const floor = this.floorReason(this.positionsNow(), goals);
+    if (floor) return this.refuse('floor', floor);
     if (goals.length) this.target.writeGoals(goals);
+  }
+
+  private positionsNow(): number[] {
+    return this.joints.map((j) => this.target.positions.get(j.id) ?? NaN);
+  }
+
+  /** The keep-out zones for these goals from the positions `now`: the reason, or '' when clear. */
+  private floorReason(now: readonly number[], goals: readonly BusGoal[]): string {
+    if (!this.keepOut || goals.length === 0) return '';
+    const to = [...now];
+    for (const g of goals) to[this.joints.findIndex((j) => j.id === g.id)] = g.degrees;
+    return this.keepOut(now, to);
   }
 }

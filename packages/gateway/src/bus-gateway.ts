@@ -18,12 +18,12 @@ import {
   OperatorWatch,
   type OperatorTimers,
 } from '@armtwin/protocol';
-import type { BusProtocol, BusResult } from '@armtwin/servo-bus';
+import type { BusProtocol, BusResult, ServoCalibration } from '@armtwin/servo-bus';
 import { BusControl } from './bus-control.ts';
-import type { BusKmsSolver } from './bus-kms.ts';
+import type { BusKeepOut, BusKmsSolver } from './bus-kms.ts';
 import { BusLine, type BusLineCounters } from './bus-line.ts';
 import { BusReports } from './bus-reports.ts';
-import { busJoints, type BusGoal, type BusJoint } from './bus-servos.ts';
+import { busCalibration, busJoints, type BusGoal, type BusJoint } from './bus-servos.ts';
 import { goalsWrite, multiTurnWrites } from './bus-writes.ts';
 
 export interface BusGatewayIo extends OperatorTimers {
@@ -52,6 +52,8 @@ export interface BusGatewayOptions {
   operatorLeaseMs: number;
   /** `$KMS` through the profile's IK (`busKmsSolver`); unset: `$KMS` is refused. */
   kms?: BusKmsSolver;
+  /** Keep-out zones (the floor, `busFloorKeepOut`) checked before any goal is written. */
+  keepOut?: BusKeepOut;
 }
 
 export const DEFAULT_BUS_GATEWAY_OPTIONS = {
@@ -74,11 +76,12 @@ export class BusGatewayCore {
   };
   readonly operator: OperatorWatch;
   readonly joints: BusJoint[];
-  readonly control: BusControl;
+  /** Rebuilt by `reconfigure`. */
+  control: BusControl;
   readonly reports = new BusReports();
   /** Servos that answer (others are pinged again). */
   readonly found = new Set<number>();
-  private readonly o: BusGatewayOptions;
+  private o: BusGatewayOptions;
   private readonly topics;
   private readonly line: BusLine;
   private lineOpen = false;
@@ -96,7 +99,7 @@ export class BusGatewayCore {
     this.topics = armTopics(this.o.armId);
     this.joints = busJoints(this.o.profile);
     this.line = new BusLine(this.o.protocol, this.joints, this.o.baudRate, io);
-    this.control = new BusControl(this, this.joints, this.o.kms);
+    this.control = new BusControl(this, this.joints, this.o.kms, this.o.keepOut);
     this.operator = new OperatorWatch(
       io,
       (reason) => {
@@ -180,11 +183,38 @@ export class BusGatewayCore {
     else this.line.torque(false, ids, true);
   }
 
+  /**
+   * A new calibration of the same servos (the profile file rewritten by the HUD's calibration
+   * wizard): polarity, offset and limits change at once, torque and goals stay as they are (the
+   * arm holds; nothing moves; goals still queued in the old terms are dropped). Returns an error,
+   * and changes nothing, when the ids differ or a joint would switch in or out of multi-turn
+   * (that is set up with torque off, at start).
+   */
+  reconfigure(profile: Profile, kms?: BusKmsSolver, keepOut?: BusKeepOut): string {
+    const next = busJoints(profile);
+    const ids = (js: readonly BusJoint[]) => js.map((j) => String(j.id).padStart(3, '0')).join(' ');
+    if (ids(next) !== ids(this.joints))
+      return `profile ${profile.name} drives servos ${ids(next)}, not ${ids(this.joints)}: restart the gateway`;
+    const turned = next.filter((j, i) => j.multiTurn !== this.joints[i]!.multiTurn);
+    if (turned.length)
+      return `servos ${ids(turned)} would switch multi-turn mode: restart the gateway`;
+    this.line.dropGoals();
+    this.joints.splice(0, this.joints.length, ...next);
+    this.o = { ...this.o, profile, kms, keepOut };
+    this.line.recalibrate();
+    this.reports.forgetGoals();
+    const old = this.control.counters;
+    this.control = new BusControl(this, this.joints, kms, keepOut);
+    Object.assign(this.control.counters.refused, old.refused);
+    this.control.counters.frames = old.frames;
+    return '';
+  }
+
   /** Goals checked by `BusControl`: one sync write, after whatever is on the line now. */
   writeGoals(goals: BusGoal[]): void {
     this.counters.goalWrites++;
     this.reports.remember(goals);
-    this.line.send(goalsWrite(this.o.protocol, goals), 'goal');
+    this.line.send(goalsWrite(this.o.protocol, goals, this.calibration), 'goal');
   }
 
   /** Stops `ids` where they are: goals = present positions, ahead of any queued goal. */
@@ -214,12 +244,16 @@ export class BusGatewayCore {
           speedDegPerS: this.joint(s.id).servo.maxSpeed,
         }));
         this.reports.remember(goals);
-        if (goals.length) this.line.send(goalsWrite(this.o.protocol, goals), 'hold', true);
+        if (goals.length)
+          this.line.send(goalsWrite(this.o.protocol, goals, this.calibration), 'hold', true);
         then();
       },
       first,
     );
   }
+
+  /** A servo's zero and direction on the bus (its profile polarity). */
+  private readonly calibration = (id: number): ServoCalibration => busCalibration(this.joint(id));
 
   private joint(id: number): BusJoint {
     return this.joints.find((j) => j.id === id)!;

@@ -5,7 +5,7 @@
  * same degrees; the arm's present angles seed it.
  */
 import { pwmFromServo, servoFromPwm } from '@armtwin/ik';
-import { solveTip, type MotionRobot } from '@armtwin/motion';
+import { checkFloorMove, exactPwmFromServo, solveTip, type MotionRobot } from '@armtwin/motion';
 
 /** (x, y, z mm, pitch deg or undefined, degrees now by servo index) → code and target degrees (NaN = leave). */
 export type BusKmsSolver = (
@@ -32,3 +32,22 @@ export function busKmsSolver(robot: MotionRobot): BusKmsSolver {
 
 /** The `$KMS` code for a solution a joint limit refuses (as the simulator answers it). */
 export const KMS_LIMIT_CODE = 8;
+
+/** The `$KMS` code for a solution below the floor: §4's code 1 (docs/protocol.md, "The floor"). */
+export const KMS_FLOOR_CODE = 1;
+
+/**
+ * Keep-out zones on a bus (degrees by servo index, from = the positions read now, to = after
+ * the command; NaN = unknown): the refusal reason, or '' when the move may run.
+ */
+export type BusKeepOut = (fromDeg: readonly number[], toDeg: readonly number[]) => string;
+
+/** The floor as the bus gateway checks it: `checkFloorMove` of @armtwin/motion, in degrees. */
+export function busFloorKeepOut(robot: MotionRobot): BusKeepOut {
+  const servos = robot.profile.servos;
+  const pwm = (deg: readonly number[]) => servos.map((s, i) => exactPwmFromServo(s, deg[i]!));
+  return (fromDeg, toDeg) => {
+    const c = checkFloorMove(robot, pwm(fromDeg), pwm(toDeg));
+    return c.ok ? '' : `floor: ${c.message}`;
+  };
+}

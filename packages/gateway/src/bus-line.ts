@@ -68,6 +68,8 @@ export class BusLine {
   private timer: unknown;
   private pumping = false;
   private draining: unknown;
+  /** The client's calibrations are out of date. */
+  private stale = false;
 
   constructor(
     private readonly protocol: BusProtocol,
@@ -90,7 +92,17 @@ export class BusLine {
     this.newClient();
   }
 
+  /**
+   * The joints' calibration changed (`BusGatewayCore.reconfigure`): the bus client is rebuilt
+   * with it once the request on the line now has its answer.
+   */
+  recalibrate(): void {
+    this.stale = true;
+    this.pump();
+  }
+
   private newClient(): void {
+    this.stale = false;
     this.client = createBusClient({
       protocol: this.protocol,
       servos: busCalibrations(this.joints),
@@ -200,6 +212,7 @@ export class BusLine {
     if (this.pumping || this.draining !== undefined) return;
     this.pumping = true;
     try {
+      if (this.stale && !this.current) this.newClient();
       while (!this.current && this.queue.length) {
         const job = this.queue.shift()!;
         let bytes: Uint8Array;

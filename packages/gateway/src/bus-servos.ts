@@ -1,7 +1,8 @@
 /**
  * A robot profile's servos as the bus gateway drives them (pure): bus ids are the profile's
  * wire ids, a servo's bus position is its §8 servo angle s (0° = the centre tick, 2048 of
- * 4096; zero offsets and direction are left to calibration), and a joint whose limits reach
+ * 4096; s = polarity · (ticks − 2048) · 360 / 4096, so the profile's `polarity` is the mounting
+ * direction, and its `offset` the joint's zero: joint = s + offset), and a joint whose limits reach
  * past half a turn either way runs multi-turn (Dynamixel extended position mode, Feetech
  * with both angle limits 0). Control frames become goals here: limits checked, pulse widths
  * turned into degrees through the profile, `T…` turned into a speed.
@@ -29,8 +30,14 @@ export function busJoints(profile: Profile): BusJoint[] {
   });
 }
 
+/** A servo's ticks ↔ degrees on the bus: centre zero, the profile's polarity as direction. */
+export const busCalibration = (j: BusJoint): ServoCalibration => ({
+  id: j.id,
+  direction: j.servo.polarity,
+});
+
 export const busCalibrations = (joints: readonly BusJoint[]): ServoCalibration[] =>
-  joints.map((j) => ({ id: j.id }));
+  joints.map(busCalibration);
 
 /** A goal for one servo: where, and at what speed (°/s). */
 export interface BusGoal {

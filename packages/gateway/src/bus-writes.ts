@@ -14,18 +14,29 @@ import {
   STS_TABLE,
   X_SERIES_TABLE,
   type BusProtocol,
+  type ServoCalibration,
 } from '@armtwin/servo-bus';
 import type { BusGoal } from './bus-servos.ts';
 
-/** One SYNC WRITE of goal position and speed, each servo its own speed (no answer comes). */
-export function goalsWrite(protocol: BusProtocol, goals: readonly BusGoal[]): Uint8Array {
+/**
+ * One SYNC WRITE of goal position and speed, each servo its own speed (no answer comes);
+ * `calibration(id)`: the servo's zero and direction (`busCalibrations`).
+ */
+export function goalsWrite(
+  protocol: BusProtocol,
+  goals: readonly BusGoal[],
+  calibration: (id: number) => ServoCalibration = (id) => ({ id }),
+): Uint8Array {
   const layout = BUS_LAYOUTS[protocol];
   const g = layout.goalPosition;
   const s = layout.goalSpeed;
   const { address, length } = span(g, s);
   const writes = goals.map((goal) => {
     const data = new Uint8Array(length);
-    data.set(encodeField(g, degreesToTicks(goal.degrees, { id: goal.id })), g.address - address);
+    data.set(
+      encodeField(g, degreesToTicks(goal.degrees, calibration(goal.id))),
+      g.address - address,
+    );
     const units = Math.max(1, Math.round(layout.speedUnits(goal.speedDegPerS, 4096)));
     data.set(encodeField(s, Math.min(fieldRange(s).max, units)), s.address - address);
     return { id: goal.id, data };

@@ -1,6 +1,6 @@
 /**
  * Wires the bus gateway (`armtwin gateway --bus dynamixel|feetech`): the robot profile read
- * from disk, a `SerialLink` (reopens with back-off), an mqtt.js client (last will `0` on
+ * from disk (announced and followed: ./profile-follow.ts), a `SerialLink` (reopens with back-off), an mqtt.js client (last will `0` on
  * `arm/{id}/online`) and `BusGatewayCore`, on the system clock.
  */
 import type { MqttClient } from 'mqtt';
@@ -9,12 +9,13 @@ import type { MotionRobot } from '@armtwin/motion';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { armTopics, SYSTEM_CLOCK, topic } from '@armtwin/protocol';
 import type { BusProtocol } from '@armtwin/servo-bus';
-import { busKmsSolver } from './bus-kms.ts';
+import { busFloorKeepOut, busKmsSolver } from './bus-kms.ts';
 import {
   BusGatewayCore,
   DEFAULT_BUS_GATEWAY_OPTIONS,
   type BusGatewayOptions,
 } from './bus-gateway.ts';
+import { followProfile } from './profile-follow.ts';
 import { SerialLink } from './serial-link.ts';
 import {
   connectGatewayMqtt,
@@ -70,7 +71,7 @@ export function startBusGateway(
     ...options,
   };
   const { log } = o;
-  const { profile, robot } = loadProfile(o.profile, o.modelsDir);
+  const { profile, robot, raw } = readRobotFolder(o.profile, o.modelsDir);
   const topics = armTopics(o.armId);
   const torque = torqueTopic(o.armId);
   const client = connectGatewayMqtt(o);
@@ -98,6 +99,7 @@ export function startBusGateway(
     healthRate: o.healthRate,
     operatorLeaseMs: o.operatorLeaseMs,
     kms: busKmsSolver(robot),
+    keepOut: busFloorKeepOut(robot),
   };
   const core = new BusGatewayCore(coreOptions, {
     ...SYSTEM_CLOCK,
@@ -108,6 +110,15 @@ export function startBusGateway(
     onFirst: o.onFirst,
   });
   wireGatewayMqtt(client, o, core, { [torque]: (p) => core.fromTorque(p) });
+  const follow = followProfile({
+    ...o,
+    client,
+    name: o.profile,
+    raw,
+    core,
+    onReload: (name) =>
+      log?.info({ profile: name }, 'profile file changed: new calibration in force'),
+  });
   link.start();
   log?.info(
     { arm: o.armId, bus: o.bus, profile: o.profile, ids: core.joints.map((j) => j.id) },
@@ -118,6 +129,7 @@ export function startBusGateway(
     client,
     link,
     async stop() {
+      follow.stop();
       core.operator.reset();
       core.serialClosed();
       if (client.connected)

@@ -10,6 +10,7 @@ export * from './joint-plan.ts';
 export * from './cartesian-plan.ts';
 export * from './frames.ts';
 export * from './pose-check.ts';
+export * from './floor.ts';
 export * from './codes.ts';
 export * from './request.ts';
 export * from './motion.ts';

@@ -7,7 +7,8 @@
  */
 import { servoFromPwm, servoWithinLimits } from '@armtwin/ik';
 import { planCartesian, type CartesianWaypoint } from './cartesian-plan.ts';
-import { CODE_INVALID, CODE_SERVO_LIMIT, motionCodeMessage } from './codes.ts';
+import { CODE_BELOW_FLOOR, CODE_INVALID, CODE_SERVO_LIMIT, motionCodeMessage } from './codes.ts';
+import { planBelowFloor } from './floor.ts';
 import { planJoint } from './joint-plan.ts';
 import type { PlanOptions } from './options.ts';
 import { nextTargetIndex, type MotionMode, type Plan } from './plan.ts';
@@ -131,8 +132,7 @@ export function planSpec(
       at = fill(pwm, at);
       joints.push(pwm);
     }
-    const plan = planJoint(robot, from, joints, spec.options);
-    return { status: 'planned', code: 0, plan, spec, message: summary(plan, spec) };
+    return planned(robot, planJoint(robot, from, joints, spec.options), spec);
   }
   const waypoints: CartesianWaypoint[] = spec.targets.map((t) => {
     if (t.kind === 'tip') return { tip: t.tip };
@@ -151,7 +151,24 @@ export function planSpec(
     if (r.step !== undefined) out.step = r.step;
     return out;
   }
-  return { status: 'planned', code: 0, plan: r.plan, spec, message: summary(r.plan, spec) };
+  return planned(robot, r.plan, spec);
+}
+
+/** A plan that stays above the floor is `planned`; one that dips below it is refused (24). */
+function planned(robot: MotionRobot, plan: Plan, spec: MotionSpec): PlanOutcome {
+  const low = planBelowFloor(robot, plan);
+  if (!low) return { status: 'planned', code: 0, plan, spec, message: summary(plan, spec) };
+  const t = plan.samples[low.sample]!.t;
+  const target = Math.max(
+    0,
+    plan.targetTimes.findIndex((tt) => tt >= t),
+  );
+  return {
+    status: 'unreachable',
+    code: CODE_BELOW_FLOOR,
+    target,
+    message: `targets[${target}]: ${low.check.message}`,
+  };
 }
 
 function summary(plan: Plan, spec: MotionSpec): string {

@@ -1,7 +1,7 @@
 /**
  * `armtwin sim --bus dynamixel|feetech --serial PATH`: the simulated arm as a servo bus. One
  * emulated servo (`@armtwin/servo-bus`) per profile servo, with the profile's ids, starting at
- * the home pose (servo angle s at tick 2048 + s·4096/360) and moving toward the goals the host
+ * the home pose (servo angle s at tick 2048 + polarity·s·4096/360, as the gateway reads it) and moving toward the goals the host
  * writes at the speeds it writes, as time passes. Temperature and voltage are the sim's ambient
  * temperature and supply (Dynamixel: the model's 12 V), and the faults show on the bus: a
  * stalled servo's shaft stays where it jammed and warms, an overheated one reads its
@@ -62,7 +62,10 @@ export class BusSimCore {
       startMs,
       servos: this.o.profile.servos.map((s, i) => ({
         id: s.id,
-        position: degreesToTicks(Number.isFinite(home[i]) ? home[i]! : 0, { id: s.id }),
+        position: degreesToTicks(Number.isFinite(home[i]) ? home[i]! : 0, {
+          id: s.id,
+          direction: s.polarity,
+        }),
         temperatureC: this.o.ambientC,
       })),
     });

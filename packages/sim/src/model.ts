@@ -35,7 +35,7 @@ export interface SimCounters {
   kms: number;
   stops: number;
   emergencyStops: number;
-  rejected: Record<'limit' | 'unknown-servo' | 'group' | 'unexpected' | 'ik', number>;
+  rejected: Record<'limit' | 'floor' | 'unknown-servo' | 'group' | 'unexpected' | 'ik', number>;
 }
 
 export class SimModel {
@@ -47,10 +47,11 @@ export class SimModel {
     kms: 0,
     stops: 0,
     emergencyStops: 0,
-    rejected: { limit: 0, 'unknown-servo': 0, group: 0, unexpected: 0, ik: 0 },
+    rejected: { limit: 0, floor: 0, 'unknown-servo': 0, group: 0, unexpected: 0, ik: 0 },
   };
 
   private readonly kmsSolver: SimModelOptions['kms'];
+  private readonly keepOut: SimModelOptions['keepOut'];
   /** Per servo index: 1 when its position is reported in §8 angle frames. */
   readonly reportsAngle: Uint8Array;
   /** Per servo index: mounting polarity, for servo angle ↔ the model's pulse-equivalent. */
@@ -60,6 +61,7 @@ export class SimModel {
     const o = { ...DEFAULT_SIM_MODEL_OPTIONS, ...options };
     this.arm = o.arm;
     this.kmsSolver = o.kms;
+    this.keepOut = o.keepOut;
     this.servos = new Servos(o, now);
     this.reportsAngle = Uint8Array.from(o.arm.servos, (spec) =>
       reportAngle(o.report, speaksAngle(spec)) ? 1 : 0,
@@ -110,7 +112,7 @@ export class SimModel {
   execute(frame: Frame, t: number, out: string[]): void {
     this.advance(t);
     const reads: string[] = [];
-    const error = this.check(frame);
+    const error = this.check(frame) || this.checkKeepOut([frame]);
     if (error) {
       out.push(encodeControllerError(error));
       return;
@@ -130,6 +132,10 @@ export class SimModel {
     for (const frame of group.frames) {
       if (error) break;
       const e = this.check(frame);
+      if (e) error = `group rejected: ${e}`;
+    }
+    if (!error) {
+      const e = this.checkKeepOut(group.frames);
       if (e) error = `group rejected: ${e}`;
     }
     if (error) {
@@ -217,6 +223,28 @@ export class SimModel {
     return '';
   }
 
+  /**
+   * The keep-out zones (the floor) for the goal pose these (already checked) frames leave the
+   * arm in: '' when it may run, else the reason (counted as `floor`). Changes nothing.
+   */
+  private checkKeepOut(frames: readonly Frame[]): string {
+    if (!this.keepOut) return '';
+    const s = this.servos;
+    const to = Array.from(s.to);
+    let moved = false;
+    for (const f of frames) {
+      if (f.type !== 'move' && f.type !== 'angleMove') continue;
+      for (let i = 0; i < s.count; i++) {
+        if (f.id !== SERVO_ID_ALL && f.id !== s.ids[i]) continue;
+        to[i] = f.type === 'move' ? f.pwm : this.pulseOfAngle(i, f.deg);
+        moved = true;
+      }
+    }
+    const reason = moved ? this.keepOut(Array.from(s.to), to) : '';
+    if (reason) this.counters.rejected.floor++;
+    return reason;
+  }
+
   /** Runs a checked frame. Position and health reads go to `reads`, other replies to `out`. */
   private apply(frame: Frame, t: number, reads: string[], out: string[]): void {
     const s = this.servos;
@@ -268,6 +296,16 @@ export class SimModel {
     }
   }
 
+  /** Whether a `$KMS` solution (pulses by servo index, NaN = leave) ends below the floor. */
+  private kmsBelowFloor(pwm: readonly number[]): boolean {
+    if (!this.keepOut) return false;
+    const from = Array.from(this.servos.to);
+    const to = from.map((p, i) => (Number.isNaN(pwm[i]) || pwm[i] === undefined ? p : pwm[i]!));
+    if (!this.keepOut(from, to)) return false;
+    this.counters.rejected.floor++;
+    return true;
+  }
+
   /** `$KMS`: solve, answer `$KMS:c!`, move servos 000–003 together only when c is 0. */
   private kms(
     x: number,
@@ -284,10 +322,10 @@ export class SimModel {
       // Another arm's IK (profile.ts): every servo it gives a pulse moves, together.
       const now = Array.from({ length: s.count }, (_, i) => s.pwmAt(i, t));
       const k = this.kmsSolver(x, y, z, alpha, now);
-      if (k.code !== 0) this.counters.rejected.ik++;
-      out.push(encodeKmsResult(k.code));
-      if (k.code === 0)
-        k.pwm.forEach((p, i) => Number.isNaN(p) || s.moveTo(i, Math.round(p), ms, t));
+      const code = k.code === 0 && this.kmsBelowFloor(k.pwm) ? KMS_FLOOR_CODE : k.code;
+      if (code !== 0) this.counters.rejected.ik++;
+      out.push(encodeKmsResult(code));
+      if (code === 0) k.pwm.forEach((p, i) => Number.isNaN(p) || s.moveTo(i, Math.round(p), ms, t));
       return;
     }
     const r = solveIk(x, y, z, alpha, this.arm);
@@ -295,11 +333,20 @@ export class SimModel {
     const ok =
       r.code === 0 && idx.every((i, j) => i >= 0 && isWithinLimits(s.ids[i]!, r.pwm[j]!, this.arm));
     if (r.code !== 0) this.counters.rejected.ik++;
-    out.push(encodeKmsResult(r.code === 0 && !ok ? 8 : r.code));
-    if (!ok) return;
+    const sol = new Array<number>(s.count).fill(NaN);
+    idx.forEach((i, j) => (sol[i] = r.pwm[j]!));
+    const low = ok && this.kmsBelowFloor(sol);
+    out.push(encodeKmsResult(low ? KMS_FLOOR_CODE : r.code === 0 && !ok ? 8 : r.code));
+    if (!ok || low) return;
     for (let j = 0; j < 4; j++) s.moveTo(idx[j]!, r.pwm[j]!, ms, t);
   }
 }
+
+/**
+ * The `$KMS` code for a solution that would put the tool or a joint below the floor: §4's code 1
+ * ("below the floor"), docs/protocol.md "The floor".
+ */
+export const KMS_FLOOR_CODE = 1;
 
 /** Whether a servo is reported in angle frames: as asked, or (`auto`) as its profile says. */
 function reportAngle(report: ReportUnits, speaksAngleFrames: boolean): boolean {

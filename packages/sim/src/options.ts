@@ -48,7 +48,15 @@ export interface SimModelOptions {
    * `profile.ts`): the status code and pulses by servo index (NaN = leave). Unset: `solveIk`.
    */
   kms?: KmsSolver;
+  /**
+   * Keep-out zones (the floor, `profile.ts`): the reason a move from the goal pose `from` to
+   * `to` (pulses by servo index) is refused, or '' when it may run. Unset: no zones.
+   */
+  keepOut?: KeepOutCheck;
 }
+
+/** (goal pulses now, goal pulses after the command, by servo index) → refusal reason or ''. */
+export type KeepOutCheck = (from: readonly number[], to: readonly number[]) => string;
 
 /** (x, y, z mm, pitch deg or undefined, pulses now by servo index) → code and target pulses. */
 export type KmsSolver = (

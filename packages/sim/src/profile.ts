@@ -16,10 +16,10 @@ import {
   pulseEquivalentArm,
   type Profile,
 } from '@armtwin/ik';
-import { createMotionRobot, solveTip, type MotionRobot } from '@armtwin/motion';
+import { checkFloorMove, createMotionRobot, solveTip, type MotionRobot } from '@armtwin/motion';
 import { MODELS_DIR, PROFILE_NAME, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { PWM_CENTRE } from '@armtwin/protocol';
-import type { KmsSolver, SimModelOptions } from './options.ts';
+import type { KeepOutCheck, KmsSolver, SimModelOptions } from './options.ts';
 
 export { MODELS_DIR, PROFILE_NAME };
 export const DEFAULT_PROFILE = 'armtwin5';
@@ -51,6 +51,14 @@ export function numericKms(robot: MotionRobot): KmsSolver {
   };
 }
 
+/** The floor as the controller checks it (docs/protocol.md, "The floor"). */
+export function floorKeepOut(robot: MotionRobot): KeepOutCheck {
+  return (from, to) => {
+    const c = checkFloorMove(robot, from, to);
+    return c.ok ? '' : `floor: ${c.message}`;
+  };
+}
+
 /** Builds the sim's view of a parsed profile; `urdf` is needed for a numeric one. */
 export function simProfile(profile: Profile, raw: unknown, urdf?: string): SimProfile {
   let chain;
@@ -65,6 +73,7 @@ export function simProfile(profile: Profile, raw: unknown, urdf?: string): SimPr
   const model: Partial<SimModelOptions> = {
     arm: analytic ?? pulseEquivalentArm(profile),
     initialPwm: robot.table.map((s) => (Number.isFinite(s.homePwm) ? s.homePwm : PWM_CENTRE)),
+    keepOut: floorKeepOut(robot),
   };
   if (!analytic) model.kms = numericKms(robot);
   const announcement = JSON.stringify({ name: profile.name, title: profile.title, profile: raw });

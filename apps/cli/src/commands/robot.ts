@@ -1,9 +1,7 @@
-import fs from 'node:fs';
-import path from 'node:path';
 import { InvalidArgumentError, type Command } from 'commander';
 import { IMPORT_NAME, planImport } from '@armtwin/ik';
+import { importSource, RobotExistsError, writeRobotFolder } from '@armtwin/ik/import-node';
 import { MODELS_DIR } from '@armtwin/sim';
-import { importSource } from '../robot/source.ts';
 
 interface ImportFlags {
   name?: string;
@@ -45,14 +43,14 @@ mesh or one it cannot read; warns about meshes too heavy for a page.`,
       const result = planImport(importSource(source), flags.name ? { name: flags.name } : {});
       if (!result.ok) throw new Error(`cannot import ${source}:\n  ${result.errors.join('\n  ')}`);
       const { plan } = result;
-      const dir = path.join(path.resolve(flags.models), plan.name);
-      if (fs.existsSync(dir) && !flags.force)
-        throw new Error(`${dir} exists: give another --name, or --force to replace it`);
-      fs.rmSync(dir, { recursive: true, force: true });
-      for (const f of plan.files) {
-        const file = path.join(dir, ...f.path.split('/'));
-        fs.mkdirSync(path.dirname(file), { recursive: true });
-        fs.writeFileSync(file, f.data);
+      let dir: string;
+      try {
+        dir = writeRobotFolder(plan, flags.models, flags.force);
+      } catch (err) {
+        if (!(err instanceof RobotExistsError)) throw err;
+        throw new Error(`${err.message}: give another --name, or --force to replace it`, {
+          cause: err,
+        });
       }
       const say = (m: string) => process.stderr.write(`armtwin: ${m}\n`);
       for (const w of plan.warnings) say(`warning: ${w}`);

@@ -5,6 +5,7 @@
  * @influxdata/influxdb-client (a real one in integration tests), the bucket, the clock.
  *
  *   200 JSON             the answer (see README.md)
+ *   200 file             /history/export: the range as MCAP or CSV (an attachment)
  *   400 {error, parameter}  a bad parameter, named
  *   404 {error}          /history/<unknown>
  *   405                  not GET/HEAD
@@ -12,6 +13,14 @@
  */
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { QueryApi } from '@influxdata/influxdb-client';
+import { PROFILE_NAME } from '@armtwin/motion/robot-folder';
+import {
+  EXPORT_FORMATS,
+  exportRecording,
+  loadRecordingRobot,
+  type ExportFormat,
+  type RecordingRobot,
+} from '../export/index.ts';
 import * as endpoints from './endpoints.ts';
 import { DEFAULT_HISTORY_OPTIONS, type HistoryOptions } from './options.ts';
 import { parseParams, type Endpoint, type HistoryParams } from './params.ts';
@@ -25,6 +34,11 @@ export interface HistoryHandlerDeps {
   now?: () => number;
   /** Limits; defaults in `DEFAULT_HISTORY_OPTIONS`. */
   options?: Partial<HistoryOptions>;
+  /**
+   * The robot of a profile name, for an MCAP export's joint states and transforms; throws when
+   * there is none. Default: the profile folders of `public/models`.
+   */
+  robotFor?: (profile: string) => RecordingRobot;
   /** Told about each InfluxDB failure (the client still gets a 502). */
   onError?: (err: unknown, path: string) => void;
 }
@@ -32,7 +46,7 @@ export interface HistoryHandlerDeps {
 export type HistoryHandler = (req: IncomingMessage, res: ServerResponse) => Promise<boolean>;
 
 const ROUTES: Record<
-  Endpoint,
+  Exclude<Endpoint, 'export'>,
   (ctx: endpoints.EndpointContext, p: HistoryParams) => Promise<unknown>
 > = {
   series: endpoints.series,
@@ -55,6 +69,68 @@ export function createHistoryHandler(deps: HistoryHandlerDeps): HistoryHandler {
   const options: HistoryOptions = { ...DEFAULT_HISTORY_OPTIONS, ...deps.options };
   const now = deps.now ?? Date.now;
   const ctx: endpoints.EndpointContext = { queryApi: deps.queryApi, bucket: deps.bucket, options };
+  const robotFor = deps.robotFor ?? ((profile: string) => loadRecordingRobot(profile));
+
+  /** `/history/export?arm&start&stop&format=mcap|csv&profile=NAME`: the range as a download. */
+  async function exportFile(
+    res: ServerResponse,
+    head: boolean,
+    p: HistoryParams,
+    query: URLSearchParams,
+  ): Promise<void> {
+    const format = (query.get('format') ?? 'mcap') as ExportFormat;
+    if (!EXPORT_FORMATS.includes(format))
+      return send(
+        res,
+        400,
+        { error: `format must be ${EXPORT_FORMATS.join(' or ')}`, parameter: 'format' },
+        head,
+      );
+    const profile = query.get('profile');
+    let robot: RecordingRobot | null = null;
+    if (profile !== null) {
+      if (!PROFILE_NAME.test(profile))
+        return send(
+          res,
+          400,
+          { error: 'profile is not a profile name', parameter: 'profile' },
+          head,
+        );
+      try {
+        robot = robotFor(profile);
+      } catch (err) {
+        return send(
+          res,
+          400,
+          { error: (err as Error).message.split('\n')[0], parameter: 'profile' },
+          head,
+        );
+      }
+    }
+    const stamp = new Date(p.startMs).toISOString().replace(/[:.]/g, '-');
+    res.writeHead(200, {
+      'content-type': format === 'csv' ? 'text/csv; charset=utf-8' : 'application/octet-stream',
+      'content-disposition': `attachment; filename="${p.arm}-${stamp}.${format}"`,
+      'cache-control': 'no-store',
+    });
+    if (head) return void res.end();
+    try {
+      await exportRecording({
+        source: { queryApi: deps.queryApi, bucket: deps.bucket },
+        arm: p.arm,
+        startMs: p.startMs,
+        stopMs: p.stopMs,
+        format,
+        out: res,
+        robot,
+      });
+      res.end();
+    } catch (err) {
+      deps.onError?.(err, '/history/export');
+      res.destroy(err as Error); // the download fails visibly rather than ending short
+    }
+  }
+
   return async (req, res) => {
     const url = new URL(req.url ?? '/', 'http://localhost');
     const path = url.pathname;
@@ -65,11 +141,11 @@ export function createHistoryHandler(deps: HistoryHandlerDeps): HistoryHandler {
     }
     const head = req.method === 'HEAD';
     const name = path.slice('/history/'.length);
-    if (!Object.hasOwn(ROUTES, name)) {
+    if (name !== 'export' && !Object.hasOwn(ROUTES, name)) {
       send(
         res,
         404,
-        { error: `no such history endpoint; try ${Object.keys(ROUTES).join(', ')}` },
+        { error: `no such history endpoint; try ${[...Object.keys(ROUTES), 'export'].join(', ')}` },
         head,
       );
       return true;
@@ -78,6 +154,10 @@ export function createHistoryHandler(deps: HistoryHandlerDeps): HistoryHandler {
     const parsed = parseParams(endpoint, url.searchParams, now(), options.maxSpanMs);
     if (!parsed.ok) {
       send(res, 400, { error: parsed.error, parameter: parsed.parameter }, head);
+      return true;
+    }
+    if (endpoint === 'export') {
+      await exportFile(res, head, parsed.params, url.searchParams);
       return true;
     }
     try {

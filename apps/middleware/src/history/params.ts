@@ -9,7 +9,8 @@ import { parseTime } from './time.ts';
 
 export const FIELDS = HISTORY_FIELDS;
 export type Field = HistoryField;
-export type Endpoint = 'series' | 'alarms' | 'tracking' | 'pose';
+/** `export` streams a file (MCAP or CSV, ../export/) instead of answering JSON. */
+export type Endpoint = 'series' | 'alarms' | 'tracking' | 'pose' | 'export';
 
 /** `'all'` or a sorted list of distinct three-digit servo ids. */
 export type IdSet = 'all' | string[];
@@ -34,6 +35,7 @@ const ALLOWED: Record<Endpoint, readonly string[]> = {
   alarms: ['arm', 'id', 'start', 'stop'],
   tracking: ['arm', 'id', 'start', 'stop'],
   pose: ['arm', 'id', 'start', 'stop'],
+  export: ['arm', 'start', 'stop', 'format', 'profile'],
 };
 
 const armSchema = z.string().regex(/^[a-z0-9-]{1,32}$/);

@@ -34,7 +34,10 @@ export interface MiddlewareProcess {
  * no storage), a fixed client id, and its spool in `dir/<spool>`. `extra` adds or overrides.
  */
 export function middlewareEnv(
-  services: { mqttUrl: string; influx?: { url: string; bucket: string } },
+  services: {
+    mqttUrl: string;
+    influx?: { url: string; bucket: string; token?: string; org?: string };
+  },
   clientId: string,
   dir: string,
   extra: Record<string, string> = {},
@@ -44,7 +47,12 @@ export function middlewareEnv(
     MQTT_URL: services.mqttUrl,
     MQTT_CLIENT_ID: clientId,
     ...(services.influx
-      ? { INFLUX_URL: services.influx.url, INFLUX_BUCKET: services.influx.bucket }
+      ? {
+          INFLUX_URL: services.influx.url,
+          INFLUX_BUCKET: services.influx.bucket,
+          INFLUX_TOKEN: services.influx.token ?? '',
+          INFLUX_ORG: services.influx.org ?? '',
+        }
       : {}),
     SPOOL_DIR: path.join(dir, spool),
     ...extra,
@@ -174,13 +182,17 @@ export function statePayloads(count: number, servos: number, t0: number): string
 
 export interface InfluxTarget {
   url: string;
+  /** The database (1.8), or a 2.x bucket's name (2.x maps each bucket to a database). */
   db: string;
+  /** A 2.x API token, sent as `Authorization: Token …`. */
+  token?: string;
 }
 
 /** Runs one InfluxQL SELECT; returns its first series' values (or []). */
 export async function select(influx: InfluxTarget, q: string): Promise<unknown[][]> {
-  const res = await fetch(`${influx.url}/query?db=${influx.db}&epoch=u`, {
+  const res = await fetch(`${influx.url}/query?db=${encodeURIComponent(influx.db)}&epoch=u`, {
     method: 'POST',
+    headers: influx.token ? { authorization: `Token ${influx.token}` } : {},
     body: new URLSearchParams({ q }),
   });
   const body = (await res.json()) as {

@@ -12,6 +12,8 @@ import { FleetPanel } from '../panels/Fleet/FleetPanel.tsx';
 import { CommandPanel } from '../panels/Command/CommandPanel.tsx';
 import { PlanPanel } from '../panels/Plan/PlanPanel.tsx';
 import { CameraPanel } from '../panels/Camera/CameraPanel.tsx';
+import { CalibrationPanel } from '../panels/Calibration/CalibrationPanel.tsx';
+import { ImportPanel } from '../panels/Import/ImportPanel.tsx';
 
 export function App() {
   return (
@@ -22,6 +24,8 @@ export function App() {
         <CommandPanel />
         <PlanPanel />
         <GhostPanel />
+        <CalibrationPanel />
+        <ImportPanel />
       </div>
       <div className="column center">
         <HistoryPanel />

@@ -14,6 +14,7 @@ import type { WaypointEditor } from '../panels/Plan/WaypointEditor.ts';
 import type { RequestLog } from '../panels/Command/RequestLog.ts';
 import type { CameraHub } from '../cameras/CameraHub.ts';
 import type { CameraScreens } from '../scene/CameraScreens.ts';
+import type { CalibrationSession } from '../panels/Calibration/CalibrationSession.ts';
 
 /** The Plan panel's plain objects. */
 export interface PlanTools {
@@ -46,6 +47,8 @@ export interface Hud {
   cameras: CameraHub;
   /** The cameras' screens in the 3D view, and "view through this camera". */
   cameraScreens: CameraScreens;
+  /** The calibration wizard of a bus arm (its ghost comes before the plan preview's). */
+  calibration: CalibrationSession;
   /** Controls another arm (the fleet list): saves it and reconnects. */
   selectArm(armId: string): void;
 }

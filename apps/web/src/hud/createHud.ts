@@ -31,6 +31,7 @@ import { Waypoints } from '../panels/Plan/Waypoints.ts';
 import { RequestLog } from '../panels/Command/RequestLog.ts';
 import { CameraHub } from '../cameras/CameraHub.ts';
 import { CameraScreens } from '../scene/CameraScreens.ts';
+import { CalibrationSession } from '../panels/Calibration/CalibrationSession.ts';
 import type { Hud, PlanTools } from './HudContext.ts';
 import { installDebugHook } from './debugHook.ts';
 
@@ -83,12 +84,13 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
     editor: null,
   };
   const requests = new RequestLog();
+  const calibration = new CalibrationSession(store);
   // The cameras ride on the arm link's client: it is rebuilt for each arm and log-in, so the
   // list follows the selected arm and reads with the page's credentials and role.
   const cameras = new CameraHub();
   const firstLink = new ArmLink(store, settings, connect, workerIntervals);
   cameras.attach(firstLink);
-  const cameraScreens = new CameraScreens(viewer, cameras);
+  const cameraScreens = new CameraScreens(viewer, cameras, cameras.decoders);
 
   const hud: Hud = {
     store,
@@ -101,6 +103,7 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
     requests,
     cameras,
     cameraScreens,
+    calibration,
     link: firstLink,
     selectArm(armId: string) {
       const next = settingsForArm(hud.settings, armId);
@@ -123,8 +126,12 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
   };
 
   // The ghost runs along the plan being previewed, and along each re-plan of a run.
-  viewer.ghostSource = plan.preview;
+  // (the calibration wizard's ghost, while it is open, comes first)
+  viewer.ghostSource = {
+    sample: (now, out) => calibration.sample(now, out) || plan.preview.sample(now, out),
+  };
   plan.runner.onPlan((p) => plan.preview.show(p, polaritiesOf(store.opts.arm), performance.now()));
+  plan.runner.onEnd(() => plan.preview.clear()); // the ghost goes when the plan is over
   robots.onFeedback((f) => requests.take(f));
   const debug = installDebugHook(hud, viewer);
 

@@ -6,6 +6,7 @@ import type { ArmStore } from '../store/ArmStore.ts';
 import type { TargetPreview } from '../store/TargetPreview.ts';
 import type { ArmLink } from '../mqtt/ArmLink.ts';
 import type { DrawnRobot, Viewer } from '../scene/Viewer.ts';
+import { readTimeStripe, timeStripeLayout } from '@armtwin/camera/client';
 import type { ReplayPlayer } from '../replay/ReplayPlayer.ts';
 import type { Session } from '../auth/Session.ts';
 import type { ActiveRobot } from '../robots/ActiveRobot.ts';
@@ -38,6 +39,11 @@ export interface DebugHook {
    * the live arm (default), the ghost, or the replay's sibling.
    */
   joints(which?: DrawnRobot): number[];
+  /**
+   * The camera package's time-stripe reader, for the bench's glass-to-glass probe
+   * (bench/lib/camera-probe.ts reads it from the canvas a camera view displays).
+   */
+  timeStripe: { read: typeof readTimeStripe; layout: typeof timeStripeLayout };
 }
 
 declare global {
@@ -74,6 +80,7 @@ export function installDebugHook(hud: Hud, viewer: Viewer): DebugHook {
       requests: hud.requests,
     },
     joints: (which) => viewer.jointValues(which),
+    timeStripe: { read: readTimeStripe, layout: timeStripeLayout },
   };
   window.__armtwin = hook;
   return hook;

@@ -176,6 +176,33 @@ export class ArmLink {
     );
   }
 
+  /**
+   * A retained message at QoS 1 on a topic an operator may write besides the arm's control (a
+   * camera's calibration, src/cameras/CameraHub.ts); false when not sent (no client, or a role
+   * that may not command).
+   */
+  publishRetained(topic: string, payload: string): boolean {
+    const client = this.client;
+    if (!client || !this.permissions.command) return false;
+    client.publish(topic, payload, { qos: 1, retain: true }, (err) => {
+      if (err) this.lastPublishError = err.message;
+    });
+    return true;
+  }
+
+  /**
+   * A bus arm's torque (`arm/{id}/torque`, QoS 1, not retained, so a restarted gateway starts
+   * holding): `false` turns every servo limp, `true` holds where it is. False when not sent.
+   */
+  setTorque(on: boolean): boolean {
+    const client = this.client;
+    if (!client || !this.permissions.command) return false;
+    client.publish(this.topics.torque, on ? '1' : '0', { qos: 1 }, (err) => {
+      if (err) this.lastPublishError = err.message;
+    });
+    return true;
+  }
+
   /** The deadman's `1`: retained, QoS 1 (at connect, then as the beat). */
   private holdOperator(client: MqttLike): void {
     client.publish(this.topics.operator, '1', { qos: 1, retain: true });

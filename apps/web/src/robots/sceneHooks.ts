@@ -1,8 +1,9 @@
 /**
  * What the 3D view needs to show any robot: the ghost's alternative source (the plan preview)
  * and framing the camera, fog, shadows and floor on a robot bigger than the 5-axis arm (track6
- * is 3.7 m long and 2 m tall; the scene's defaults fit a 0.5 m arm). A robot that fits the
- * default view gets exactly the default view back.
+ * is 3.7 m long and 2 m tall, a Panda or an iiwa over 1 m; the scene's defaults fit a 0.5 m arm):
+ * by the robot's bounding box, on every load (and so on every fleet switch). A robot whose box
+ * the default view shows whole gets exactly the default view back.
  */
 import * as THREE from 'three';
 import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
@@ -18,10 +19,13 @@ interface Framed {
   controls: OrbitControls;
 }
 
-/** Robots whose bounding sphere is within this radius, m, keep the default view. */
-const DEFAULT_VIEW_RADIUS_M = 0.75;
-/** A bigger robot is seen from this many bounding-sphere radii (the whole robot, 40° fov). */
-const FIT_DISTANCE = 3;
+/**
+ * A robot keeps the default view when every corner of its bounding box is seen from the default
+ * camera within this fraction of the view's half-width and half-height (a margin round it).
+ */
+const DEFAULT_VIEW_FILL = 0.9;
+/** A robot that does not fit is seen from this many bounding-sphere radii (the whole robot, 40° fov). */
+const FIT_DISTANCE = 3.3;
 
 interface Defaults {
   position: THREE.Vector3;
@@ -74,12 +78,35 @@ function remember(v: Framed): Defaults {
   return d;
 }
 
-/** Frames `robot` (already in the scene): the default view for a small arm, else one that fits. */
+/** Whether the default camera (square view, the narrowest a load sees) shows all of `box`. */
+function fitsDefaultView(v: Framed, d: Defaults, box: THREE.Box3): boolean {
+  const cam = v.camera.clone();
+  cam.aspect = Math.min(1, v.camera.aspect);
+  cam.position.copy(d.position);
+  cam.lookAt(d.target);
+  cam.updateMatrixWorld(true);
+  cam.updateProjectionMatrix();
+  const p = new THREE.Vector3();
+  for (let i = 0; i < 8; i++) {
+    p.set(
+      i & 1 ? box.max.x : box.min.x,
+      i & 2 ? box.max.y : box.min.y,
+      i & 4 ? box.max.z : box.min.z,
+    );
+    p.project(cam);
+    if (!(Math.abs(p.x) <= DEFAULT_VIEW_FILL && Math.abs(p.y) <= DEFAULT_VIEW_FILL && p.z < 1))
+      return false;
+  }
+  return true;
+}
+
+/** Frames `robot` (already in the scene): the default view when it shows the whole robot, else one that fits. */
 export function frameCamera(v: Framed, robot: THREE.Object3D): void {
   const d = remember(v);
   robot.updateMatrixWorld(true);
-  const sphere = new THREE.Box3().setFromObject(robot).getBoundingSphere(new THREE.Sphere());
-  const small = !(sphere.radius > DEFAULT_VIEW_RADIUS_M);
+  const box = new THREE.Box3().setFromObject(robot);
+  const sphere = box.getBoundingSphere(new THREE.Sphere());
+  const small = box.isEmpty() || fitsDefaultView(v, d, box);
   // How much bigger than the default view: the camera `FIT_DISTANCE` radii away.
   const defaultDistance = d.position.distanceTo(d.target);
   const k = small ? 1 : Math.max(1, (FIT_DISTANCE * sphere.radius) / defaultDistance);

@@ -2,56 +2,68 @@
  * The arm's cameras in the 3D view (issue 15): a screen at each posed camera's position, facing
  * back along its line of sight (seen the right way round from behind the camera), showing the
  * camera's picture as a texture; and "view through this camera": the 3D view takes the
- * camera's pose and vertical field of view, and the live picture is laid over the whole view
- * at half opacity, so the twin shows through it and a twin that does not match the arm is seen
- * at a glance. Plain object on the Viewer's one frame loop; textures are uploaded only when the
- * player drew a new frame, at most `TEXTURE_HZ` times a second.
+ * camera's pose (its calibration, else its announcement) and vertical field of view, the live
+ * picture fills the view behind everything, opaque, with the camera's own aspect, the floor and
+ * grid step aside, and the twin is drawn translucent over the picture (./TranslucentTwin.ts),
+ * so a twin that does not match the arm is seen at a glance; the ghost and the other overlays
+ * draw as ever. Leaving puts everything back as it was. While calibrating by eye the view
+ * follows a draft placement (`preview`). Plain object on the Viewer's one frame loop; it tells
+ * the decoders which cameras are shown (screens in view, the one looked through); textures are
+ * uploaded only when the player drew a new frame, at most `TEXTURE_HZ` times a second.
  */
 import * as THREE from 'three';
-import type { CameraPose } from '@armtwin/camera/announcement';
-import type { ArmCamera, CameraPicture } from '../cameras/CameraHub.ts';
+import type { CameraPose } from '@armtwin/camera/client';
+import { placementOf, type ArmCamera, type CameraPlacement } from '../cameras/CameraHub.ts';
+import type { CameraDecoders } from '../cameras/CameraDecoders.ts';
+import { TranslucentTwin } from './TranslucentTwin.ts';
+import { twinPoints, type TwinPoint } from './twinPoints.ts';
 import type { Viewer } from './Viewer.ts';
 
-/** What the screens show: the hub's cameras and the pictures their views draw. */
+/** What the screens show: the hub's cameras (with their calibrations). */
 export interface CameraSource {
   readonly version: number;
   readonly list: ArmCamera[];
-  readonly pictures: ReadonlyMap<string, CameraPicture>;
 }
 
 /** A screen's width in the scene, m (height from the picture's aspect). */
 export const SCREEN_WIDTH_M = 0.16;
 /** Texture uploads per second per camera, at most (software WebGL pays for each). */
 export const TEXTURE_HZ = 10;
-/** Opacity of the live picture laid over the twin when viewing through a camera. */
-export const OVERLAY_OPACITY = 0.5;
-/** Vertical field of view when the announcement gives none, degrees. */
-export const DEFAULT_FOV_DEG = 50;
-/** Distance of the overlay in front of the camera, m (beyond the near plane). */
-const OVERLAY_DISTANCE_M = 0.05;
+/** Distance of the live picture in front of the camera, m (beyond the near plane). */
+const BACKDROP_DISTANCE_M = 0.05;
 
 interface Screen {
   camId: string;
-  picture: CameraPicture | undefined;
   texture: THREE.CanvasTexture | null;
+  canvas: HTMLCanvasElement | null;
   mesh: THREE.Mesh<THREE.PlaneGeometry, THREE.MeshBasicMaterial>;
   frames: number;
   uploadedAt: number;
 }
 
 const mm = (v: readonly number[]) => new THREE.Vector3(v[0]! / 1000, v[1]! / 1000, v[2]! / 1000);
+const frustum = new THREE.Frustum();
+const viewProjection = new THREE.Matrix4();
 
 export class CameraScreens {
   private readonly screens = new Map<string, Screen>();
   private version = -1;
   /** The camera looked through, '' = the orbit view. */
   viewing = '';
-  private overlay: THREE.Mesh<THREE.PlaneGeometry, THREE.MeshBasicMaterial> | null = null;
+  /** The placement the view shows while calibrating by eye (null: the camera's own). */
+  private draft: CameraPlacement | null = null;
+  /** The live picture behind everything while viewing through. */
+  private backdrop: THREE.Mesh<THREE.PlaneGeometry, THREE.MeshBasicMaterial> | null = null;
+  private readonly twin = new TranslucentTwin();
+  /** Scene objects hidden while viewing through (floor, grid, …), to show again on leaving. */
+  private hidden: THREE.Object3D[] = [];
   private saved: { position: THREE.Vector3; target: THREE.Vector3; fov: number } | null = null;
+  private readonly inView = new Set<string>();
 
   constructor(
     private readonly viewer: Viewer,
     private readonly source: CameraSource,
+    private readonly decoders: CameraDecoders,
   ) {
     viewer.frameHooks.add(this.tick);
   }
@@ -61,51 +73,77 @@ export class CameraScreens {
     if (camId === this.viewing) return;
     this.leave();
     const cam = this.source.list.find((c) => c.camId === camId);
-    if (!cam?.pose) return;
-    this.enter(cam.camId, cam.pose, cam.fovDeg ?? DEFAULT_FOV_DEG);
+    const placement = cam ? placementOf(cam) : null;
+    if (!placement) return;
+    this.enter(camId, placement);
+  }
+
+  /** Shows `placement` instead of the camera's own while viewing through (null: its own). */
+  preview(placement: CameraPlacement | null): void {
+    this.draft = placement;
+    this.applyPlacement();
+  }
+
+  /** The twin's points a user can click in a camera's picture (four-point calibration). */
+  twinPoints(): TwinPoint[] {
+    return twinPoints(this.viewer.liveRobot, this.viewer.world);
   }
 
   private readonly tick = (now: number): boolean => {
     let changed = false;
+    this.decoders.update();
     if (this.version !== this.source.version) {
       this.version = this.source.version;
       this.sync();
       changed = true;
     }
     for (const s of this.screens.values()) changed = this.refresh(s, now) || changed;
+    if (this.viewing) changed = this.followViewed() || changed;
+    this.tellDecoders();
     return changed;
   };
 
+  /** Which screens are in the view's frustum: those cameras are shown, so they play. */
+  private tellDecoders(): void {
+    const camera = this.viewer.camera;
+    camera.updateMatrixWorld();
+    viewProjection.multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse);
+    frustum.setFromProjectionMatrix(viewProjection);
+    this.inView.clear();
+    for (const s of this.screens.values())
+      if (s.mesh.visible && frustum.intersectsObject(s.mesh)) this.inView.add(s.camId);
+    this.decoders.setScene(this.inView, this.viewing);
+  }
+
   /** Rebuilds the screens from the hub's list (a camera without a pose has none). */
   private sync(): void {
-    const cams = new Map(this.source.list.filter((c) => c.pose).map((c) => [c.camId, c]));
+    const placed = new Map<string, CameraPlacement>();
+    for (const c of this.source.list) {
+      const p = placementOf(c);
+      if (p) placed.set(c.camId, p);
+    }
     for (const [id, s] of this.screens)
-      if (!cams.has(id)) {
+      if (!placed.has(id)) {
         this.dropScreen(s);
         this.screens.delete(id);
       }
-    for (const cam of cams.values()) {
-      let s = this.screens.get(cam.camId);
+    for (const [camId, p] of placed) {
+      let s = this.screens.get(camId);
       if (!s) {
         const mesh = new THREE.Mesh(
           new THREE.PlaneGeometry(SCREEN_WIDTH_M, (SCREEN_WIDTH_M * 3) / 4),
           new THREE.MeshBasicMaterial({ color: 0x000000, side: THREE.DoubleSide }),
         );
-        mesh.name = `camera-screen-${cam.camId}`;
+        mesh.name = `camera-screen-${camId}`;
         this.viewer.world.add(mesh);
-        s = {
-          camId: cam.camId,
-          picture: undefined,
-          texture: null,
-          mesh,
-          frames: -1,
-          uploadedAt: 0,
-        };
-        this.screens.set(cam.camId, s);
+        s = { camId, texture: null, canvas: null, mesh, frames: -1, uploadedAt: 0 };
+        this.screens.set(camId, s);
       }
-      this.place(s.mesh, cam.pose!);
+      this.place(s.mesh, p.pose);
+      s.mesh.visible = camId !== this.viewing;
     }
-    if (this.viewing && !cams.has(this.viewing)) this.leave();
+    if (this.viewing && !placed.has(this.viewing)) this.leave();
+    else if (this.viewing) this.applyPlacement();
   }
 
   /** At the camera's position, its front facing back along the line of sight. */
@@ -118,89 +156,136 @@ export class CameraScreens {
     mesh.lookAt(world.localToWorld(behind));
   }
 
-  /** Follows the view's picture (its canvas may be replaced); uploads a new frame now and then. */
+  /** Follows the camera's canvas; uploads a new frame now and then. */
   private refresh(s: Screen, now: number): boolean {
-    const picture = this.source.pictures.get(s.camId);
-    if (picture !== s.picture) {
-      s.picture = picture;
+    const picture = this.decoders.pictures.get(s.camId);
+    const canvas = picture?.canvas ?? null;
+    if (canvas !== s.canvas) {
+      s.canvas = canvas;
       s.texture?.dispose();
-      s.texture = picture ? new THREE.CanvasTexture(picture.canvas) : null;
+      s.texture = canvas ? new THREE.CanvasTexture(canvas) : null;
       if (s.texture) s.texture.colorSpace = THREE.SRGBColorSpace;
       s.mesh.material.map = s.texture;
       s.mesh.material.color.set(s.texture ? 0xffffff : 0x000000);
       s.mesh.material.needsUpdate = true;
       s.frames = -1;
-      if (this.viewing === s.camId && this.overlay) {
-        this.overlay.material.map = s.texture;
-        this.overlay.material.needsUpdate = true;
+      if (this.viewing === s.camId && this.backdrop) {
+        this.backdrop.material.map = s.texture;
+        this.backdrop.material.needsUpdate = true;
       }
       return true;
     }
-    if (!picture || !s.texture) return false;
+    if (!picture || !s.texture || !canvas) return false;
     const frames = picture.frames();
     if (frames === s.frames || now - s.uploadedAt < 1000 / TEXTURE_HZ) return false;
     s.frames = frames;
     s.uploadedAt = now;
-    const c = picture.canvas;
-    s.mesh.scale.set(1, ((c.height / c.width) * 4) / 3, 1);
+    s.mesh.scale.set(1, ((canvas.height / canvas.width) * 4) / 3, 1);
     s.texture.needsUpdate = true;
+    if (this.viewing === s.camId) this.fitBackdrop();
     return true;
   }
 
-  private enter(camId: string, pose: CameraPose, fovDeg: number): void {
-    const { camera, controls, world } = this.viewer;
+  /**
+   * Keeps the twin translucent, and the view at the camera, when another model loads while
+   * viewing through (loading frames the orbit camera on the new model).
+   */
+  private followViewed(): boolean {
+    const robot = this.viewer.liveRobot;
+    if (!robot || robot === this.twin.root) return false;
+    this.twin.apply(robot);
+    this.applyPlacement();
+    return true;
+  }
+
+  private enter(camId: string, placement: CameraPlacement): void {
+    const { camera, controls, scene } = this.viewer;
     this.saved = {
       position: camera.position.clone(),
       target: controls.target.clone(),
       fov: camera.fov,
     };
-    world.updateMatrixWorld();
-    const eye = world.localToWorld(mm(pose.position));
-    const look = world.localToWorld(mm(pose.lookAt));
     controls.enabled = false;
+    this.viewing = camId;
+    this.draft = null;
+    const screen = this.screens.get(camId);
+    if (screen) screen.mesh.visible = false;
+    // The floor, its shadow and the grids would cover the picture: they step aside.
+    this.hidden = scene.children.filter(
+      (o) => o.visible && o !== this.viewer.world && !(o as THREE.Light).isLight,
+    );
+    for (const o of this.hidden) o.visible = false;
+    const backdrop = new THREE.Mesh(
+      new THREE.PlaneGeometry(1, 1),
+      new THREE.MeshBasicMaterial({
+        map: screen?.texture ?? null,
+        color: screen?.texture ? 0xffffff : 0x000000,
+        depthTest: false,
+        depthWrite: false,
+        fog: false,
+        toneMapped: false,
+      }),
+    );
+    // Drawn first, opaque, writing no depth: everything else draws over it.
+    backdrop.renderOrder = -1000;
+    backdrop.frustumCulled = false;
+    backdrop.name = `camera-backdrop-${camId}`;
+    scene.add(backdrop);
+    this.backdrop = backdrop;
+    const robot = this.viewer.liveRobot;
+    if (robot) this.twin.apply(robot);
+    this.applyPlacement(placement);
+  }
+
+  /** Puts the view's camera (and the picture behind it) at the viewed camera's placement. */
+  private applyPlacement(
+    placement: CameraPlacement | null = this.draft ?? this.viewedPlacement(),
+  ): void {
+    if (!this.viewing || !placement) return;
+    const { camera, controls, world } = this.viewer;
+    world.updateMatrixWorld();
+    const eye = world.localToWorld(mm(placement.pose.position));
+    const look = world.localToWorld(mm(placement.pose.lookAt));
     controls.target.copy(look);
     camera.position.copy(eye);
     camera.up.set(0, 1, 0);
     camera.lookAt(look);
-    camera.fov = fovDeg;
+    camera.fov = placement.fovDeg;
     camera.updateProjectionMatrix();
-    const screen = this.screens.get(camId);
-    if (screen) screen.mesh.visible = false;
-    // The live picture over the whole view at the camera's own field of view and aspect.
-    const h = 2 * OVERLAY_DISTANCE_M * Math.tan(THREE.MathUtils.degToRad(fovDeg) / 2);
-    const c = screen?.picture?.canvas;
-    const aspect = c && c.height > 0 ? c.width / c.height : 4 / 3;
-    const overlay = new THREE.Mesh(
-      new THREE.PlaneGeometry(h * aspect, h),
-      new THREE.MeshBasicMaterial({
-        map: screen?.texture ?? null,
-        transparent: true,
-        opacity: OVERLAY_OPACITY,
-        depthTest: false,
-        depthWrite: false,
-      }),
-    );
-    overlay.renderOrder = 1000;
-    overlay.position
-      .copy(eye)
-      .add(look.clone().sub(eye).normalize().multiplyScalar(OVERLAY_DISTANCE_M));
-    overlay.quaternion.copy(camera.quaternion);
-    overlay.name = `camera-overlay-${camId}`;
-    this.viewer.scene.add(overlay);
-    this.overlay = overlay;
-    this.viewing = camId;
+    this.fitBackdrop();
     this.viewer.invalidate();
+  }
+
+  private viewedPlacement(): CameraPlacement | null {
+    const cam = this.source.list.find((c) => c.camId === this.viewing);
+    return cam ? placementOf(cam) : null;
+  }
+
+  /** The picture exactly fills the camera's field of view, at its own aspect, centred. */
+  private fitBackdrop(): void {
+    const b = this.backdrop;
+    if (!b) return;
+    const { camera } = this.viewer;
+    const h = 2 * BACKDROP_DISTANCE_M * Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2);
+    const c = this.screens.get(this.viewing)?.canvas;
+    const aspect = c && c.height > 0 ? c.width / c.height : 4 / 3;
+    b.scale.set(h * aspect, h, 1);
+    camera.getWorldDirection(b.position).multiplyScalar(BACKDROP_DISTANCE_M).add(camera.position);
+    b.quaternion.copy(camera.quaternion);
   }
 
   private leave(): void {
     if (!this.viewing) return;
     const { camera, controls } = this.viewer;
-    if (this.overlay) {
-      this.viewer.scene.remove(this.overlay);
-      this.overlay.geometry.dispose();
-      this.overlay.material.dispose();
-      this.overlay = null;
+    if (this.backdrop) {
+      this.backdrop.removeFromParent();
+      this.backdrop.geometry.dispose();
+      this.backdrop.material.dispose();
+      this.backdrop = null;
     }
+    this.twin.restore();
+    for (const o of this.hidden) o.visible = true;
+    this.hidden = [];
     const screen = this.screens.get(this.viewing);
     if (screen) screen.mesh.visible = true;
     if (this.saved) {
@@ -212,6 +297,7 @@ export class CameraScreens {
     }
     controls.enabled = true;
     this.saved = null;
+    this.draft = null;
     this.viewing = '';
     this.viewer.invalidate();
   }

@@ -6,6 +6,7 @@
  * something moved. The first frame is drawn after every mesh has loaded (`load()` resolves).
  */
 import * as THREE from 'three';
+import type { URDFRobot } from 'urdf-loader';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { ArmStore } from '../store/ArmStore.ts';
 import type { TargetPreview } from '../store/TargetPreview.ts';
@@ -117,6 +118,10 @@ export class Viewer {
   get canvas(): HTMLCanvasElement {
     return this.renderer.domElement;
   }
+  /** The live arm's URDF model (null before a robot loads); replaced when another loads. */
+  get liveRobot(): URDFRobot | null {
+    return this.live?.robot ?? null;
+  }
 
   /** The URDF joint values drawn now (rad or m), in servo order ([] before a robot loads). */
   jointValues(which: DrawnRobot = 'robot'): number[] {
@@ -146,6 +151,9 @@ export class Viewer {
     for (const old of [this.live?.robot, this.ghost?.robot, this.sibling?.robot])
       old?.removeFromParent();
     this.live = new PosedRobot(robot, joints);
+    // Posed at once from the last sample: the store is sampled only when the arm moves, and an
+    // arm at rest may not report a change for a long while (a fleet switch showed zeros).
+    this.live.pose(this.store.rendered);
     this.ghost = new Ghost(new PosedRobot(ghost, joints), this.store, this.target);
     this.sibling =
       sibling && this.replay

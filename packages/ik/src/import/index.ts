@@ -2,3 +2,4 @@
 export * from './derive-profile.ts';
 export * from './meshes.ts';
 export * from './plan-import.ts';
+export * from './limits.ts';

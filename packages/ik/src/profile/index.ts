@@ -3,3 +3,5 @@ export * from './types.ts';
 export * from './convert.ts';
 export { parseProfile } from './parse.ts';
 export * from './servo-table.ts';
+export * from './calibration.ts';
+export * from './apply-calibration.ts';

@@ -122,14 +122,17 @@ function parseServo(f: Fields, path: string, raw: unknown): ProfileServo | undef
 function parseIk(f: Fields, raw: unknown, servos: readonly ProfileServo[]): ProfileIk | undefined {
   const o = f.object('ik', raw);
   if (!o) return undefined;
-  f.noUnknownKeys('ik', o, ['kind', 'baseLink', 'tipLink', 'analytic5']);
+  f.noUnknownKeys('ik', o, ['kind', 'baseLink', 'tipLink', 'analytic5', 'floorZ']);
   const kind = f.oneOf('ik.kind', o.kind, ['analytic5', 'numeric'] as const);
   const baseLink = f.string('ik.baseLink', o.baseLink);
   const tipLink = f.string('ik.tipLink', o.tipLink);
+  // The floor (keep-out below it), mm in the base frame; absent = the default of @armtwin/motion.
+  const floorZ = o.floorZ === undefined ? undefined : f.number('ik.floorZ', o.floorZ);
+  const floor = floorZ === undefined ? {} : { floorZ };
   if (kind !== 'analytic5') {
     if (o.analytic5 !== undefined)
       f.fail('ik.analytic5', 'only allowed when ik.kind is "analytic5"');
-    return kind && baseLink && tipLink ? { kind, baseLink, tipLink } : undefined;
+    return kind && baseLink && tipLink ? { kind, baseLink, tipLink, ...floor } : undefined;
   }
   const a = f.object('ik.analytic5', o.analytic5);
   if (!a) return undefined;
@@ -168,7 +171,7 @@ function parseIk(f: Fields, raw: unknown, servos: readonly ProfileServo[]): Prof
     links: { l0: l[0]!, l1: l[1]!, l2: l[2]!, l3: l[3]! },
     jointOffsetsDeg: o4 as unknown as [number, number, number, number],
   };
-  return { kind, baseLink, tipLink, analytic5 };
+  return { kind, baseLink, tipLink, analytic5, ...floor };
 }
 
 /** One pose → servo values in servo order (NaN where absent). */

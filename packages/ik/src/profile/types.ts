@@ -89,6 +89,11 @@ export interface ProfileIk {
   readonly tipLink: string;
   /** Present when kind is `analytic5`. */
   readonly analytic5?: Analytic5Spec;
+  /**
+   * The floor, mm: the plane z = floorZ of the base frame, which no pose may put the tool point
+   * or a joint origin below (`checkFloor` of @armtwin/motion). Absent: `DEFAULT_FLOOR_Z` (0).
+   */
+  readonly floorZ?: number;
 }
 
 export interface Profile {

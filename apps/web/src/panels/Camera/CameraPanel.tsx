@@ -1,21 +1,29 @@
 /**
  * Cameras: every camera announced for the selected arm (PROTOCOL.md §7, src/cameras/CameraHub.ts),
- * each a `Camera <label>` region drawn by its own player outside React. Folds away like the
- * Connection panel.
+ * each a `Camera <label>` region showing the canvas its decoder draws into (outside React). Folds
+ * away like the Connection panel; folded, a camera decodes only where the 3D view still shows it
+ * (src/cameras/CameraDecoders.ts).
  */
 import './camera.css';
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
+import { placementOf } from '../../cameras/CameraHub.ts';
 import { CameraView } from './CameraView.tsx';
 
 export function CameraPanel() {
   const { cameras, cameraScreens, settings } = useHud();
-  // Re-render when a camera comes, changes or goes, or the 3D view looks through another.
-  const viewing = useSampled(() => `${cameras.version}:${cameraScreens.viewing}`).split(':')[1];
+  // Re-render when a camera or its calibration changes, the 3D view looks through another, or
+  // the page's role changes.
+  const [, viewing, calibrate] = useSampled(
+    () => `${cameras.version}:${cameraScreens.viewing}:${cameras.canCalibrate ? 1 : 0}`,
+  ).split(':');
   const list = cameras.list;
-  const credentials = { username: settings.username, password: settings.password };
   return (
-    <details className="panel cameras" open>
+    <details
+      className="panel cameras"
+      open
+      onToggle={(e) => cameras.decoders.setPanelOpen(e.currentTarget.open)}
+    >
       <summary>
         <h2>Cameras</h2>
         <span className="dim">{list.length}</span>
@@ -27,10 +35,20 @@ export function CameraPanel() {
           <CameraView
             key={c.camId}
             camera={c}
-            credentials={credentials}
-            pictures={cameras.pictures}
+            decoders={cameras.decoders}
             viewing={viewing === c.camId}
-            {...(c.pose
+            {...(calibrate === '1'
+              ? {
+                  calibration: {
+                    save: (p) => cameras.saveCalibration(c.camId, p, settings.username),
+                    preview: (p) => {
+                      if (cameraScreens.viewing === c.camId) cameraScreens.preview(p);
+                    },
+                    twinPoints: () => cameraScreens.twinPoints(),
+                  },
+                }
+              : {})}
+            {...(placementOf(c)
               ? {
                   onViewThrough: () =>
                     cameraScreens.viewThrough(viewing === c.camId ? '' : c.camId),

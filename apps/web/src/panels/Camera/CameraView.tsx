@@ -1,60 +1,46 @@
 /**
- * One camera: a region named `Camera <label>` (the label is text only), the canvas its player
- * draws into (outside React), and a line sampled four times a second: the age of the last frame,
- * or "camera offline since HH:MM:SS" while the stream is gone.
+ * One camera: a region named `Camera <label>` (the label is text only), the canvas its decoder
+ * draws into (src/cameras/CameraDecoders.ts, outside React; this view only hosts it), and a line
+ * sampled four times a second: the age of the last frame, or "camera offline since HH:MM:SS"
+ * while the stream is gone. For an operator, the calibration below it (./Calibration.tsx).
  */
 import { useEffect, useRef } from 'react';
 import { useSampled } from '../../hud/useSampled.ts';
-import type { ArmCamera, CameraPicture } from '../../cameras/CameraHub.ts';
-import type { CameraPlayer, CameraPlayerStats } from '../../cameras/CameraPlayer.ts';
-import { H264Player, hasVideoDecoder } from '../../cameras/H264Player.ts';
-import { MjpegPlayer } from '../../cameras/MjpegPlayer.ts';
-import { pickStream, usableUrl, type CameraCredentials } from '../../cameras/streamUrl.ts';
+import type { ArmCamera } from '../../cameras/CameraHub.ts';
+import type { CameraDecoders } from '../../cameras/CameraDecoders.ts';
+import { hasVideoDecoder } from '../../cameras/H264Player.ts';
+import { pickStream } from '../../cameras/streamUrl.ts';
+import { Calibration, type CalibrationActions } from './Calibration.tsx';
 import { ageWords, offlineWords } from './words.ts';
 
 interface Props {
   camera: ArmCamera;
-  credentials: CameraCredentials;
-  /** Where the player's picture is registered for the 3D view's screens. */
-  pictures: Map<string, CameraPicture>;
+  decoders: CameraDecoders;
   /** Whether the 3D view looks through this camera now. */
   viewing: boolean;
   /** Toggles "view through this camera" (absent: the camera has no pose). */
   onViewThrough?: () => void;
+  /** What an operator may do to the camera's calibration (absent: nothing). */
+  calibration?: CalibrationActions;
 }
 
-export function CameraView({ camera, credentials, pictures, viewing, onViewThrough }: Props) {
-  const canvasRef = useRef<HTMLCanvasElement>(null);
-  const playerRef = useRef<CameraPlayer | null>(null);
-  const stream = pickStream(camera, hasVideoDecoder());
-  const url = stream?.url ?? '';
-  const kind = stream?.kind ?? null;
-  const { username, password } = credentials;
+export function CameraView({ camera, decoders, viewing, onViewThrough, calibration }: Props) {
+  const hostRef = useRef<HTMLDivElement>(null);
+  const kind = pickStream(camera, hasVideoDecoder())?.kind ?? null;
+  const camId = camera.camId;
 
   useEffect(() => {
-    const canvas = canvasRef.current;
-    if (!canvas || !kind) return;
-    const u = usableUrl({ url, kind });
-    if (!u) return;
-    const creds = { username, password };
-    const player =
-      kind === 'h264-ws' ? new H264Player(canvas, u, creds) : new MjpegPlayer(canvas, u, creds);
-    playerRef.current = player;
-    const picture: CameraPicture = { canvas, frames: () => player.stats.frames };
-    pictures.set(camera.camId, picture);
-    player.start();
-    return () => {
-      player.dispose();
-      if (playerRef.current === player) playerRef.current = null;
-      if (pictures.get(camera.camId) === picture) pictures.delete(camera.camId);
-    };
-  }, [url, kind, username, password, pictures, camera.camId]);
+    const host = hostRef.current;
+    if (!host) return;
+    const canvas = decoders.canvasOf(camId);
+    host.appendChild(canvas);
+    return () => canvas.remove();
+  }, [decoders, camId]);
 
   const snap = useSampled(() => {
-    const s: CameraPlayerStats | undefined = playerRef.current?.stats;
+    const s = decoders.stats(camId);
     const now = Date.now();
     return {
-      frames: s?.frames ?? 0,
       dropped: s?.dropped ?? 0,
       line: !s
         ? 'connecting…'
@@ -71,7 +57,7 @@ export function CameraView({ camera, credentials, pictures, viewing, onViewThrou
     <section
       className={snap.offline ? 'camera-view offline' : 'camera-view'}
       aria-label={`Camera ${camera.label}`}
-      data-camid={camera.camId}
+      data-camid={camId}
       data-kind={kind ?? 'none'}
     >
       <div className="camera-head">
@@ -83,7 +69,7 @@ export function CameraView({ camera, credentials, pictures, viewing, onViewThrou
         )}
       </div>
       {kind ? (
-        <canvas ref={canvasRef} className="camera-canvas" width={640} height={480} />
+        <div ref={hostRef} className="camera-picture" />
       ) : (
         <p className="error">No stream this page can play.</p>
       )}
@@ -91,6 +77,14 @@ export function CameraView({ camera, credentials, pictures, viewing, onViewThrou
         {snap.line}
         {snap.dropped > 0 && <span className="dim"> · {snap.dropped} dropped</span>}
       </p>
+      {calibration && kind && (
+        <Calibration
+          camera={camera}
+          viewing={viewing}
+          actions={calibration}
+          picture={() => decoders.canvasOf(camId)}
+        />
+      )}
     </section>
   );
 }

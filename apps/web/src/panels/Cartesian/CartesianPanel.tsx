@@ -5,16 +5,15 @@
  * `$KMS:…!` only for a target the local IK accepts, and shows the arm's reply code. On an arm
  * whose profile is not `analytic5` (track6) the IK is the numeric one and "Move" sends a motion
  * request (`arm/{id}/request`, joint mode) instead (solveTarget.ts).
- * A click on the floor in the 3D view places the target there (X, Y; Z kept).
+ * A click on the floor in the 3D view places the target there (X, Y; Z kept). The fields start
+ * at the active arm's tip (FK of where it is, else of its home pose): a point it can reach.
  */
-import { useEffect, useState } from 'react';
+import { useEffect, useMemo, useState } from 'react';
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { parseTarget, type TargetFields } from './parseTarget.ts';
-import { codeWords, solveTarget } from './solveTarget.ts';
+import { codeWords, solveTarget, startFields } from './solveTarget.ts';
 import { nextRequestId } from '../Command/RequestLog.ts';
-
-const INITIAL: TargetFields = { x: '200', y: '0', z: '150', pitch: '' };
 
 /** The target's inputs and their visible labels (also their accessible names). */
 const CART_FIELDS = [
@@ -26,8 +25,12 @@ const CART_FIELDS = [
 
 export function CartesianPanel() {
   const { store, link, target, robots, requests } = useHud();
-  const [fields, setFields] = useState(INITIAL);
-  const [touched, setTouched] = useState(false);
+  const motion = robots.active.motion;
+  // Until edited, the fields hold where this arm's tip is (its planner may load after mount).
+  const start = useMemo(() => startFields(motion, store.pwm), [motion, store]);
+  const [edited, setEdited] = useState<TargetFields | null>(null);
+  const fields = edited ?? start;
+  const touched = edited !== null;
   const [sent, setSent] = useState<{ text: string; replies: number } | null>(null);
   const [refusal, setRefusal] = useState('');
 
@@ -43,7 +46,8 @@ export function CartesianPanel() {
         store.pwm,
       )
     : null;
-  const ikCodeMessage = (code: number) => codeWords(code, result?.via ?? 'kms');
+  const ikCodeMessage = (code: number) =>
+    code === result?.code && result.floor ? result.floor : codeWords(code, result?.via ?? 'kms');
 
   // Mirror the preview into the plain store the 3D view reads (marker and ghost).
   useEffect(() => {
@@ -59,11 +63,10 @@ export function CartesianPanel() {
   useEffect(
     () =>
       target.onPlace((x, y) => {
-        setFields((f) => ({ ...f, x: String(x), y: String(y) }));
-        setTouched(true);
+        setEdited((f) => ({ ...(f ?? start), x: String(x), y: String(y) }));
         setRefusal('');
       }),
-    [target],
+    [target, start],
   );
 
   const live = useSampled(() => ({
@@ -76,8 +79,7 @@ export function CartesianPanel() {
   }));
 
   const edit = (key: keyof TargetFields) => (e: React.ChangeEvent<HTMLInputElement>) => {
-    setFields({ ...fields, [key]: e.currentTarget.value });
-    setTouched(true);
+    setEdited({ ...fields, [key]: e.currentTarget.value });
     setRefusal('');
   };
 

@@ -4,7 +4,14 @@
  * target then goes out as a motion request, which any armtwin arm serves). Pure.
  */
 import { ikCodeMessage, solveIk, type ArmProfile } from '@armtwin/ik';
-import { motionCodeMessage, solveTip, tipPose, type MotionRobot } from '@armtwin/motion';
+import {
+  CODE_BELOW_FLOOR,
+  checkFloor,
+  motionCodeMessage,
+  solveTip,
+  tipPose,
+  type MotionRobot,
+} from '@armtwin/motion';
 import { angleFromPwm } from '@armtwin/protocol';
 
 export interface TargetSolution {
@@ -18,13 +25,63 @@ export interface TargetSolution {
   pwm: number[];
   /** How the target goes out: `$KMS` (analytic arm) or a motion request. */
   via: 'kms' | 'request';
+  /** With code 24: what is below the floor, in words (`tip 50.0 mm below the floor …`). */
+  floor?: string;
+}
+
+/**
+ * Where the Cartesian fields start: the tip of `motion` at `pwm` (where the arm is), or at its
+ * home pose when the arm has not reported; mm to 0.1, pitch blank. Blank fields without a robot.
+ */
+export function startFields(
+  motion: MotionRobot | null,
+  pwm: ArrayLike<number>,
+): { x: string; y: string; z: string; pitch: string } {
+  if (!motion) return { x: '', y: '', z: '', pitch: '' };
+  const now = Array.from(pwm);
+  const at =
+    now.length === motion.ids.length && now.every(Number.isFinite)
+      ? now
+      : motion.table.map((s) => s.homePwm);
+  const tip = tipPose(motion, at);
+  const mm = (v: number) => String(Math.round(v * 10) / 10 + 0);
+  return { x: mm(tip.x), y: mm(tip.y), z: mm(tip.z), pitch: '' };
 }
 
 export function codeWords(code: number, via: TargetSolution['via']): string {
-  return via === 'kms' ? ikCodeMessage(code) : motionCodeMessage(code);
+  return via === 'kms' && code !== CODE_BELOW_FLOOR ? ikCodeMessage(code) : motionCodeMessage(code);
+}
+
+/**
+ * The floor (docs/protocol.md, "The floor"): a solution that would put the tool or a joint
+ * under it becomes code 24, refused here before anything is sent (the arm refuses it too).
+ */
+function floorChecked(
+  r: TargetSolution,
+  motion: MotionRobot | null,
+  seed: ArrayLike<number>,
+): TargetSolution {
+  if (r.code !== 0 || !motion) return r;
+  const pwm = r.pwm.map((p, i) =>
+    Number.isNaN(p) ? (Number.isFinite(seed[i]) ? seed[i]! : motion.table[i]!.homePwm) : p,
+  );
+  const c = checkFloor(motion, pwm);
+  return c.ok ? r : { ...r, code: CODE_BELOW_FLOOR, floor: c.message };
 }
 
 export function solveTarget(
+  x: number,
+  y: number,
+  z: number,
+  pitch: number | undefined,
+  arm: ArmProfile,
+  motion: MotionRobot | null,
+  seed: ArrayLike<number>,
+): TargetSolution {
+  return floorChecked(solveAny(x, y, z, pitch, arm, motion, seed), motion, seed);
+}
+
+function solveAny(
   x: number,
   y: number,
   z: number,

@@ -3,10 +3,11 @@
  * `parseCommand` (@armtwin/motion) against the arm's profile → a motion request on
  * `arm/{id}/request`; the arm's feedback (planned, executing, done, unreachable with its code in
  * words, failed with its message) is listed as it arrives, as text only. The tip line is the FK
- * of the pulses the arm reports.
+ * of the pulses the arm reports. A command whose plan would take the hand (or a joint) below the
+ * floor is refused here, before it is sent.
  */
 import { useState } from 'react';
-import { parseCommand, tipPose } from '@armtwin/motion';
+import { CODE_BELOW_FLOOR, parseCommand, planRequest, tipPose } from '@armtwin/motion';
 import '../../robots/robots.css';
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
@@ -39,7 +40,16 @@ export function CommandPanel() {
     const id = nextRequestId();
     const r = parseCommand(text, id, profile);
     if (!r.ok) return setError(r.message);
+    // The floor is checked here first (the arm checks it again): plan from where the arm is.
+    const motion = robots.active.motion;
+    const from = Array.from(store.pwm);
+    if (motion && from.length === motion.ids.length && from.every(Number.isFinite)) {
+      const out = planRequest(motion, r.request, from);
+      if (out.status === 'unreachable' && out.code === CODE_BELOW_FLOOR)
+        return setError(`Not sent: ${out.message.replace(/^targets\[\d+\]: /, '')}.`);
+    }
     if (!fleet.request(r.request)) return setError('Not sent: the broker is not connected.');
+    store.commandedPwm.fill(NaN); // the arm now heads elsewhere than this page's last jog
     setError('');
     log.sent(id, text.trim());
   };

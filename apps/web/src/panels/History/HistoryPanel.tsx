@@ -3,7 +3,8 @@
  * at the bottom of the view, between the columns (the emergency stop stays uncovered). Ranges
  * 5 min / 1 h / 24 h / custom; tabs for the charts, the tracking-error table and alarm log, and
  * the replay. Loads happen on user action (opening, a range, Refresh, a joint), never per frame.
- * API failures are shown as text in place of the view.
+ * API failures are shown as text in place of the view. Only the servos of the arm's current
+ * profile are shown; others stored under the same arm id are named, not drawn (profileServos.ts).
  */
 import { useCallback, useMemo, useRef, useState } from 'react';
 import { useHud } from '../../hud/HudContext.ts';
@@ -17,7 +18,9 @@ import {
   type AngleViews,
   type OverviewViews,
 } from './loadHistory.ts';
+import { onlyProfileServos } from './profileServos.ts';
 import { resolveRange, toLocalInput, type RangeChoice, type TimeRange } from './range.ts';
+import { ExportButton } from './ExportButton.tsx';
 import { RangePicker } from './RangePicker.tsx';
 import { ReplayControls } from './ReplayControls.tsx';
 import { TablesView } from './TablesView.tsx';
@@ -67,6 +70,8 @@ export function HistoryPanel() {
   const [joint, setJoint] = useState(servoId(0));
   const [range, setRange] = useState<TimeRange | null>(null);
   const [overview, setOverview] = useState<OverviewViews | null>(null);
+  /** Servos with data in the range that the arm's current profile does not have (not shown). */
+  const [others, setOthers] = useState<string[]>([]);
   const [angles, setAngles] = useState<AngleViews | null>(null);
   const [rangeError, setRangeError] = useState<string | null>(null);
   const [loading, setLoading] = useState(false);
@@ -101,7 +106,9 @@ export function HistoryPanel() {
     loadOverview(api, arm, resolved.range, ac.signal)
       .then((v) => {
         if (ac.signal.aborted) return;
-        setOverview(v);
+        const mine = onlyProfileServos(v, servoIds);
+        setOverview(mine.overview);
+        setOthers(mine.others);
         setLoading(false);
       })
       .catch((err: unknown) => {
@@ -135,7 +142,9 @@ export function HistoryPanel() {
           setChoice(next);
           if (now) load(next);
         }}
-      />
+      >
+        <ExportButton api={api} arm={arm} profile={robots.active.spec.name} range={range} />
+      </RangePicker>
       {rangeError && (
         <p className="history-error" role="alert">
           {rangeError}
@@ -163,6 +172,12 @@ export function HistoryPanel() {
         id="history-tabpanel"
         aria-labelledby={`history-tab-${tab}`}
       >
+        {overview && others.length > 0 && tab !== 'replay' && (
+          <p className="dim" data-testid="history-others">
+            Not shown: {others.length === 1 ? 'servo' : 'servos'} {others.join(', ')}, recorded
+            under {arm} but not in its current profile ({robots.active.spec.name}).
+          </p>
+        )}
         {!overview && tab !== 'replay' && (
           <p className="dim">{loading ? 'Loading…' : 'Nothing loaded yet.'}</p>
         )}

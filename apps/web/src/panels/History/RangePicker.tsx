@@ -1,4 +1,8 @@
-/** The time range: 5 min, 1 h, 24 h (ending now) or custom (two local date-times), and Refresh. */
+/**
+ * The time range: 5 min, 1 h, 24 h (ending now) or custom (two local date-times), and Refresh;
+ * `children` (the export) end the same row.
+ */
+import type { ReactNode } from 'react';
 import { RANGE_PRESETS, type RangeChoice, type RangePreset } from './range.ts';
 
 export function RangePicker({
@@ -6,7 +10,9 @@ export function RangePicker({
   onChange,
   onLoad,
   loading,
+  children,
 }: {
+  children?: ReactNode;
   choice: RangeChoice;
   onChange: (next: RangeChoice, loadNow: boolean) => void;
   onLoad: () => void;
@@ -55,6 +61,7 @@ export function RangePicker({
       <button type="button" onClick={onLoad} disabled={loading}>
         {loading ? 'Loading…' : choice.preset === 'custom' ? 'Show' : 'Refresh'}
       </button>
+      {children}
     </div>
   );
 }

@@ -6,7 +6,7 @@
  */
 import type { Loaded } from './loaded.ts';
 
-export type Endpoint = 'series' | 'alarms' | 'tracking' | 'pose';
+export type Endpoint = 'series' | 'alarms' | 'tracking' | 'pose' | 'export';
 export type Fetch = (url: string, init?: RequestInit) => Promise<Response>;
 
 export interface HistoryApiOptions {
@@ -83,5 +83,31 @@ export class HistoryApi {
     if (typeof body !== 'object' || body === null)
       return { ok: false, error: `The history API sent something that is not JSON (${url}).` };
     return { ok: true, data: body as T };
+  }
+
+  /** A file endpoint (`export`): the body and the file name the server gives it. */
+  async file(
+    endpoint: Endpoint,
+    params: Record<string, string | number | readonly string[]>,
+  ): Promise<Loaded<{ blob: Blob; name: string }>> {
+    const url = historyUrl(this.opts.base, endpoint, params);
+    try {
+      const res = await this.fetch(url, { headers: { ...this.opts.headers } });
+      if (!res.ok) {
+        const text = await res.text().catch(() => '');
+        let body: unknown = text;
+        try {
+          body = JSON.parse(text);
+        } catch {
+          // not JSON: keep the text
+        }
+        return { ok: false, error: errorText(res.status, body) };
+      }
+      const name = /filename="([^"]+)"/.exec(res.headers.get('content-disposition') ?? '')?.[1];
+      return { ok: true, data: { blob: await res.blob(), name: name ?? `${endpoint}.bin` } };
+    } catch (err) {
+      const why = err instanceof Error ? err.message : String(err);
+      return { ok: false, error: `The history API at ${this.opts.base} is unreachable: ${why}` };
+    }
   }
 }

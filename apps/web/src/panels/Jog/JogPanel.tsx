@@ -3,8 +3,11 @@
  * in degrees (millimetres for a prismatic axis) within the joint's limits (so the HUD never sends
  * an out-of-limit pulse). Dragging or arrow keys
  * publish `#IIIPppppTtttt!` (`#IIIA±ddd.ddTtttt!` for a servo that speaks angles), coalesced by ArmLink to ≤ 20 per second per servo. Disabled while
- * the data is stale or the broker is not connected.
+ * the data is stale or the broker is not connected. A jog that would take the hand (or a joint)
+ * below the floor is not sent, and says so. Each slider follows the arm when not in use.
  */
+import { useState } from 'react';
+import { checkFloorMove } from '@armtwin/motion';
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { JogSlider } from './JogSlider.tsx';
@@ -24,11 +27,23 @@ export function JogPanel() {
           spec.speaksAngle ? spec.valueFromAngle(store.angle[i]!) : spec.valueFromPwm(p),
         );
       }),
-      commanded: Array.from(store.commandedPwm, (p, i) =>
-        round1(servos[i]?.valueFromPwm(p) ?? NaN),
-      ),
     };
   });
+  const [refusal, setRefusal] = useState('');
+
+  /** Servo i to `pwm`, unless that pose would take the hand or a joint below the floor. */
+  const jog = (i: number, id: number, pwm: number) => {
+    const motion = robots.active.motion;
+    const from = Array.from(store.pwm);
+    if (motion && from.length === motion.ids.length && from.every(Number.isFinite)) {
+      const to = [...from];
+      to[i] = pwm;
+      const c = checkFloorMove(motion, from, to);
+      if (!c.ok) return setRefusal(`Not sent: ${c.message}.`);
+    }
+    setRefusal('');
+    link.jog(id, pwm);
+  };
   return (
     <section className="panel jog" aria-labelledby="jog-title">
       <h2 id="jog-title">Jog</h2>
@@ -48,11 +63,15 @@ export function JogPanel() {
           key={spec.id}
           spec={spec}
           live={snap.live[i] ?? NaN}
-          commanded={snap.commanded[i] ?? NaN}
           disabled={!snap.enabled}
-          onJog={(pwm) => link.jog(spec.id, pwm)}
+          onJog={(pwm) => jog(i, spec.id, pwm)}
         />
       ))}
+      {refusal && (
+        <p className="note bad" role="alert" data-testid="jog-refusal">
+          {refusal}
+        </p>
+      )}
     </section>
   );
 }

@@ -42,6 +42,14 @@ export class PlanRunner {
   private readonly onStop = () => this.cancel('stopped: emergency stop');
   private readonly listeners = new Set<(plan: Plan) => void>();
 
+  private readonly endListeners = new Set<(state: RunState) => void>();
+
+  /** Called once a run ends (done, failed or stopped), so the ghost's preview of it can go. */
+  onEnd(fn: (state: RunState) => void): () => void {
+    this.endListeners.add(fn);
+    return () => this.endListeners.delete(fn);
+  }
+
   /** Called with each new plan (a re-plan), so the ghost can preview it. */
   onPlan(fn: (plan: Plan) => void): () => void {
     this.listeners.add(fn);
@@ -65,6 +73,7 @@ export class PlanRunner {
     this.sent = 0;
     this.pauses = 0;
     this.lastSent = Array.from(store.pwm);
+    store.commandedPwm.fill(NaN); // the arm now follows the plan, not this page's last jog
     link.stopListeners.add(this.onStop);
     this.timer = setInterval(() => this.tick(store, robot), RUN_TICK_MS);
   }
@@ -79,6 +88,7 @@ export class PlanRunner {
     if (reason) {
       this.state = 'stopped';
       this.message = reason;
+      for (const fn of this.endListeners) fn('stopped');
     }
   }
 
@@ -89,6 +99,7 @@ export class PlanRunner {
     this.link = null;
     this.state = state;
     this.message = message;
+    for (const fn of this.endListeners) fn(state);
   }
 
   private tick(store: ArmStore, robot: MotionRobot): void {

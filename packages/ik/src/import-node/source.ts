@@ -1,10 +1,12 @@
 /**
- * The source of `armtwin robot import` as an `ImportSource`: a .urdf file (its meshes looked up
- * on disk from its folder up), a folder holding one .urdf, or a .zip holding one.
+ * Where a robot import reads from, as an `ImportSource`: a .urdf file (its meshes looked up on
+ * disk from its folder up), a folder holding one .urdf, or a .zip holding one, on disk
+ * (`armtwin robot import`) or as bytes (`zipSource`: a folder or zip dropped on the HUD and
+ * sent to `armtwin up`). Node only.
  */
 import fs from 'node:fs';
 import path from 'node:path';
-import type { ImportSource } from '@armtwin/ik';
+import type { ImportSource } from '../import/plan-import.ts';
 import { readZip } from './zip.ts';
 
 /** How deep a folder is searched for its URDF. */
@@ -50,20 +52,29 @@ export function importSource(input: string): ImportSource {
   const stat = fs.statSync(abs, { throwIfNoEntry: false });
   if (!stat) throw new Error(`${input}: no such file or folder`);
   if (stat.isDirectory()) return onDisk(pickUrdf(listFiles(abs), input));
-  if (/\.zip$/i.test(abs)) {
-    const files = readZip(fs.readFileSync(abs));
-    const urdfPath = pickUrdf([...files.keys()], input);
-    return {
-      urdfPath,
-      urdfText: new TextDecoder().decode(files.get(urdfPath)),
-      has: (p) => files.has(p.replace(/^\//, '')),
-      read: (p) => files.get(p.replace(/^\//, ''))!,
-    };
-  }
+  if (/\.zip$/i.test(abs)) return zipSource(fs.readFileSync(abs), input);
   if (/\.urdf$/i.test(abs)) return onDisk(abs);
   if (/\.xacro$/i.test(abs))
     throw new Error(
       `${input} is xacro: expand it to a plain .urdf first (e.g. \`xacro ${path.basename(input)} > robot.urdf\`)`,
     );
   throw new Error(`${input}: give a .urdf file, a folder holding one, or a .zip holding one`);
+}
+
+/**
+ * A .zip's bytes holding one .urdf, or several and `urdf` (a file name or path ending) naming
+ * the one to import; `where` names the zip in errors. Throws when it cannot be used.
+ */
+export function zipSource(bytes: Buffer, where: string, urdf?: string): ImportSource {
+  const files = readZip(bytes);
+  const names = [...files.keys()];
+  const chosen = urdf ? names.filter((n) => n === urdf || n.endsWith(`/${urdf}`)) : names;
+  if (urdf && chosen.length === 0) throw new Error(`no ${urdf} in ${where}`);
+  const urdfPath = pickUrdf(chosen, where);
+  return {
+    urdfPath,
+    urdfText: new TextDecoder().decode(files.get(urdfPath)),
+    has: (p) => files.has(p.replace(/^\//, '')),
+    read: (p) => files.get(p.replace(/^\//, ''))!,
+  };
 }

@@ -1,0 +1,102 @@
+import fs from 'node:fs';
+import { once } from 'node:events';
+import { Option, type Command } from 'commander';
+import { InfluxDB } from '@influxdata/influxdb-client';
+import { loadConfig } from '@armtwin/middleware';
+import {
+  EXPORT_FORMATS,
+  exportRecording,
+  loadRecordingRobot,
+  type ExportFormat,
+} from '@armtwin/middleware/export';
+
+interface ExportFlags {
+  arm: string;
+  from: string;
+  to: string;
+  format: ExportFormat;
+  out: string;
+  profile?: string;
+  models?: string;
+}
+
+/** Epoch ms of an ISO 8601 time; a clear error for anything else. */
+function isoTime(name: string) {
+  return (value: string): number => {
+    const ms = Date.parse(value);
+    if (!/^\d{4}-\d\d-\d\d/.test(value) || !Number.isFinite(ms))
+      throw new Error(
+        `--${name} must be an ISO 8601 time such as 2026-11-24T06:00:00Z, got "${value}"`,
+      );
+    return ms;
+  };
+}
+
+export function registerExport(program: Command): void {
+  program
+    .command('export')
+    .description("write an arm's stored history over a time range as MCAP (Foxglove) or CSV")
+    .requiredOption('--arm <id>', 'arm id')
+    .requiredOption('--from <iso-time>', 'start of the range (included)')
+    .requiredOption('--to <iso-time>', 'end of the range (excluded)')
+    .addOption(
+      new Option('--format <format>', 'file format').choices(EXPORT_FORMATS).default('mcap'),
+    )
+    .requiredOption('--out <file>', 'file to write')
+    .option(
+      '--profile <name>',
+      "the arm's robot profile: adds joint states and link transforms for a 3D panel (MCAP)",
+    )
+    .option('--models <dir>', 'the folder of robot profiles (default public/models)')
+    .addHelpText(
+      'after',
+      `
+Reads InfluxDB with the middleware's settings: INFLUX_URL, INFLUX_TOKEN, INFLUX_ORG,
+INFLUX_BUCKET (README, Configuration).
+
+Example:
+  INFLUX_URL=http://127.0.0.1:8086 armtwin export --arm arm1 --profile armtwin5 \\
+    --from 2026-11-24T06:00:00Z --to 2026-11-24T06:10:00Z --out arm1.mcap`,
+    )
+    .action(async (flags: ExportFlags, cmd: Command) => {
+      let startMs: number, stopMs: number;
+      try {
+        startMs = isoTime('from')(flags.from);
+        stopMs = isoTime('to')(flags.to);
+        if (stopMs <= startMs) throw new Error('--to must be after --from');
+      } catch (err) {
+        return cmd.error((err as Error).message);
+      }
+      const config = loadConfig();
+      if (!config.influxUrl) return cmd.error('INFLUX_URL is not set: nothing to read from');
+      const robot = flags.profile ? loadRecordingRobot(flags.profile, flags.models) : null;
+      const out = fs.createWriteStream(flags.out);
+      await once(out, 'open');
+      const summary = await exportRecording({
+        source: {
+          queryApi: new InfluxDB({
+            url: config.influxUrl,
+            token: config.influxToken || undefined,
+            timeout: 120_000,
+          }).getQueryApi(config.influxOrg),
+          bucket: config.influxBucket,
+        },
+        arm: flags.arm,
+        startMs,
+        stopMs,
+        format: flags.format,
+        out,
+        robot,
+      });
+      out.end();
+      await once(out, 'close');
+      const { servo, command, ik } = summary.points;
+      process.stderr.write(
+        `${flags.out}: ${servo} servo, ${command} command and ${ik} ik points` +
+          (flags.format === 'mcap'
+            ? ` in ${Object.keys(summary.topics).length} topics${robot ? '' : ' (no --profile: no joint states or transforms)'}`
+            : '') +
+          '\n',
+      );
+    });
+}
