@@ -24,6 +24,7 @@ import {
 } from './lib/stack.ts';
 import { cpuMeter, cpuSeconds, findPid } from './lib/proc.ts';
 import { round } from './lib/stats.ts';
+import { stepVerdict } from './lib/zero-loss.ts';
 import { barChartSvg } from './lib/svg.ts';
 import { fmt, type BenchContext, type Row, type Section, type SectionOutput } from './lib/types.ts';
 
@@ -174,19 +175,17 @@ export const ingestSection: Section = {
         const after = await mw.metrics();
         const dropped = (after.points_dropped_total ?? 0) - (before.points_dropped_total ?? 0);
         const lost = want - got;
-        const kept = r.sent / r.sendS >= 0.95 * rate;
         const drainLimitS = FLUSH_MS / 1000 + Math.max(2, 0.25 * seconds);
-        const drained = drainS <= drainLimitS;
-        const why =
-          lost !== 0
-            ? `${lost} points missing`
-            : dropped
-              ? `${dropped} dropped`
-              : !kept
-                ? `publisher reached ${Math.round(r.sent / r.sendS)}/s only`
-                : !drained
-                  ? `backlog took ${drainS.toFixed(1)} s to write`
-                  : '';
+        const why = stepVerdict({
+          rate,
+          sent: r.sent,
+          sendS: r.sendS,
+          missing: lost,
+          dropped,
+          unit: 'points',
+          drainS,
+          drainLimitS,
+        });
         steps.push({
           offeredPerS: rate,
           seconds,

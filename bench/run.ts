@@ -27,6 +27,7 @@ import { cpuSection } from './cpu.ts';
 import { browserSection } from './browser.ts';
 import { deadmanSection } from './deadman.ts';
 import { cameraSection } from './camera.ts';
+import { telegrafSection } from './telegraf.ts';
 
 const SECTIONS: Section[] = [
   rttSection,
@@ -36,11 +37,12 @@ const SECTIONS: Section[] = [
   deadmanSection,
   ikSection,
   cameraSection,
+  telegrafSection,
 ];
 /** Broker settings for every section (recorded in the JSON): see BENCHMARKS.md on Nagle. */
 export const BROKER_EXTRA = ['set_tcp_nodelay true', 'max_queued_messages 1000000'];
-const NEEDS_BROKER = new Set(['rtt', 'ingest', 'cpu', 'browser', 'deadman', 'camera']);
-const NEEDS_INFLUX = new Set(['ingest', 'cpu']);
+const NEEDS_BROKER = new Set(['rtt', 'ingest', 'cpu', 'browser', 'deadman', 'camera', 'telegraf']);
+const NEEDS_INFLUX = new Set(['ingest', 'cpu', 'telegraf']);
 
 const USAGE = `usage: npm run bench [-- --quick] [-- --only ${SECTIONS.map((s) => s.id).join(',')}] [-- --keep-logs] [-- --no-md]
   --quick      shorter runs (< 5 min): 5,000 pings at 1 kHz, short ramps and windows

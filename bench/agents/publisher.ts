@@ -3,12 +3,21 @@
  * per message, stamps t0, t0+1, … ms) at `rate` messages/s for `seconds`, paced against
  * absolute time in 5 ms ticks, then disconnects cleanly and prints
  * `{"sent":…,"wallS":…,"rate":…}`. A separate process, so the middleware's CPU is its own.
- * Usage: publisher.ts <mqtt url> <topic> <rate> <seconds> <t0 ms> <qos>
+ * With `frame`, each message is one stamped frame instead (`$TIM:t!#00iPp!`, servo i = k mod 6,
+ * t = t0 + ⌊k/6⌋ ms: every servo's series gets distinct times), a shape Telegraf can parse too.
+ * Usage: publisher.ts <mqtt url> <topic> <rate> <seconds> <t0 ms> <qos> [group|frame]
  */
 import mqtt from 'mqtt';
 
-const [url = '', topic = '', rateS = '100', secondsS = '5', t0S = '0', qosS = '0'] =
-  process.argv.slice(2);
+const [
+  url = '',
+  topic = '',
+  rateS = '100',
+  secondsS = '5',
+  t0S = '0',
+  qosS = '0',
+  shape = 'group',
+] = process.argv.slice(2);
 const rate = Number(rateS);
 const total = Math.max(1, Math.round(rate * Number(secondsS)));
 const t0 = Number(t0S);
@@ -16,6 +25,12 @@ const qos = Number(qosS) === 1 ? 1 : 0;
 
 const payloads: Buffer[] = new Array(total);
 for (let k = 0; k < total; k++) {
+  if (shape === 'frame') {
+    const id = k % 6;
+    const pwm = 1000 + ((Math.floor(k / 6) * 7 + id * 150) % 1000);
+    payloads[k] = Buffer.from(`$TIM:${t0 + Math.floor(k / 6)}!#00${id}P${pwm}!`, 'latin1');
+    continue;
+  }
   let g = '';
   for (let id = 0; id < 6; id++) g += `#00${id}P${1000 + ((k * 7 + id * 150) % 1000)}!`;
   payloads[k] = Buffer.from(`$TIM:${t0 + k}!{${g}}`, 'latin1');
