@@ -23,6 +23,7 @@ import { round, summarize } from './lib/stats.ts';
 import { barChartSvg } from './lib/svg.ts';
 import { fmt, type BenchContext, type Row, type Section, type SectionOutput } from './lib/types.ts';
 import { CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
+import { startTrajectory, type Trajectory } from './lib/trajectory.ts';
 import { HUD_DIST, hudPrecheck, hudReady, openHudBrowser } from './lib/hud-browser.ts';
 
 const ARM = 'bench-hud';
@@ -36,7 +37,7 @@ const POSES = [
   [1500, 1200, 1400, 1900, 1500, 1500],
 ];
 const MOVE_MS = 1000;
-const STEP_MS = 1500;
+const TRAJECTORY: Trajectory = { poses: POSES, moveMs: MOVE_MS, stepMs: 1500 };
 
 /** The simulator's status stream as received by this process: stamps, pulses, arrival times. */
 class Recorder {
@@ -122,7 +123,7 @@ export const browserSection: Section = {
     client.on('message', (_t, payload) => rec.feed(payload));
     await client.subscribeAsync(`arm/${ARM}/status`, { qos: 0 });
     const { browser, page, cdp, pageErrors } = await openHudBrowser();
-    let trajectory: NodeJS.Timeout | undefined;
+    let stopTrajectory = () => {};
     try {
       const taskS = async () => {
         const { metrics } = (await cdp.send('Performance.getMetrics')) as {
@@ -173,24 +174,14 @@ export const browserSection: Section = {
       // The scripted trajectory and the measurement window.
       ctx.log(`browser: ${windowS} s window with the scripted trajectory`);
       rec.on = true;
-      let step = 0;
-      const sendPose = () => {
-        const pose = POSES[step++ % POSES.length]!;
-        client.publish(
-          `arm/${ARM}/control`,
-          `{${pose.map((p, i) => `#00${i}P${p}T${String(MOVE_MS).padStart(4, '0')}!`).join('')}}`,
-          { qos: 1 },
-        );
-      };
       await sleep(200);
       const m0 = await taskS();
       await page.evaluate(() =>
         (window as unknown as { __benchProbe: { start(): void } }).__benchProbe.start(),
       );
-      sendPose();
-      trajectory = setInterval(sendPose, STEP_MS);
+      stopTrajectory = startTrajectory(client, ARM, TRAJECTORY);
       await sleep(windowS * 1000);
-      clearInterval(trajectory);
+      stopTrajectory();
       const probe = await page.evaluate(() =>
         (window as unknown as { __benchProbe: { stop(): ProbeResult } }).__benchProbe.stop(),
       );
@@ -290,7 +281,7 @@ export const browserSection: Section = {
           blankS,
           viewport: '1280x800',
           chromiumArgs: CHROMIUM_ARGS,
-          trajectory: { poses: POSES, moveMs: MOVE_MS, stepMs: STEP_MS },
+          trajectory: TRAJECTORY,
         },
         data: {
           framesPerS: round(fps, 2),
@@ -324,7 +315,7 @@ export const browserSection: Section = {
         },
       };
     } finally {
-      if (trajectory) clearInterval(trajectory);
+      stopTrajectory();
       await browser.close().catch(() => {});
       await client.endAsync().catch(() => {});
       await sim.stop();

@@ -46,6 +46,7 @@ import {
 import { summarize } from './lib/stats.ts';
 import type { BenchContext, Section, SectionOutput } from './lib/types.ts';
 import { CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
+import { startTrajectory, type Trajectory } from './lib/trajectory.ts';
 import { HUD_DIST, hudPrecheck, hudReady, openHudBrowser } from './lib/hud-browser.ts';
 
 const ARM = 'bench-cam';
@@ -60,7 +61,7 @@ const POSES = [
   [1800, 1600, 1400, 1700, 1650, 1800],
 ];
 const MOVE_MS = 1000;
-const STEP_MS = 1500;
+const TRAJECTORY: Trajectory = { poses: POSES, moveMs: MOVE_MS, stepMs: 1500 };
 
 interface Metrics {
   task: number;
@@ -201,7 +202,7 @@ export const cameraSection: Section = {
     const sim = await startSim(ctx.broker.url, ARM, 50, path.join(ctx.logDir, 'camera-sim.log'));
     const client = await connectMqtt(ctx.broker.url, `bench-cam-${process.pid}`);
     const { browser, page, cdp, pageErrors } = await openHudBrowser();
-    let trajectory: NodeJS.Timeout | undefined;
+    let stopTrajectory = () => {};
     try {
       await page.goto(`${web.url}?broker=${encodeURIComponent(ctx.broker.wsUrl)}&arm=${ARM}`);
       await hudReady(page);
@@ -211,17 +212,7 @@ export const cameraSection: Section = {
       if (!(await page.evaluate(installCameraProbe, args)))
         throw new Error('window.__armtwin has no timeStripe/viewer (HUD built before the hook?)');
 
-      let step = 0;
-      const sendPose = () => {
-        const pose = POSES[step++ % POSES.length]!;
-        client.publish(
-          `arm/${ARM}/control`,
-          `{${pose.map((p, i) => `#00${i}P${p}T${String(MOVE_MS).padStart(4, '0')}!`).join('')}}`,
-          { qos: 1 },
-        );
-      };
-      sendPose();
-      trajectory = setInterval(sendPose, STEP_MS);
+      stopTrajectory = startTrajectory(client, ARM, TRAJECTORY);
 
       const w: Record<string, CameraWindow> = {};
       w.none = await runWindow(ctx, page, cdp, client, null, 0, windowS);
@@ -230,7 +221,7 @@ export const cameraSection: Section = {
           w[`${kind}-${n}`] = await runWindow(ctx, page, cdp, client, kind, n, windowS);
       // Baseline for the page's share of the latency: the arm stands still and the camera has
       // no pose (no screen), so the 3D view does not redraw; the camera plays in the panel only.
-      clearInterval(trajectory);
+      stopTrajectory();
       await sleep(MOVE_MS + 500);
       for (const kind of KINDS)
         w[`${kind}-still`] = await runWindow(ctx, page, cdp, client, kind, 1, windowS, false);
@@ -260,7 +251,7 @@ export const cameraSection: Section = {
           viewport: '1280x800',
           chromiumArgs: CHROMIUM_ARGS,
           simRateHz: 50,
-          trajectory: { poses: POSES, moveMs: MOVE_MS, stepMs: STEP_MS },
+          trajectory: TRAJECTORY,
           server: 'one `armtwin camera --source testsrc --kinds <kind> --no-announce` per stream',
           target: TARGET,
           anchors: ANCHORS,
@@ -274,7 +265,7 @@ export const cameraSection: Section = {
         },
       };
     } finally {
-      if (trajectory) clearInterval(trajectory);
+      stopTrajectory();
       await browser.close().catch(() => {});
       await client.endAsync().catch(() => {});
       await sim.stop();
