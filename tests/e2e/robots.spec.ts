@@ -260,8 +260,19 @@ test('plan: a Cartesian path through 2 waypoints previews on the ghost and execu
   );
   expect(Math.hypot(moved.x - 200, moved.y)).toBeGreaterThan(5);
   expect(moved.z).toBe(150);
+  // Type over the dragged numbers once the panel shows them (typed sooner, the panel's render of
+  // the drag would overwrite them), then check the plan's waypoint took them.
+  await expect(page.getByLabel('Waypoint 2 X')).not.toHaveValue('200');
   await page.getByLabel('Waypoint 2 X').fill('200');
   await page.getByLabel('Waypoint 2 Y').fill('0');
+  await expect
+    .poll(() =>
+      page.evaluate(() => {
+        const w = (window as unknown as RobotsWindow).__armtwin!.robots.waypoints.list[1]!;
+        return [w.x, w.y];
+      }),
+    )
+    .toEqual([200, 0]);
 
   await page.getByRole('radio', { name: 'Cartesian path' }).check();
   await page.getByRole('button', { name: 'Preview', exact: true }).click();
