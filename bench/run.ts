@@ -21,6 +21,7 @@ import { markdown, updateBenchmarksMd, writeJson, type RunRecord } from './lib/r
 import { REPO } from './lib/stack.ts';
 import type { BenchContext, Section, SectionResult } from './lib/types.ts';
 import { ikSection } from './ik.ts';
+import { zonesSection } from './zones.ts';
 import { rttSection } from './rtt.ts';
 import { ingestSection } from './ingest.ts';
 import { cpuSection } from './cpu.ts';
@@ -28,6 +29,7 @@ import { browserSection } from './browser.ts';
 import { deadmanSection } from './deadman.ts';
 import { cameraSection } from './camera.ts';
 import { telegrafSection } from './telegraf.ts';
+import { holdJogSection } from './holdjog.ts';
 
 const SECTIONS: Section[] = [
   rttSection,
@@ -36,12 +38,23 @@ const SECTIONS: Section[] = [
   browserSection,
   deadmanSection,
   ikSection,
+  zonesSection,
   cameraSection,
   telegrafSection,
+  holdJogSection,
 ];
 /** Broker settings for every section (recorded in the JSON): see BENCHMARKS.md on Nagle. */
 export const BROKER_EXTRA = ['set_tcp_nodelay true', 'max_queued_messages 1000000'];
-const NEEDS_BROKER = new Set(['rtt', 'ingest', 'cpu', 'browser', 'deadman', 'camera', 'telegraf']);
+const NEEDS_BROKER = new Set([
+  'rtt',
+  'ingest',
+  'cpu',
+  'browser',
+  'deadman',
+  'camera',
+  'telegraf',
+  'holdjog',
+]);
 const NEEDS_INFLUX = new Set(['ingest', 'cpu', 'telegraf']);
 
 const USAGE = `usage: npm run bench [-- --quick] [-- --only ${SECTIONS.map((s) => s.id).join(',')}] [-- --keep-logs] [-- --no-md]

@@ -9,8 +9,10 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export PATH="$PATH:/usr/local/go/bin"
 VERSION=1.37.2
-TAGS="custom,inputs.mqtt_consumer,outputs.influxdb,outputs.influxdb_v2,parsers.grok"
-CACHE_DIR="${ARMTWIN_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/armtwin}/telegraf-$VERSION"
+# grok parses single frames; value + starlark split a 6-servo group into one metric per servo.
+TAGS="custom,inputs.mqtt_consumer,outputs.influxdb,outputs.influxdb_v2,parsers.grok,parsers.value,processors.starlark"
+# The plugin set is part of the cache key: another set is another build.
+CACHE_DIR="${ARMTWIN_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/armtwin}/telegraf-$VERSION-$(printf '%s' "$TAGS" | sha256sum | cut -c1-8)"
 TELEGRAF="$ROOT/.tools/bin/telegraf"
 
 say() { printf 'build-telegraf: %s\n' "$*"; }

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Starts Grafana with armtwin's datasource and dashboard provisioned. The defaults live here
+# Starts Grafana with armtwin's datasources (Flux and InfluxQL) and dashboards provisioned. The defaults live here
 # (Grafana's provisioning expands $VAR but has no ${VAR:-default}); override any of them:
 #
 #   ARMTWIN_INFLUX_URL=http://influx:8086 deploy/grafana/run.sh
@@ -12,6 +12,11 @@ export ARMTWIN_INFLUX_URL="${ARMTWIN_INFLUX_URL:-http://localhost:8086}"
 export ARMTWIN_INFLUX_ORG="${ARMTWIN_INFLUX_ORG:-}"           # 2.x: your org; 1.8: ''
 export ARMTWIN_INFLUX_BUCKET="${ARMTWIN_INFLUX_BUCKET:-armtwin/autogen}"
 export ARMTWIN_INFLUX_TOKEN="${ARMTWIN_INFLUX_TOKEN:-}"       # 2.x: API token; 1.8: '' or user:password
+# The InfluxQL datasource (1.8, 2.x, 3.x): the database (2.x: the bucket's name; 3.x: the
+# database), and a user and password (2.x and 3.x take any user with the token as the password).
+export ARMTWIN_INFLUX_DB="${ARMTWIN_INFLUX_DB:-armtwin}"
+export ARMTWIN_INFLUX_USER="${ARMTWIN_INFLUX_USER:-}"
+export ARMTWIN_INFLUX_PASSWORD="${ARMTWIN_INFLUX_PASSWORD:-}"
 GRAFANA_PORT="${GRAFANA_PORT:-3000}"
 GRAFANA_IMAGE="${GRAFANA_IMAGE:-grafana/grafana-oss:11.6.0}"
 
@@ -32,6 +37,7 @@ exec docker run --rm -p "$GRAFANA_PORT:3000" \
   --add-host=host.docker.internal:host-gateway \
   -e ARMTWIN_INFLUX_URL="$DOCKER_URL" \
   -e ARMTWIN_INFLUX_ORG -e ARMTWIN_INFLUX_BUCKET -e ARMTWIN_INFLUX_TOKEN \
+  -e ARMTWIN_INFLUX_DB -e ARMTWIN_INFLUX_USER -e ARMTWIN_INFLUX_PASSWORD \
   -e ARMTWIN_DASHBOARDS_DIR=/var/lib/grafana/dashboards/armtwin \
   -v "$HERE/provisioning:/etc/grafana/provisioning:ro" \
   -v "$HERE/dashboards:/var/lib/grafana/dashboards/armtwin:ro" \

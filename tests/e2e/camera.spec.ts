@@ -12,7 +12,14 @@ import type { Locator, Page } from '@playwright/test';
 import mqtt, { type MqttClient } from 'mqtt';
 import { serveCamera, type ServedCameras } from '@armtwin/camera';
 import { LoginThrottle, loadUsers } from '@armtwin/auth';
-import { expect, shot, test, type HudWindow } from './fixtures.ts';
+import {
+  cspViolations,
+  expect,
+  recordCspViolations,
+  shot,
+  test,
+  type HudWindow,
+} from './fixtures.ts';
 import { ensureHudBuilt } from './support/build-hud.ts';
 import { demoPassword, startUp, USERS_FILE, type UpProcess } from './support/up.ts';
 
@@ -258,7 +265,11 @@ test.describe('cameras', () => {
     let up: UpProcess | null = null;
     let device: MqttClient | null = null;
     try {
-      up = await startUp(testInfo.outputPath('armtwin-up.log'));
+      // The camera server is on another port: name it to the HUD's Content-Security-Policy.
+      up = await startUp(testInfo.outputPath('armtwin-up.log'), [
+        '--csp-sources',
+        'http://127.0.0.1:* ws://127.0.0.1:*',
+      ]);
       // The camera server logs in to the broker as the arm's device, and asks its viewers to log in.
       cam = await serveCamera({
         cameras: [{ armId: 'arm1', camId: 'front', label: 'Front', source: 'testsrc' }],
@@ -286,6 +297,7 @@ test.describe('cameras', () => {
       );
 
       page.on('pageerror', (err) => console.error(`[page error] ${err.message}`));
+      await recordCspViolations(page);
       await page.goto(up.url);
       await page.waitForFunction(() => (window as unknown as HudWindow).__armtwin?.ready === true);
       const form = page.getByRole('form', { name: 'Log in' });
@@ -304,6 +316,7 @@ test.describe('cameras', () => {
       await expectPixelsChange(h264);
       await expectPixelsChange(mj);
       await shot(page, testInfo, 'cameras-viewer');
+      expect(await cspViolations(page), 'Content-Security-Policy violations').toEqual([]);
     } finally {
       await device
         ?.publishAsync('arm/arm1/camera/front-mjpeg', '', { qos: 1, retain: true })

@@ -80,6 +80,7 @@ export const test = base.extend<
     // role=operator: the static server has no /api/whoami, and an unknown role only watches.
     const url = `${stack.web.url}?broker=${encodeURIComponent(stack.broker.wsUrl)}&arm=${arm.id}&role=operator${hudQuery}`;
     page.on('pageerror', (err) => console.error(`[page error] ${err.message}`));
+    await recordCspViolations(page);
     await page.goto(url);
     await page.waitForFunction(
       () => (window as unknown as HudWindow).__armtwin?.ready === true,
@@ -89,8 +90,33 @@ export const test = base.extend<
     await expect(page.getByTestId('broker-state')).toHaveText('connected');
     await expect(page.getByTestId('freshness')).toHaveText('Data is live.');
     await use({ page, url });
+    // Nothing the page needs may be blocked by its Content-Security-Policy.
+    expect(await cspViolations(page), 'Content-Security-Policy violations').toEqual([]);
   },
 });
+
+/**
+ * Records the page's `securitypolicyviolation` events (what its Content-Security-Policy blocked)
+ * from before its first script runs; read them with `cspViolations`.
+ */
+export async function recordCspViolations(page: Page): Promise<void> {
+  await page.addInitScript(() => {
+    const w = window as unknown as { __cspViolations: string[] };
+    w.__cspViolations = [];
+    window.addEventListener(
+      'securitypolicyviolation',
+      (e) => w.__cspViolations.push(`${e.effectiveDirective} blocked ${e.blockedURI || 'inline'}`),
+      { capture: true },
+    );
+  });
+}
+
+/** What the page's policy blocked so far ([] for a page that has gone). */
+export function cspViolations(page: Page): Promise<string[]> {
+  return page
+    .evaluate(() => (window as unknown as { __cspViolations?: string[] }).__cspViolations ?? [])
+    .catch(() => []);
+}
 
 export { expect };
 

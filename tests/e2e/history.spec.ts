@@ -152,7 +152,7 @@ test('history: the panel shows what the simulator has just produced', async ({
   const elbow = read.last_joint_states?.joints.find((j) => j.name === 'elbow');
   expect((elbow!.position * 180) / Math.PI).toBeCloseTo(45, 0);
 
-  await page.getByRole('tab', { name: 'Tracking & alarms' }).click();
+  await page.getByRole('tab', { name: 'Tracking, alarms & control' }).click();
   const elbowRow = page.getByTestId('tracking-002');
   await expect(elbowRow).toContainText('Elbow');
   expect(Number(await elbowRow.locator('td').last().textContent())).toBeGreaterThan(0);
@@ -197,6 +197,41 @@ test('history: servos stored by an earlier profile under this arm id are named, 
   await shot(page, testInfo, 'history-others');
 });
 
+test('history: the control log shows who took and released control, and downloads as CSV', async ({
+  hud,
+  arm,
+  stack,
+}, testInfo) => {
+  const { page } = hud;
+  // The demo has no users file: alice's name is her own claim (SECURITY.md). The simulated arm
+  // publishes the events; the middleware stores them.
+  await arm.observer.client.publishAsync(`arm/${arm.id}/claim/alice`, 'take', { qos: 1 });
+  await arm.observer.client.publishAsync(`arm/${arm.id}/claim/alice`, 'release', { qos: 1 });
+  await expect
+    .poll(
+      async () =>
+        (
+          await historyGet<{ events: { kind: string; by: string }[] }>(stack, 'audit', {
+            arm: arm.id,
+            start: '-5m',
+          })
+        ).events.map((e) => `${e.kind} ${e.by}`),
+      { timeout: 30_000 },
+    )
+    .toEqual(['taken alice', 'released alice']);
+  await openHistory(page);
+  await page.getByRole('tab', { name: 'Tracking, alarms & control' }).click();
+  const log = page.getByTestId('control-log');
+  await expect(log.locator('tbody tr')).toHaveCount(2);
+  await expect(log.locator('tbody tr').first()).toContainText('alice');
+  const download = page.waitForEvent('download');
+  await page.getByRole('button', { name: 'Download control log CSV' }).click();
+  const csv = fs.readFileSync(await (await download).path(), 'utf8');
+  expect(csv.split(/\r?\n/)[0]).toBe('time_utc,by,kind,detail');
+  expect(csv).toContain(',alice,taken,');
+  await shot(page, testInfo, 'history-control-log');
+});
+
 test('history: an API failure is shown as text, not a blank panel', async ({ hud }, testInfo) => {
   const { page } = hud;
   await page.route('**/api/history/**', (route) =>
@@ -210,8 +245,8 @@ test('history: an API failure is shown as text, not a blank panel', async ({ hud
   await expect(page.getByRole('alert').filter({ hasText: 'History is not available' })).toHaveCount(
     3, // temperature, voltage, angle
   );
-  await page.getByRole('tab', { name: 'Tracking & alarms' }).click();
-  await expect(page.getByRole('alert').filter({ hasText: 'history needs storage' })).toHaveCount(2);
+  await page.getByRole('tab', { name: 'Tracking, alarms & control' }).click();
+  await expect(page.getByRole('alert').filter({ hasText: 'history needs storage' })).toHaveCount(3);
   await shot(page, testInfo, 'history-error');
 });
 

@@ -73,7 +73,10 @@ test('a ±360° bus joint at +350° is drawn at +350°, past its URDF limit of 1
 
   const operator = await ArmWatcher.connect(up.mqttUrl, 'arm1', 'operator');
   try {
-    await operator.client.publishAsync('arm/arm1/control', '#004A+350.00T0800!', { qos: 1 });
+    // An operator's own control topic (docs/protocol.md § Control): the plain one is not theirs.
+    await operator.client.publishAsync('arm/arm1/control/operator', '#004A+350.00T0800!', {
+      qos: 1,
+    });
     // URDF joint values in rad: the wrist roll's (servo 004) reaches 350° and is not held at 135°.
     await expect
       .poll(async () => ((await drawnJoints(page))[4]! * 180) / Math.PI, { timeout: 15_000 })

@@ -54,7 +54,7 @@ with open(sys.argv[1], "rb") as f:
         )
         t["count"] += 1
         data = json.loads(message.data)
-        if schema.name.startswith("armtwin."):
+        if schema.name.startswith("armtwin.") or schema.name == "foxglove.Log":
             out["records"].append([channel.topic, str(message.log_time), data])
         elif channel.topic == "/tf":
             out["tf_sizes"].append(len(data["transforms"]))

@@ -16,7 +16,7 @@ import { REPO_ROOT } from '../helpers/services.ts';
 export const USERS_FILE = path.join(REPO_ROOT, 'deploy', 'users.example.json');
 /** The sample file's passwords (deploy/README.md): `<name>-demo`. */
 export const password = (user: string) => `${user}-demo`;
-export const USERS = ['viewer', 'operator', 'arm1', 'arm2', 'middleware'] as const;
+export const USERS = ['viewer', 'operator', 'arm1', 'arm2', 'middleware', 'admin'] as const;
 export type User = (typeof USERS)[number];
 
 /**
@@ -36,26 +36,32 @@ export const SUBSCRIBE_CASES: [User, string, string, boolean][] = [
   ['operator', 'arm/arm1/camera/+', 'arm/arm1/camera/front', true],
   ['arm1', 'arm/arm1/camera/+', 'arm/arm1/camera/front', false],
   ['viewer', 'arm/+/camera/+/calibration', 'arm/arm1/camera/front/calibration', true],
-  ['viewer', 'arm/+/control', 'arm/arm1/control', false],
+  ['viewer', 'arm/+/control/+', 'arm/arm1/control/operator', false],
+  ['viewer', 'arm/+/holder', 'arm/arm1/holder', true],
+  ['viewer', 'arm/+/audit', 'arm/arm1/audit', true],
+  ['viewer', 'arm/+/claim/+', 'arm/arm1/claim/operator', false],
   ['viewer', 'arm/arm1/sim', 'arm/arm1/sim', false],
-  ['viewer', 'arm/#', 'arm/arm1/control', false],
+  ['viewer', 'arm/#', 'arm/arm1/control/operator', false],
   ['viewer', '#', 'arm/arm1/request', false],
   ['operator', 'arm/arm1/status', 'arm/arm1/status', true],
   ['operator', 'arm/+/operator', 'arm/arm1/operator', true],
-  ['operator', 'arm/+/control', 'arm/arm1/control', false],
+  ['operator', 'arm/+/control/+', 'arm/arm1/control/operator', false],
   ['operator', 'arm/+/request', 'arm/arm1/request', false],
-  ['arm1', 'arm/arm1/control', 'arm/arm1/control', true],
+  ['arm1', 'arm/arm1/control/+', 'arm/arm1/control/operator', true],
+  ['arm1', 'arm/arm1/claim/+', 'arm/arm1/claim/operator', true],
+  ['arm1', 'arm/arm1/override/+', 'arm/arm1/override/admin', true],
   ['arm1', 'arm/arm1/operator', 'arm/arm1/operator', true],
   ['arm1', 'arm/arm1/sim', 'arm/arm1/sim', true],
   ['arm1', 'arm/arm1/request', 'arm/arm1/request', true],
-  ['arm1', 'arm/arm2/control', 'arm/arm2/control', false],
-  ['arm1', 'arm/+/control', 'arm/arm2/control', false],
+  ['arm1', 'arm/arm2/control/+', 'arm/arm2/control/operator', false],
+  ['arm1', 'arm/+/control/+', 'arm/arm2/control/operator', false],
   ['arm1', 'arm/arm1/status', 'arm/arm1/status', false],
   ['arm1', '#', 'arm/arm2/sim', false],
   ['middleware', 'arm/+/status', 'arm/arm2/status', true],
-  ['middleware', 'arm/+/control', 'arm/arm1/control', true],
+  ['middleware', 'arm/+/control/+', 'arm/arm1/control/operator', true],
+  ['middleware', 'arm/+/audit', 'arm/arm1/audit', true],
   ['middleware', '$share/armtwin/arm/+/status', 'arm/arm1/status', true],
-  ['middleware', '$share/armtwin/arm/+/control', 'arm/arm2/control', true],
+  ['middleware', '$share/armtwin/arm/+/control/+', 'arm/arm2/control/operator', true],
   ['middleware', 'arm/+/online', 'arm/arm1/online', false],
   ['middleware', '#', 'arm/arm1/operator', false],
 ];
@@ -64,7 +70,23 @@ export const PUBLISH_CASES: [User, string, boolean][] = [
   ['viewer', 'arm/arm1/control', false],
   ['viewer', 'arm/arm1/operator', false],
   ['viewer', 'arm/arm1/status', false],
-  ['operator', 'arm/arm1/control', true],
+  // One operator at a time (docs/protocol.md § Control): a user's own control and claim topics
+  // only; the plain control topic, and anyone else's, are no operator's.
+  ['operator', 'arm/arm1/control', false],
+  ['operator', 'arm/arm1/control/operator', true],
+  ['operator', 'arm/arm1/control/admin', false],
+  ['operator', 'arm/arm1/claim/operator', true],
+  ['operator', 'arm/arm1/claim/admin', false],
+  ['operator', 'arm/arm1/override/operator', false],
+  ['operator', 'arm/arm1/request/operator', true],
+  ['operator', 'arm/arm1/request/admin', false],
+  ['operator', 'arm/arm1/holder', false],
+  ['admin', 'arm/arm1/override/admin', true],
+  ['admin', 'arm/arm1/control/admin', true],
+  ['admin', 'arm/arm1/override/operator', false],
+  ['arm1', 'arm/arm1/holder', true],
+  ['arm1', 'arm/arm1/audit', true],
+  ['arm1', 'arm/arm1/control/operator', false],
   ['operator', 'arm/arm1/operator', true],
   ['operator', 'arm/arm1/request', true],
   ['operator', 'arm/arm1/sim', true],
@@ -94,7 +116,8 @@ export const PUBLISH_CASES: [User, string, boolean][] = [
 function readerFor(topic: string): User {
   const [, arm, ...rest] = topic.split('/');
   const kind = rest.join('/');
-  if (kind === 'status' || kind === 'control') return 'middleware';
+  if (kind === 'status' || kind === 'control' || kind.startsWith('control/')) return 'middleware';
+  if (/^(claim|override|request)\//.test(kind)) return arm as User;
   if (kind === 'sim' || kind === 'request') return arm as User;
   return 'viewer';
 }
@@ -128,6 +151,8 @@ export async function checkLogins(connect: Connect): Promise<void> {
 function writerFor(topic: string): User {
   const [, arm, ...rest] = topic.split('/');
   const kind = rest.join('/');
+  // A per-user topic is its user's to write (docs/protocol.md § Control).
+  if (/^(control|claim|override|request)\//.test(kind)) return rest[1] as User;
   // A camera's calibration is an operator's to write; the rest of the arm's topics its device's.
   return ['control', 'operator', 'request', 'sim'].includes(kind) || kind.endsWith('/calibration')
     ? 'operator'

@@ -91,11 +91,11 @@ describe('oversize packets and in-process clients', () => {
     const mw = await connect('middleware');
     const got: number[] = [];
     mw.on('message', (_t, p) => got.push(p.length));
-    await mw.subscribeAsync('arm/+/control', { qos: 1 });
+    await mw.subscribeAsync('arm/+/control/+', { qos: 1 });
     const op = await connect('operator');
-    await op.publishAsync('arm/arm1/control', Buffer.alloc(60_000, 0x20), { qos: 1 });
+    await op.publishAsync('arm/arm1/control/operator', Buffer.alloc(60_000, 0x20), { qos: 1 });
     const closed = new Promise<void>((r) => op.once('close', () => r()));
-    op.publish('arm/arm1/control', Buffer.alloc(70_000, 0x20), { qos: 1 });
+    op.publish('arm/arm1/control/operator', Buffer.alloc(70_000, 0x20), { qos: 1 });
     await closed;
     await new Promise((r) => setTimeout(r, 300));
     expect(got).toEqual([60_000]);

@@ -142,11 +142,11 @@ describe('TLS listeners', () => {
     const mw = await mqtts()('middleware');
     const got: number[] = [];
     mw.on('message', (_t, p) => got.push(p.length));
-    await mw.subscribeAsync('arm/+/control', { qos: 1 });
+    await mw.subscribeAsync('arm/+/control/+', { qos: 1 });
     const op = await mqtts()('operator');
     op.on('error', () => {});
-    await op.publishAsync('arm/arm1/control', Buffer.alloc(60_000, 0x20), { qos: 1 });
-    op.publish('arm/arm1/control', Buffer.alloc(70_000, 0x20), { qos: 1 });
+    await op.publishAsync('arm/arm1/control/operator', Buffer.alloc(60_000, 0x20), { qos: 1 });
+    op.publish('arm/arm1/control/operator', Buffer.alloc(70_000, 0x20), { qos: 1 });
     await new Promise((r) => setTimeout(r, 800));
     expect(got).toEqual([60_000]);
     op.end(true);

@@ -15,8 +15,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { promisify } from 'node:util';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { InfluxDB } from '@influxdata/influxdb-client';
-import { createHistoryHandler } from '@armtwin/middleware/history';
+import { createHistoryHandler, historyReader } from '@armtwin/middleware/history';
 import { forwardKinematics, jointsFromServoAngles, type Quad } from '@armtwin/ik';
 import { angleFromPwm } from '@armtwin/protocol';
 import { influxQuery } from '../helpers/influx.ts';
@@ -58,6 +57,10 @@ function lines(): string[] {
   // Not in the export: another arm, and a point at the range's end (excluded).
   out.push(`servo,arm=other,id=000 pwm=1500i,angle=0 ${T0_US + 1_000_000}`);
   out.push(`servo,arm=${ARM},id=000 pwm=1500i,angle=0 ${T0_US + 5_000_000}`);
+  // One control event (docs/protocol.md § Control), as the middleware stores arm/{id}/audit.
+  out.push(
+    `audit,arm=${ARM},kind=refused-command by="bob",detail="controlled by alice" ${T0_US + 77}`,
+  );
   return out;
 }
 
@@ -140,17 +143,31 @@ describe("armtwin export --format mcap, read back with Foxglove's mcap library",
         expected.push([topic, String(ns), { ...(id ? { id } : {}), ...present }]);
       }
     expect(expected.length).toBe(GROUPS * SERVOS + 10 * SERVOS + 4);
-    const got = checked.records.map(([topic, ns, { timestamp, ...data }]) => {
-      const t = timestamp as { sec: number; nsec: number };
-      expect(BigInt(t.sec) * 1_000_000_000n + BigInt(t.nsec)).toBe(BigInt(ns));
-      return [topic, ns, data] as [string, string, Record<string, unknown>];
-    });
+    const audit = `/arm/${ARM}/audit`;
+    const got = checked.records
+      .filter(([topic]) => topic !== audit)
+      .map(([topic, ns, { timestamp, ...data }]) => {
+        const t = timestamp as { sec: number; nsec: number };
+        expect(BigInt(t.sec) * 1_000_000_000n + BigInt(t.nsec)).toBe(BigInt(ns));
+        return [topic, ns, data] as [string, string, Record<string, unknown>];
+      });
     const key = (r: [string, string, unknown]) => `${r[1]} ${r[0]}`;
     expect([...got].sort((a, b) => key(a).localeCompare(key(b)))).toEqual(
       [...expected].sort((a, b) => key(a).localeCompare(key(b))),
     );
     // the µs survive: a millisecond clock would have lost the 123
     expect(got.some(([, ns]) => BigInt(ns) % 1_000_000n === 123_000n)).toBe(true);
+  });
+
+  test('the control event is a foxglove.Log message at its own time', () => {
+    expect(checked.topics[`/arm/${ARM}/audit`]).toMatchObject({ schema: 'foxglove.Log', count: 1 });
+    const [, ns, data] = checked.records.find(([topic]) => topic === `/arm/${ARM}/audit`)!;
+    expect(BigInt(ns)).toBe(BigInt(T0_US + 77) * 1000n);
+    expect(data).toMatchObject({
+      level: 3, // WARNING: a refused move
+      message: 'controlled by alice',
+      name: 'refused-command by bob',
+    });
   });
 
   test('topics, schemas and counts: per servo, commands, IK, joint states and transforms', () => {
@@ -201,8 +218,11 @@ describe("the history API's download: GET /history/export", () => {
 
   beforeAll(async () => {
     const handler = createHistoryHandler({
-      queryApi: new InfluxDB({ url: influx().url, token: '' }).getQueryApi(''),
-      bucket: influx().bucket,
+      // Flux here; the command above reads through InfluxQL (the default): both languages export.
+      reader: historyReader(
+        { url: influx().url, token: '', org: '', bucket: influx().bucket, timeoutMs: 60_000 },
+        'flux',
+      ),
     });
     server = http.createServer((req, res) => {
       void handler(req, res).then((done) => done || res.writeHead(404).end());
@@ -228,7 +248,7 @@ describe("the history API's download: GET /history/export", () => {
       { maxBuffer: 64 * 1024 * 1024 },
     );
     const c = JSON.parse(stdout) as Checked;
-    expect(c.message_count).toBe(GROUPS * SERVOS + 10 * SERVOS + 4 + 2 * GROUPS);
+    expect(c.message_count).toBe(GROUPS * SERVOS + 10 * SERVOS + 4 + 2 * GROUPS + 1); // + the control event
   });
 
   test('bad parameters are refused by name before anything is sent', async () => {

@@ -148,6 +148,30 @@ describe('armtwin gateway over a pty pair', () => {
     }
   });
 
+  test('one operator at a time: a non-holder’s move never reaches the line; the holder’s does', async () => {
+    const holder = `arm/${ARM}/holder`;
+    await w.client.subscribeAsync(holder, { qos: 1 });
+    const heldBy = (user: string | null) => () =>
+      (JSON.parse(w.retained.get(holder) ?? '{}') as { user?: string | null }).user === user
+        ? true
+        : undefined;
+    await w.until(heldBy(null), 5000, 'nobody holding');
+    await w.client.publishAsync(`arm/${ARM}/claim/alice`, 'take', { qos: 1 });
+    await w.until(heldBy('alice'), 5000, 'alice holding');
+    try {
+      const from = w.items.length;
+      await w.client.publishAsync(`arm/${ARM}/control/bob`, '#000P1900T0200!', { qos: 1 });
+      await w.send('#000P1900T0200!'); // the plain topic is "someone else" while alice holds
+      await w.frame((f) => f.type === 'controllerError' && f.text === 'controlled by alice', from);
+      await w.client.publishAsync(`arm/${ARM}/control/alice`, '#000P1200T0200!', { qos: 1 });
+      await w.until(() => w.positions(0, from).find(([, p]) => p === 1200), 5000, 'P1200');
+      expect(w.positions(0, from).some(([, p]) => p > 1600)).toBe(false);
+    } finally {
+      await w.client.publishAsync(`arm/${ARM}/claim/alice`, 'release', { qos: 1 });
+      await w.until(heldBy(null), 5000, 'released');
+    }
+  });
+
   test('survives the port disappearing and coming back', async () => {
     const mark = w.history.length;
     await stopLine();

@@ -1,16 +1,19 @@
 /**
- * Every Flux query in deploy/grafana/dashboards/armtwin.json (panels and variables), with
- * Grafana's macros replaced by real values, run on known data against real InfluxDB servers:
- * 1.8 and 2.7 (the same answers from both).
+ * Every query of both dashboards (panels and variables), with Grafana's macros replaced by real
+ * values, run on known data against real InfluxDB servers, 1.8 and 2.7 (the same answers from
+ * both): the Flux one (deploy/grafana/dashboards/armtwin.json) and the InfluxQL one
+ * (armtwin-influxql.json, through the v1 `/query` API that InfluxDB 3 serves too).
  */
 import fs from 'node:fs';
 import path from 'node:path';
 import { InfluxDB } from '@influxdata/influxdb-client';
 import { beforeAll, describe, expect, test } from 'vitest';
+import { queryV1 } from '@armtwin/middleware/history';
 import { REPO_ROOT } from '../helpers/files.ts';
 import { INFLUX_SERVERS } from '../helpers/use-services.ts';
 
 const DASHBOARD = path.join(REPO_ROOT, 'deploy', 'grafana', 'dashboards', 'armtwin.json');
+const INFLUXQL_DASHBOARD = path.join(path.dirname(DASHBOARD), 'armtwin-influxql.json');
 const T0 = Date.UTC(2024, 0, 1);
 const WINDOW_S = 10;
 
@@ -21,8 +24,8 @@ interface FluxQuery {
 }
 
 /** Every `query` string in the dashboard: panel targets and query variables. */
-function dashboardQueries(): FluxQuery[] {
-  const dash = JSON.parse(fs.readFileSync(DASHBOARD, 'utf8'));
+function dashboardQueries(file = DASHBOARD): FluxQuery[] {
+  const dash = JSON.parse(fs.readFileSync(file, 'utf8'));
   const out: FluxQuery[] = [];
   for (const p of dash.panels ?? []) {
     for (const t of p.targets ?? [])
@@ -43,6 +46,16 @@ function substitute(query: string, bucket: string): string {
     .replaceAll('v.defaultBucket', JSON.stringify(bucket))
     .replaceAll('${arm}', 'arm1');
   expect(q, 'every macro and variable replaced').not.toMatch(/\bv\.[a-zA-Z]|\$/);
+  return q;
+}
+
+/** Grafana's InfluxQL macros (`$timeFilter` includes its stop) and our variable → a statement. */
+function substituteInfluxql(query: string): string {
+  const q = query
+    .replaceAll('$timeFilter', `time >= ${T0}ms and time <= ${T0 + 60_000}ms`)
+    .replaceAll('$__interval', `${WINDOW_S}s`)
+    .replaceAll('$arm', 'arm1');
+  expect(q, 'every macro and variable replaced').not.toMatch(/\$/);
   return q;
 }
 
@@ -150,6 +163,78 @@ describe.each(INFLUX_SERVERS)('InfluxDB $version', ({ use }) => {
       expect(commanded.map((r) => [ms(r._time), r._value, r.id])).toEqual([
         [windowEnds[0], 10, '000'],
         [windowEnds[3], 25, '000'],
+      ]);
+    });
+  });
+  describe('deploy/grafana/dashboards/armtwin-influxql.json', () => {
+    const queries = () => dashboardQueries(INFLUXQL_DASHBOARD);
+    const runQl = async (q: FluxQuery) => {
+      const { url, token, org, bucket } = influx();
+      const [rows] = await queryV1({ url, token, org, bucket, timeoutMs: 30_000 }, [
+        substituteInfluxql(q.query),
+      ]);
+      return rows!;
+    };
+    const findQl = (re: RegExp) => {
+      const q = queries().find((x) => re.test(x.where));
+      if (!q) throw new Error(`no query matching ${re}`);
+      return q;
+    };
+    /** InfluxQL stamps a window at its start. */
+    const windowStarts = windowEnds.map((t) => t - WINDOW_S * 1000);
+
+    test('the same panels, thresholds and variable as the Flux dashboard, on its own datasource', () => {
+      const flux = JSON.parse(fs.readFileSync(DASHBOARD, 'utf8'));
+      const ql = JSON.parse(fs.readFileSync(INFLUXQL_DASHBOARD, 'utf8'));
+      expect(ql.uid).not.toBe(flux.uid);
+      expect(ql.panels.map((p: { title: string }) => p.title)).toEqual(
+        flux.panels.map((p: { title: string }) => p.title),
+      );
+      expect(ql.panels.map((p: { fieldConfig: unknown }) => p.fieldConfig)).toEqual(
+        flux.panels.map((p: { fieldConfig: unknown }) => p.fieldConfig),
+      );
+      expect(ql.templating.list.map((v: { name: string }) => v.name)).toEqual(['arm']);
+      expect(queries()).toHaveLength(5);
+      for (const p of ql.panels) expect(p.datasource.uid).toBe('armtwin-influxql');
+    });
+
+    test.each(queries().map((q) => [q.where, q] as const))(
+      '%s runs on the real influxd and returns rows',
+      async (_where, q) => {
+        expect((await runQl(q)).length).toBeGreaterThan(0);
+      },
+    );
+
+    test('the $arm variable lists every arm once', async () => {
+      const rows = await runQl(findQl(/^variable arm/));
+      expect(rows.map((r) => r.value).sort()).toEqual(['arm1', 'arm2']);
+    });
+
+    test('temperature: exact mean per window, one series per servo id, only $arm', async () => {
+      const rows = await runQl(findQl(/temperature/));
+      for (const id of [0, 1]) {
+        const mine = rows.filter((r) => r.id === `00${id}`);
+        expect(mine.map((r) => ms(r._time))).toEqual(windowStarts);
+        expect(mine.map((r) => r._value)).toEqual(windowed((s) => temp(id, s), mean));
+      }
+      expect(rows).toHaveLength(12);
+    });
+
+    test('bus voltage: one series, the lowest servo reading per window', async () => {
+      const rows = await runQl(findQl(/voltage/));
+      expect(rows.map((r) => ms(r._time))).toEqual(windowStarts);
+      expect(rows.map((r) => r._value)).toEqual([7.3, 7.3, 6.2, 7.3, 6.0, 7.3]);
+    });
+
+    test('angles: actual mean per window per id, and the last commanded target per window', async () => {
+      const actual = await runQl(findQl(/Joint angles.* \/ A$/));
+      expect(actual.filter((r) => r.id === '001').map((r) => r._value)).toEqual(
+        windowed((s) => s + 1, mean),
+      );
+      const commanded = await runQl(findQl(/Joint angles.* \/ B$/));
+      expect(commanded.map((r) => [ms(r._time), r._value, r.id])).toEqual([
+        [windowStarts[0], 10, '000'],
+        [windowStarts[3], 25, '000'],
       ]);
     });
   });

@@ -20,6 +20,7 @@ const broker = useMosquitto();
 const influx = useInflux2();
 const T0 = Date.UTC(2026, 0, 1);
 const BUCKET = 'armtwin-fresh'; // not made by the set-up: the middleware creates it
+const OTHER_BUCKET = 'armtwin-other';
 
 async function buckets(): Promise<string[]> {
   const { url, token } = influx();
@@ -71,7 +72,7 @@ describe('middleware → InfluxDB 2.7', () => {
     await mw.stop();
   });
 
-  test('a wrong token is an auth failure that loses nothing: the spool keeps the points', async () => {
+  test('a wrong token is an auth failure that loses nothing, and the spooled batches go only to their own bucket', async () => {
     const inf = { url: influx().url, db: BUCKET, token: influx().token };
     const before = await countPoints(inf, 'servo', 'pwm');
     const bad = await mws.spawn({
@@ -87,7 +88,20 @@ describe('middleware → InfluxDB 2.7', () => {
     expect(spooled).toBe(300);
     expect(await countPoints(inf, 'servo', 'pwm')).toBe(before);
     await bad.stop();
-    // The same client id and spool with the right token: the spooled points land.
+    // The same spool, the right token, but another bucket: that run must not write the batches
+    // meant for BUCKET into its own; it says they wait for another destination.
+    const other = await mws.spawn({
+      clientId: 'mw-influx2-bad',
+      env: { FLUSH_INTERVAL_MS: '200', INFLUX_BUCKET: OTHER_BUCKET },
+    });
+    expect(
+      await waitForValue(async () => (await buckets()).includes(OTHER_BUCKET), true, 10_000),
+    ).toBe(true);
+    expect((await other.metrics())['spool_other_destination_points']).toBe(300);
+    expect(((await other.health()).body as { spool: { points: number } }).spool.points).toBe(0);
+    await other.stop();
+    expect(await countPoints({ ...inf, db: OTHER_BUCKET }, 'servo', 'pwm')).toBe(0);
+    // The same client id and spool with the right token and bucket: the spooled points land.
     const good = await mws.spawn({ clientId: 'mw-influx2-bad', env: { FLUSH_INTERVAL_MS: '200' } });
     expect(await waitForValue(() => countPoints(inf, 'servo', 'pwm'), before + 300, 20_000)).toBe(
       before + 300,

@@ -118,7 +118,8 @@ describe('armtwin up with ARMTWIN_USERS and TLS', () => {
       password: password('operator'),
     });
     const from = w.items.length;
-    await w.send('$PNG:4242!');
+    // An operator writes its own control topic (docs/protocol.md § Control), not the plain one.
+    await w.client.publishAsync('arm/arm1/control/operator', '$PNG:4242!', { qos: 1 });
     await w.frame((f) => f.type === 'ping' && f.seq === 4242, from);
     await w.close();
   });

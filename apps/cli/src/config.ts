@@ -28,6 +28,11 @@ export interface CliConfig {
   tlsKey: string;
   /** API_TOKEN: bearer token of the middleware's HTTP API (/metrics, /history), passed through. */
   apiToken: string;
+  /**
+   * ARMTWIN_CSP_SOURCES: other brokers and camera servers the HUD of `armtwin up` may reach
+   * (space-separated CSP sources, e.g. `wss://broker.lab https://cams.lab:8443`; '' = none).
+   */
+  cspSources: string;
 }
 
 export const DEFAULT_CLI_CONFIG: CliConfig = {
@@ -43,6 +48,7 @@ export const DEFAULT_CLI_CONFIG: CliConfig = {
   tlsCert: '',
   tlsKey: '',
   apiToken: '',
+  cspSources: '',
 };
 
 const ENV: Record<keyof CliConfig, string> = {
@@ -58,6 +64,7 @@ const ENV: Record<keyof CliConfig, string> = {
   tlsCert: 'ARMTWIN_TLS_CERT',
   tlsKey: 'ARMTWIN_TLS_KEY',
   apiToken: 'API_TOKEN',
+  cspSources: 'ARMTWIN_CSP_SOURCES',
 };
 
 /** Throws unless the certificate and key are both set or both empty. */
@@ -90,5 +97,6 @@ export function loadCliConfig(env: Record<string, string | undefined> = process.
     tlsCert: env[ENV.tlsCert]?.trim() ?? '',
     tlsKey: env[ENV.tlsKey]?.trim() ?? '',
     apiToken: env[ENV.apiToken]?.trim() ?? '',
+    cspSources: env[ENV.cspSources]?.trim() ?? '',
   };
 }

@@ -4,6 +4,7 @@
  */
 import { z } from 'zod';
 import { MAX_PAYLOAD_BYTES, MQTT_KEEPALIVE_S, MQTT_RECONNECT_MS } from '@armtwin/protocol';
+import { QUERY_LANGUAGES, type InfluxSource, type QueryLanguage } from './history/reader.ts';
 
 /** Every setting, with the environment variable it comes from. */
 export interface MiddlewareConfig {
@@ -32,6 +33,15 @@ export interface MiddlewareConfig {
   influxBucket: string;
   /** INFLUX_CREATE_BUCKET: create the database/bucket when missing. */
   influxCreateBucket: boolean;
+  /**
+   * INFLUX_QUERY_LANGUAGE: what the history API and the export speak. `influxql` (the v1 `/query`
+   * API) is served by InfluxDB 1.8, 2.x and 3.x; `flux` by 1.8 (flux-enabled) and 2.x only.
+   */
+  influxQueryLanguage: QueryLanguage;
+  /** WRITE_CONCURRENCY: spool batches written to InfluxDB at once (oldest first). */
+  writeConcurrency: number;
+  /** WRITE_GZIP: gzip each write's body (`Content-Encoding: gzip`). */
+  writeGzip: boolean;
   /** BATCH_SIZE: points per write. */
   batchSize: number;
   /** FLUSH_INTERVAL_MS: the longest a point waits before it is written. */
@@ -81,6 +91,9 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   influxOrg: '',
   influxBucket: 'armtwin/autogen',
   influxCreateBucket: true,
+  influxQueryLanguage: 'influxql',
+  writeConcurrency: 4,
+  writeGzip: true,
   batchSize: 1000,
   flushIntervalMs: 5000,
   maxRetryDelayMs: 15000,
@@ -111,6 +124,9 @@ export const CONFIG_ENV: Record<keyof MiddlewareConfig, string> = {
   influxOrg: 'INFLUX_ORG',
   influxBucket: 'INFLUX_BUCKET',
   influxCreateBucket: 'INFLUX_CREATE_BUCKET',
+  influxQueryLanguage: 'INFLUX_QUERY_LANGUAGE',
+  writeConcurrency: 'WRITE_CONCURRENCY',
+  writeGzip: 'WRITE_GZIP',
   batchSize: 'BATCH_SIZE',
   flushIntervalMs: 'FLUSH_INTERVAL_MS',
   maxRetryDelayMs: 'MAX_RETRY_DELAY_MS',
@@ -155,6 +171,9 @@ const SCHEMA = z.object({
   influxCreateBucket: z
     .enum(['true', 'false', '1', '0'])
     .transform((b) => b === 'true' || b === '1'),
+  influxQueryLanguage: z.enum(QUERY_LANGUAGES),
+  writeConcurrency: int(1, 64),
+  writeGzip: z.enum(['true', 'false', '1', '0']).transform((b) => b === 'true' || b === '1'),
   batchSize: int(1, 1_000_000),
   flushIntervalMs: int(1, 3_600_000),
   maxRetryDelayMs: int(1, 3_600_000),
@@ -196,4 +215,15 @@ export function loadConfig(
     throw new ConfigError(`invalid configuration:\n  ${lines.join('\n  ')}`);
   }
   return parsed.data;
+}
+
+/** Where the history API and the export read: the INFLUX_* settings as a reader's source. */
+export function influxSource(config: MiddlewareConfig, timeoutMs: number): InfluxSource {
+  return {
+    url: config.influxUrl,
+    token: config.influxToken,
+    org: config.influxOrg,
+    bucket: config.influxBucket,
+    timeoutMs,
+  };
 }

@@ -5,9 +5,9 @@
 import http from 'node:http';
 import type { MqttClient } from 'mqtt';
 import { LoginThrottle, loadUsers } from '@armtwin/auth';
-import { ConfigError, type MiddlewareConfig } from './config.ts';
-import { InfluxDB } from '@influxdata/influxdb-client';
+import { ConfigError, influxSource, type MiddlewareConfig } from './config.ts';
 import { createHistoryHandler, type HistoryHandlerDeps } from './history/index.ts';
+import { historyReader } from './history/reader.ts';
 import { createHttpHandler, type HealthReport, type HttpHandler } from './http.ts';
 import { createInfluxWriter, type InfluxWriter } from './influx.ts';
 import { Ingest } from './ingest.ts';
@@ -22,9 +22,17 @@ export {
   DEFAULT_MIDDLEWARE_CONFIG,
   CONFIG_ENV,
   ConfigError,
+  influxSource,
   type MiddlewareConfig,
 } from './config.ts';
 export { createHttpHandler, type HealthReport, type HttpHandler } from './http.ts';
+export {
+  historyReader,
+  QUERY_LANGUAGES,
+  type HistoryReader,
+  type InfluxSource,
+  type QueryLanguage,
+} from './history/reader.ts';
 export { renderMetrics, Metrics } from './metrics.ts';
 export { startLocalInflux, type LocalInflux } from './local-influx.ts';
 
@@ -80,6 +88,7 @@ export async function startMiddleware(
         org: config.influxOrg,
         bucket: config.influxBucket,
         timeoutMs: 10_000,
+        gzip: config.writeGzip,
       });
     storage = new Storage(config, writer, metrics, log, once, clock);
     log.info(
@@ -176,12 +185,7 @@ export async function startMiddleware(
 
   const history = config.influxUrl
     ? createHistoryHandler({
-        queryApi: new InfluxDB({
-          url: config.influxUrl,
-          token: config.influxToken || undefined,
-          timeout: 30_000,
-        }).getQueryApi(config.influxOrg),
-        bucket: config.influxBucket,
+        reader: historyReader(influxSource(config, 30_000), config.influxQueryLanguage),
         ...(deps.robotFor ? { robotFor: deps.robotFor } : {}),
         onError: (err) =>
           once.warn(

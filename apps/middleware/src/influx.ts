@@ -26,7 +26,12 @@ export interface InfluxWriterOptions {
   bucket: string;
   /** Request timeout, ms. */
   timeoutMs: number;
+  /** gzip bodies (`Content-Encoding: gzip`, compressed off the main thread by zlib). */
+  gzip?: boolean;
 }
+
+/** Bodies shorter than this go uncompressed (gzip would not pay). */
+const GZIP_THRESHOLD_BYTES = 1000;
 
 /** Why a write failed: `data` = InfluxDB refused the points themselves (do not retry them). */
 export class WriteError extends Error {
@@ -76,7 +81,11 @@ export function createInfluxWriter(opts: InfluxWriterOptions): InfluxWriter {
   const authHeader: Record<string, string> = opts.token
     ? { authorization: `Token ${opts.token}` }
     : {};
-  const sendOptions = { method: 'POST', headers: { 'content-type': 'text/plain; charset=utf-8' } };
+  const sendOptions = {
+    method: 'POST',
+    headers: { 'content-type': 'text/plain; charset=utf-8' },
+    ...(opts.gzip ? { gzipThreshold: GZIP_THRESHOLD_BYTES } : {}),
+  };
 
   async function version(): Promise<string> {
     const res = await fetch(`${url}/ping`, {

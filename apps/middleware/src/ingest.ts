@@ -9,12 +9,17 @@
  * written alone (no `code`) at its own time; a result with no request seen writes `code`
  * only. Control frames of a group that had an invalid frame are not stored (the controller
  * executes such a group not at all) and are counted as `group-not-executed`.
+ * A command on a user's own control topic (`arm/{id}/control/{user}`, docs/protocol.md
+ * § Control) is stored like one on `arm/{id}/control`, with its author as the tag `user`.
  */
 import {
   createReader,
   FRAME_TOPICS,
   MAX_PAYLOAD_BYTES,
+  isValidArmId,
+  parseAudit,
   parseTopic,
+  parseUserTopic,
   unhandled,
   type Frame,
   type KmsFrame,
@@ -25,6 +30,8 @@ import type { LogOnce } from './log.ts';
 import {
   angleCommandLine,
   angleLine,
+  auditLine,
+  auditSeries,
   commandLine,
   commandSeries,
   healthLine,
@@ -34,6 +41,9 @@ import {
   servoSeries,
   SeriesClock,
 } from './points.ts';
+
+/** `arm/{id}/audit`: the controller's control events, stored as measurement `audit`. */
+const AUDIT_TOPIC = /^arm\/([^/]+)\/audit$/;
 
 export interface IngestOptions {
   /** A bigger message is refused whole and counted once as `oversize`. */
@@ -58,6 +68,8 @@ export class Ingest {
   // The message being handled (the readers' callbacks write here).
   private arm = '';
   private onControl = false;
+  /** The author of the message being read (its per-user control topic), '' = unknown. */
+  private author = '';
   private arrival = 0;
   private out: string[] = [];
 
@@ -71,7 +83,13 @@ export class Ingest {
 
   /** Lines for one message (possibly none); `arrivalMs` is the fallback time. */
   handle(topic: string, payload: Uint8Array | string, arrivalMs: number): string[] {
-    const parsed = parseTopic(topic);
+    const audit = AUDIT_TOPIC.exec(topic);
+    if (audit && isValidArmId(audit[1]!)) return this.audit(audit[1]!, payload);
+    const byUser = parseUserTopic(topic);
+    const parsed =
+      byUser?.kind === 'control'
+        ? { armId: byUser.armId, kind: 'control' as const }
+        : parseTopic(topic);
     const kind =
       parsed && (parsed.kind === 'status' || parsed.kind === 'control') ? parsed.kind : null;
     this.metrics.count(this.metrics.messages, kind ?? 'other');
@@ -90,9 +108,10 @@ export class Ingest {
     }
     this.arm = parsed.armId;
     this.onControl = kind === 'control';
+    this.author = byUser?.kind === 'control' ? byUser.user : '';
     this.arrival = arrivalMs;
     this.out = [];
-    const reader = this.reader(`${kind}/${parsed.armId}`);
+    const reader = this.reader(`${kind}/${parsed.armId}${this.author ? `/${this.author}` : ''}`);
     reader.clearStamp();
     reader.feed(payload);
     const lines = this.out;
@@ -100,6 +119,28 @@ export class Ingest {
     this.metrics.pointsProduced += lines.length;
     this.metrics.timestampsBumped = this.clock.bumped;
     return lines;
+  }
+
+  /** A control event (docs/protocol.md § Control) → one `audit` point at its own time. */
+  private audit(arm: string, payload: Uint8Array | string): string[] {
+    this.metrics.count(this.metrics.messages, 'audit');
+    this.arm = arm;
+    if (payload.length > this.o.maxPayloadBytes) {
+      this.reject(
+        'oversize',
+        `${payload.length} bytes`,
+        `message over ${this.o.maxPayloadBytes} bytes`,
+      );
+      return [];
+    }
+    const e = parseAudit(payload);
+    if (!e) {
+      this.reject('bad-audit', String(payload).slice(0, 80), 'not a control event');
+      return [];
+    }
+    const s = auditSeries(arm, e.kind);
+    this.metrics.pointsProduced++;
+    return [auditLine(s, e.by, e.detail, this.clock.next(s, Math.round(e.at) * 1000))];
   }
 
   private reader(key: string): Reader {
@@ -135,6 +176,11 @@ export class Ingest {
     );
   }
 
+  /** A command series with its author's tag (user names need no line-protocol escaping). */
+  private byAuthor(series: string): string {
+    return this.author ? `${series},user=${this.author}` : series;
+  }
+
   private frame(f: Frame, executed: boolean): void {
     this.metrics.count(this.metrics.frames, f.type);
     const allowed = FRAME_TOPICS[f.type];
@@ -166,13 +212,13 @@ export class Ingest {
       }
       case 'move': {
         if (!executed) return void this.metrics.count(this.metrics.rejected, 'group-not-executed');
-        const s = commandSeries(arm, f.id);
+        const s = this.byAuthor(commandSeries(arm, f.id));
         this.out.push(commandLine(s, f, this.clock.next(s, ms * 1000)));
         return;
       }
       case 'angleMove': {
         if (!executed) return void this.metrics.count(this.metrics.rejected, 'group-not-executed');
-        const s = commandSeries(arm, f.id);
+        const s = this.byAuthor(commandSeries(arm, f.id));
         this.out.push(angleCommandLine(s, f, this.clock.next(s, ms * 1000)));
         return;
       }

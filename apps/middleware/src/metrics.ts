@@ -45,6 +45,8 @@ export class Metrics {
   spoolFiles = 0;
   spoolPoints = 0;
   spoolBytes = 0;
+  /** Points spooled for another InfluxDB destination (another URL, org or bucket): not ours to write. */
+  spoolOtherPoints = 0;
   /** Journal or spool file errors (disk full, permissions). */
   diskErrors = 0;
   mqttConnected = false;
@@ -151,6 +153,13 @@ export function renderMetrics(m: Metrics): string {
   family(out, `${P}spool_bytes`, 'gauge', 'Bytes waiting on disk.', [
     line(`${P}spool_bytes`, m.spoolBytes),
   ]);
+  family(
+    out,
+    `${P}spool_other_destination_points`,
+    'gauge',
+    'Points waiting in the spool for another InfluxDB destination (written only by a middleware configured for it).',
+    [line(`${P}spool_other_destination_points`, m.spoolOtherPoints)],
+  );
   family(
     out,
     `${P}spool_full`,

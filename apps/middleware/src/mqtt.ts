@@ -1,6 +1,7 @@
 /**
  * The MQTT edge (mqtt.js v5, protocol 3.1.1): a persistent session (`clean: false`, fixed
- * client id) subscribed to every arm's status and control topics at the configured QoS,
+ * client id) subscribed to every arm's status and control topics (the plain `arm/+/control` and
+ * the per-user `arm/+/control/+`, docs/protocol.md § Control) at the configured QoS,
  * optionally through a shared subscription `$share/<group>/…`.
  *
  * mqtt.js emits 'message' and only then calls `handleMessage(packet, done)`; the PUBACK of a
@@ -26,7 +27,12 @@ export interface MqttOptions {
 
 /** The topic filters subscribed to. */
 export function subscriptionTopics(shareGroup: string): string[] {
-  const plain = [allArmsTopic('status'), allArmsTopic('control')];
+  const plain = [
+    allArmsTopic('status'),
+    allArmsTopic('control'),
+    `${allArmsTopic('control')}/+`,
+    'arm/+/audit', // control events (docs/protocol.md § Control), stored as `audit`
+  ];
   return shareGroup ? plain.map((t) => `$share/${shareGroup}/${t}`) : plain;
 }
 

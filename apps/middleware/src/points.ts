@@ -77,6 +77,18 @@ export function ikLine(
   return `${series} ${fields.join(',')} ${t}`;
 }
 
+/** A line-protocol string field value: `"…"` with `\` and `"` escaped, line breaks as spaces. */
+const stringField = (s: string): string =>
+  `"${s.replace(/[\\"]/g, (c) => `\\${c}`).replace(/[\r\n]+/g, ' ')}"`;
+
+/** The series of an arm's control events of one kind (a kind is one of AUDIT_KINDS: no escaping). */
+export const auditSeries = (arm: string, kind: string): string => `audit,arm=${arm},kind=${kind}`;
+
+/** One control event (`arm/{id}/audit`): who (`by`, '' = the plain topic) and what (`detail`). */
+export function auditLine(series: string, by: string, detail: string, t: Micros): string {
+  return `${series} by=${stringField(by)},detail=${stringField(detail.slice(0, 500))} ${t}`;
+}
+
 /**
  * Keeps every series' timestamps strictly increasing, so InfluxDB never overwrites a point:
  * a time ≤ the series' last time becomes last + 1 µs. A 1 kHz stream whose `$TIM` stamps

@@ -1,19 +1,23 @@
 /**
- * Ships sealed spool batches to InfluxDB, oldest first, one request at a time. A failure
- * keeps the batch and backs off exponentially (MIN_RETRY_DELAY_MS doubling up to
- * MAX_RETRY_DELAY_MS) for every later batch too, so order is kept; a refusal of the data
- * itself (400/413/422) moves the batch to rejected/ and goes on. A 404 (database/bucket
- * missing) triggers ensureBucket before the next try.
+ * Ships sealed spool batches to InfluxDB, oldest first, up to `concurrency` requests at once
+ * (WRITE_CONCURRENCY: influxd takes concurrent writes faster than one after another). A batch
+ * leaves the spool only when InfluxDB accepted it. A failure keeps the batch and drops to one
+ * request at a time that backs off exponentially (MIN_RETRY_DELAY_MS doubling up to
+ * MAX_RETRY_DELAY_MS) on the oldest batch; the first success brings the others back. A refusal
+ * of the data itself (400/413/422) moves the batch to rejected/ and goes on. A 404
+ * (database/bucket missing) triggers ensureBucket before the next try.
  */
 import type { InfluxWriter } from './influx.ts';
 import { classifyWriteError } from './influx.ts';
 import type { Logger, LogOnce } from './log.ts';
 import type { Metrics } from './metrics.ts';
-import type { Spool } from './spool.ts';
+import type { Spool, SpoolEntry } from './spool.ts';
 
 export interface ShipperOptions {
   minRetryDelayMs: number;
   maxRetryDelayMs: number;
+  /** Requests in flight at once while InfluxDB accepts them (1 while it fails). Default 1. */
+  writeConcurrency?: number;
 }
 
 export interface Clock {
@@ -33,12 +37,15 @@ export const retryDelay = (failures: number, o: ShipperOptions): number =>
   Math.min(o.maxRetryDelayMs, o.minRetryDelayMs * 2 ** Math.min(30, Math.max(0, failures - 1)));
 
 export class Shipper {
-  private running = false;
   private stopped = false;
   private failures = 0;
   private timer: unknown = null;
   private wake: (() => void) | null = null;
+  /** Workers running; each ships the oldest batch nobody else is shipping. */
+  private workers = 0;
+  private readonly inFlight = new Set<SpoolEntry>();
   private idle: Promise<void> = Promise.resolve();
+  private settle: () => void = () => {};
   /** Called after every batch leaves the spool (frees space: resumes a paused intake). */
   onDrain: () => void = () => {};
 
@@ -56,17 +63,15 @@ export class Shipper {
   kick(): void {
     if (this.stopped) return;
     if (this.wake && this.failures === 0) this.wake();
-    if (!this.running) {
-      this.running = true;
-      this.idle = this.loop()
-        .catch((err: Error) => this.log.error({ err }, 'shipper loop failed'))
-        .finally(() => {
-          this.running = false;
-        });
+    const want = this.failures > 0 ? 1 : Math.max(1, this.opts.writeConcurrency ?? 1);
+    while (this.workers < want && this.next()) {
+      if (this.workers === 0) this.idle = new Promise((resolve) => (this.settle = resolve));
+      this.workers++;
+      this.worker().catch((err: Error) => this.log.error({ err }, 'shipper loop failed'));
     }
   }
 
-  /** Stops after the request in flight; resolves when the loop is idle. */
+  /** Stops after the requests in flight; resolves when every worker is idle. */
   async stop(): Promise<void> {
     this.stopped = true;
     this.wake?.();
@@ -76,19 +81,38 @@ export class Shipper {
   /** Ships until the spool is empty or `deadlineMs` (clock time) passes; for shutdown. */
   async drain(deadlineMs: number): Promise<boolean> {
     while (this.spool.peek() && this.clock.now() < deadlineMs) {
-      if (!(await this.shipOne())) return false;
+      if (!(await this.shipOne(this.spool.peek()!))) return false;
     }
     return !this.spool.peek();
   }
 
-  private async loop(): Promise<void> {
-    while (!this.stopped && this.spool.peek()) {
-      if (this.failures > 0) {
-        await this.sleep(retryDelay(this.failures, this.opts));
-        if (this.stopped) return;
-        this.metrics.retries++;
+  /** The oldest batch no worker is shipping. */
+  private next(): SpoolEntry | undefined {
+    for (const e of this.spool.queue) if (!this.inFlight.has(e)) return e;
+    return undefined;
+  }
+
+  private async worker(): Promise<void> {
+    try {
+      while (!this.stopped) {
+        if (this.failures > 0) {
+          if (this.workers > 1) return; // failing: one worker probes, oldest batch first
+          await this.sleep(retryDelay(this.failures, this.opts));
+          if (this.stopped) return;
+          this.metrics.retries++;
+        }
+        const entry = this.next();
+        if (!entry) return;
+        this.inFlight.add(entry);
+        try {
+          if ((await this.shipOne(entry)) && this.workers === 1) this.kick(); // back to full speed
+        } finally {
+          this.inFlight.delete(entry);
+        }
       }
-      await this.shipOne();
+    } finally {
+      // Here, not in a .finally() of the promise: the next worker must see the count at once.
+      if (--this.workers === 0) this.settle();
     }
   }
 
@@ -103,10 +127,8 @@ export class Shipper {
     });
   }
 
-  /** One attempt at the oldest batch; true if it left the spool. */
-  private async shipOne(): Promise<boolean> {
-    const entry = this.spool.peek();
-    if (!entry) return true;
+  /** One attempt at a batch; true if it left the spool. */
+  private async shipOne(entry: SpoolEntry): Promise<boolean> {
     const body = this.spool.read(entry);
     const t0 = this.clock.now();
     try {

@@ -6,11 +6,13 @@
  *   <dir>/batches/<seq>-<n>.lp       sealed batches of n points, oldest = smallest seq
  *   <dir>/rejected/<seq>-<n>.lp(.err) batches InfluxDB refused as bad data, with the reason
  *
- * A batch is sealed (fsync, rename) at BATCH_SIZE points or FLUSH_INTERVAL_MS; the shipper
+ * A batch is sealed (rename, then fsync off the main thread) at BATCH_SIZE points or
+ * FLUSH_INTERVAL_MS; the shipper
  * writes sealed batches oldest-first and unlinks each once InfluxDB accepted it. On start, a
  * journal left by a crash is sealed first (a torn last line, never acknowledged, is cut), so
  * a restarted middleware replays everything. The appends are not fsync'd one by one: a
- * SIGKILL loses nothing (the page cache survives), a power cut can lose the open batch.
+ * SIGKILL loses nothing (the page cache survives), a power cut can lose the open batch and a
+ * batch sealed in the last milliseconds whose fsync had not finished.
  */
 import fs from 'node:fs';
 import path from 'node:path';
@@ -48,6 +50,9 @@ export class Spool {
   private openPoints = 0;
   private openBytes = 0;
   private cached = 0;
+  /** Disk work off the main thread not finished yet (fsyncs, removals), and who waits for it. */
+  private pending = 0;
+  private readonly waiting: (() => void)[] = [];
   private readonly cacheBytes: number;
   readonly queue: SpoolEntry[] = [];
   /** Bytes and points of the sealed batches. */
@@ -112,7 +117,11 @@ export class Spool {
     }
   }
 
-  /** Seals the open batch into the queue; null if it was empty. */
+  /**
+   * Seals the open batch into the queue; null if it was empty. The journal is renamed into
+   * batches/ at once and fsync'd off the main thread (libuv's pool), so a seal never blocks
+   * intake on the disk; the batch can be shipped meanwhile (its bytes are in the page cache).
+   */
   seal(): SpoolEntry | null {
     if (this.openPoints === 0) return null;
     const body = this.open.join('');
@@ -125,17 +134,34 @@ export class Spool {
     let entry: SpoolEntry = { seq, points, bytes: body.length, file: null, body };
     try {
       if (this.fd === null) throw new Error('journal not open');
-      fs.fsyncSync(this.fd);
-      fs.closeSync(this.fd);
+      const fd = this.fd;
       this.fd = null;
       fs.renameSync(this.journal, file);
       entry = { ...entry, file };
+      this.pending++;
+      fs.fdatasync(fd, (err) => {
+        if (err) this.opts.onDiskError?.('seal', err);
+        fs.close(fd, () => this.done());
+      });
     } catch (err) {
       this.opts.onDiskError?.('seal', err as Error);
       this.closeJournal(true);
     }
     this.push(entry);
     return entry;
+  }
+
+  /**
+   * Resolves once the disk work done off the main thread has finished: every sealed batch is on
+   * the disk itself (fsync'd), every removed batch's file is gone.
+   */
+  settled(): Promise<void> {
+    if (this.pending === 0) return Promise.resolve();
+    return new Promise((resolve) => this.waiting.push(resolve));
+  }
+
+  private done(): void {
+    if (--this.pending === 0) for (const f of this.waiting.splice(0)) f();
   }
 
   /** Adds a whole batch as a sealed file (sync mode's failed writes). */
@@ -167,10 +193,19 @@ export class Spool {
     return entry.body ?? fs.readFileSync(entry.file!, 'latin1');
   }
 
-  /** InfluxDB has it: forget it. */
+  /**
+   * InfluxDB has it: forget it. The file goes off the main thread; were the process killed
+   * first, the batch would be written again at the next start, the same points at the same
+   * times, which InfluxDB keeps once.
+   */
   remove(entry: SpoolEntry): void {
     this.drop(entry);
-    if (entry.file) fs.rmSync(entry.file, { force: true });
+    if (!entry.file) return;
+    this.pending++;
+    fs.unlink(entry.file, (err) => {
+      if (err && err.code !== 'ENOENT') this.opts.onDiskError?.('remove', err);
+      this.done();
+    });
   }
 
   /** InfluxDB refused it as bad data: move it to rejected/ with the reason. Returns where. */

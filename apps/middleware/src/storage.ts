@@ -10,9 +10,12 @@ import type { Logger, LogOnce } from './log.ts';
 import type { Metrics } from './metrics.ts';
 import { Shipper, type Clock } from './shipper.ts';
 import { Spool } from './spool.ts';
+import { prepareSpoolTarget } from './spool-target.ts';
 
 export class Storage {
   readonly spool: Spool;
+  /** This destination's spool folder (under SPOOL_DIR, see ./spool-target.ts). */
+  readonly spoolDir: string;
   private readonly shipper: Shipper;
   private readonly batcher: Batcher;
   private paused: Promise<void> | null = null;
@@ -26,24 +29,37 @@ export class Storage {
     private readonly once: LogOnce,
     private readonly clock: Clock,
   ) {
+    // Each destination its own folder: a batch is only ever written where it was meant to go.
+    const target = { url: config.influxUrl, org: config.influxOrg, bucket: config.influxBucket };
+    const { dir, adoptedLegacy, others } = prepareSpoolTarget(config.spoolDir, target);
+    this.spoolDir = dir;
+    if (adoptedLegacy)
+      log.warn(
+        { dir, bucket: config.influxBucket },
+        'a spool from before per-destination folders (no record of its bucket) was adopted by this destination',
+      );
+    for (const o of others) {
+      metrics.spoolOtherPoints += o.points;
+      log.warn(
+        { ...o.target, files: o.files, points: o.points, dir: o.dir },
+        'batches for another InfluxDB destination wait in the spool; they are written only by a middleware configured for it',
+      );
+    }
     this.spool = new Spool({
-      dir: config.spoolDir,
+      dir,
       maxBytes: config.spoolMaxBytes,
       onDiskError: (op, err) => {
         metrics.diskErrors++;
         once.warn(
           `disk:${op}`,
-          { err: err.message, dir: config.spoolDir },
+          { err: err.message, dir },
           `spool ${op} failed: the data stays in memory only`,
         );
       },
     });
     const waiting = this.spool.init();
     if (waiting.files)
-      log.info(
-        { ...waiting, dir: config.spoolDir },
-        'spool holds batches from before: replaying them',
-      );
+      log.info({ ...waiting, dir }, 'spool holds batches from before: replaying them');
     this.shipper = new Shipper(this.spool, writer, metrics, log, once, config, clock);
     this.batcher = new Batcher(
       config,
@@ -113,10 +129,11 @@ export class Storage {
         {
           files: this.spool.queue.length,
           points: this.spool.sealedPoints,
-          dir: this.config.spoolDir,
+          dir: this.spoolDir,
         },
         'stopping with batches still spooled: they are written at the next start',
       );
+    await this.spool.settled();
     this.spool.close();
   }
 
@@ -125,7 +142,7 @@ export class Storage {
     this.metrics.spoolFull = true;
     this.metrics.spoolFullEvents++;
     this.log.error(
-      { bytes: this.spool.bytes, maxBytes: this.config.spoolMaxBytes, dir: this.config.spoolDir },
+      { bytes: this.spool.bytes, maxBytes: this.config.spoolMaxBytes, dir: this.spoolDir },
       'SPOOL FULL: InfluxDB is not keeping up or is down; MQTT intake is PAUSED (the broker queues the messages) until the spool drains',
     );
     this.batcher.flushNow();

@@ -3,6 +3,7 @@ import http from 'node:http';
 import type { AddressInfo } from 'node:net';
 import type { QueryApi } from '@influxdata/influxdb-client';
 import { afterAll, beforeAll, beforeEach, describe, expect, test } from 'vitest';
+import { fluxReader } from '../src/history/flux-reader.ts';
 import { createHistoryHandler } from '../src/history/handler.ts';
 
 const NOW = Date.UTC(2024, 0, 1, 0, 0, 0);
@@ -17,8 +18,7 @@ const fakeQueryApi = {
 } as unknown as QueryApi;
 
 const handler = createHistoryHandler({
-  queryApi: fakeQueryApi,
-  bucket: 'armtwin/autogen',
+  reader: fluxReader(fakeQueryApi, 'armtwin/autogen'),
   now: () => NOW,
 });
 let base = '';
@@ -138,7 +138,7 @@ describe('createHistoryHandler', () => {
       '/history/tracking?arm=arm1&start=2023-12-31T23:59:00Z&stop=2024-01-01T00:01:00Z',
     );
     expect(r.body).toMatchObject({
-      stride: 1,
+      thinnedEveryMs: null,
       joints: [{ id: '001', samples: 2, meanAbsError: 1.5, maxAbsError: 2 }],
     });
     expect(queries).toHaveLength(3);

@@ -41,13 +41,15 @@ describe('Flux builders', () => {
     expect(q).toContain('limit(n: 101)');
   });
 
-  test('tracking queries: lookback for the command in force, actual from 11 s before start, stride', () => {
+  test('tracking queries: lookback for the command in force, actual from 11 s before start, thinned by window', () => {
     expect(String(commandsQuery('b', P, 86_400_000, 10))).toContain(
       'range(start: 2023-11-13T22:13:20.000Z, stop: time(v: "2023-11-14T22:13:19.999999999Z"))',
     );
     expect(String(actualCountQuery('b', P))).toContain('range(start: 2023-11-14T22:13:09.001Z');
-    expect(String(actualQuery('b', P, 1))).not.toContain('sample(');
-    expect(String(actualQuery('b', P, 7))).toContain('sample(n: 7, pos: 0)');
+    expect(String(actualQuery('b', P, null))).not.toContain('aggregateWindow(');
+    expect(String(actualQuery('b', P, '2s'))).toContain(
+      'aggregateWindow(every: duration(v: "2s"), fn: first, createEmpty: false, timeSrc: "_start")',
+    );
   });
 
   /**

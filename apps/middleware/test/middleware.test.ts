@@ -56,8 +56,15 @@ describe('startMiddleware', () => {
     expect(client.subscribed).toEqual([
       '$share/armtwin/arm/+/status',
       '$share/armtwin/arm/+/control',
+      '$share/armtwin/arm/+/control/+',
+      '$share/armtwin/arm/+/audit',
     ]);
-    expect(subscriptionTopics('')).toEqual(['arm/+/status', 'arm/+/control']);
+    expect(subscriptionTopics('')).toEqual([
+      'arm/+/status',
+      'arm/+/control',
+      'arm/+/control/+',
+      'arm/+/audit',
+    ]);
     await mw.stop();
   });
 
@@ -83,7 +90,8 @@ describe('startMiddleware', () => {
       writer,
     );
     await client.deliver('arm/arm1/status', '$TIM:1000!#000P1500!#001P2500!');
-    expect(fs.readFileSync(path.join(dir, 'journal.lp'), 'utf8')).toBe(
+    const [folder] = fs.readdirSync(dir); // this destination's folder (src/spool-target.ts)
+    expect(fs.readFileSync(path.join(dir, folder!, 'journal.lp'), 'utf8')).toBe(
       'servo,arm=arm1,id=000 pwm=1500i,angle=0 1000000\nservo,arm=arm1,id=001 pwm=2500i,angle=135 1000000\n',
     );
     expect(bodies).toEqual([]);

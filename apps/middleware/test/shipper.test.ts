@@ -7,7 +7,7 @@ import { Batcher } from '../src/batcher.ts';
 import { WriteError, type InfluxWriter } from '../src/influx.ts';
 import { LogOnce } from '../src/log.ts';
 import { Metrics } from '../src/metrics.ts';
-import { retryDelay, Shipper, type Clock } from '../src/shipper.ts';
+import { retryDelay, Shipper, type Clock, type ShipperOptions } from '../src/shipper.ts';
 import { Spool } from '../src/spool.ts';
 
 afterEach(() => vi.useRealTimers());
@@ -35,11 +35,13 @@ class FakeWriter implements InfluxWriter {
   }
 }
 
-function setup(opts = { minRetryDelayMs: 100, maxRetryDelayMs: 1000 }) {
+function setup(
+  opts: ShipperOptions = { minRetryDelayMs: 100, maxRetryDelayMs: 1000 },
+  writer = new FakeWriter(),
+) {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-shipper-test-'));
   const spool = new Spool({ dir, maxBytes: 1 << 20 });
   spool.init();
-  const writer = new FakeWriter();
   const metrics = new Metrics();
   const log = pino({ level: 'silent' });
   const shipper = new Shipper(spool, writer, metrics, log, new LogOnce(log), opts, fakeClock());
@@ -94,6 +96,56 @@ describe('Shipper', () => {
     expect(writer.bodies).toEqual(['good 2\n']);
     expect(metrics.pointsRejected).toBe(1);
     expect(fs.readdirSync(path.join(dir, 'rejected'))).toHaveLength(2);
+    fs.rmSync(dir, { recursive: true });
+  });
+});
+
+/** A writer whose requests wait until the test answers them: shows what is in flight at once. */
+class HeldWriter extends FakeWriter {
+  held: { body: string; ok: () => void; fail: (e: Error) => void }[] = [];
+  override write(body: string) {
+    return new Promise<void>((ok, fail) => this.held.push({ body, ok, fail }));
+  }
+  /** Answers every held request (ok or failed), oldest first. */
+  answer(result: 'ok' | WriteError) {
+    for (const h of this.held.splice(0)) {
+      if (result === 'ok') {
+        this.bodies.push(h.body);
+        h.ok();
+      } else h.fail(result);
+    }
+  }
+}
+
+describe('Shipper, concurrent writes', () => {
+  test('keeps WRITE_CONCURRENCY batches in flight, oldest first; a failure drops to one prober, and its success brings the rest back', async () => {
+    vi.useFakeTimers();
+    const writer = new HeldWriter();
+    const { spool, metrics, shipper, add, dir } = setup(
+      { minRetryDelayMs: 100, maxRetryDelayMs: 1000, writeConcurrency: 3 },
+      writer,
+    );
+    for (const n of ['a', 'b', 'c', 'd', 'e', 'f', 'g']) add(`${n} 1`);
+    shipper.kick();
+    await vi.advanceTimersByTimeAsync(0);
+    expect(writer.held.map((h) => h.body)).toEqual(['a 1\n', 'b 1\n', 'c 1\n']);
+    writer.answer(new WriteError('network', 'ECONNREFUSED'));
+    await vi.advanceTimersByTimeAsync(0);
+    expect(writer.held).toHaveLength(0); // backing off: nothing in flight
+    expect(spool.queue).toHaveLength(7); // and nothing lost
+    await vi.advanceTimersByTimeAsync(400);
+    expect(writer.held.map((h) => h.body)).toEqual(['a 1\n']); // one probe, the oldest
+    writer.answer('ok');
+    await vi.advanceTimersByTimeAsync(0);
+    expect(writer.held.map((h) => h.body)).toEqual(['b 1\n', 'c 1\n', 'd 1\n']);
+    writer.answer('ok');
+    await vi.advanceTimersByTimeAsync(0);
+    writer.answer('ok');
+    await vi.advanceTimersByTimeAsync(0);
+    expect(writer.bodies).toEqual(['a 1\n', 'b 1\n', 'c 1\n', 'd 1\n', 'e 1\n', 'f 1\n', 'g 1\n']);
+    expect(spool.queue).toHaveLength(0);
+    expect(metrics).toMatchObject({ pointsWritten: 7, pointsDropped: 0 });
+    await shipper.stop();
     fs.rmSync(dir, { recursive: true });
   });
 });

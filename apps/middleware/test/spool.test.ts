@@ -21,7 +21,7 @@ const lines = (from: number, n: number) =>
   );
 
 describe('Spool', () => {
-  test('appended points are on disk before seal; sealed batches come back oldest first', () => {
+  test('appended points are on disk before seal; sealed batches come back oldest first', async () => {
     const dir = tmp();
     const s = new Spool({ dir, maxBytes: 1 << 20 });
     s.init();
@@ -38,11 +38,12 @@ describe('Spool', () => {
     expect(s.read(s.peek()!)).toBe(lines(0, 3).join('\n') + '\n');
     s.remove(a);
     expect(s.peek()).toBe(b);
+    await s.settled(); // the file goes off the main thread
     expect(fs.readdirSync(path.join(dir, 'batches'))).toEqual([path.basename(b.file!)]);
     expect(s.sealedPoints).toBe(2);
   });
 
-  test('a restarted spool replays its batches in order, then the crashed journal (torn line cut)', () => {
+  test('a restarted spool replays its batches in order, then the crashed journal (torn line cut)', async () => {
     const dir = tmp();
     const s1 = new Spool({ dir, maxBytes: 1 << 20 });
     s1.init();
@@ -67,6 +68,7 @@ describe('Spool', () => {
     // sequence numbers go on after a restart, after any file still there
     s2.append(lines(0, 1));
     const kept = s2.seal()!;
+    await s2.settled();
     const s3 = new Spool({ dir, maxBytes: 1 << 20 });
     s3.init();
     s3.append(lines(0, 1));

@@ -7,3 +7,4 @@ export * from './parts.ts';
 export * from './run-up.ts';
 export * from './static-files.ts';
 export * from './up.ts';
+export * from './security-headers.ts';

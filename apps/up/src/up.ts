@@ -31,14 +31,17 @@ import {
   MODELS_DIR,
   simWill,
   startMqttSim,
+  followZones,
   type MqttSim,
 } from '@armtwin/sim';
 import { createCameraPart } from './camera-part.ts';
 import { calibrationRoute, isCalibrationRequest, type Authorize } from './calibration-route.ts';
+import { isKeepOutRequest, keepOutRoute } from './keep-out-route.ts';
 import { importRoute, isImportRequest } from './import-route.ts';
 import { ensureWebBuild, startMiddlewarePart, WEB_DIST, type StartedMiddleware } from './parts.ts';
 import { isModelRequest, modelFiles } from './model-files.ts';
 import { staticFiles } from './static-files.ts';
+import { DEFAULT_HUD_HEADERS_OPTIONS, securityHeaders } from './security-headers.ts';
 
 export interface UpOptions {
   /** The HTTP port: HUD, /mqtt, /api. 0 = any free port. */
@@ -77,6 +80,11 @@ export interface UpOptions {
   modelsDir?: string;
   /** A demo camera of the first arm (`--camera testsrc`, a device, a URL; '' = none). */
   camera?: string;
+  /**
+   * Sources beyond this origin the HUD may connect to and show pictures from (other brokers,
+   * camera servers), added to its Content-Security-Policy (./security-headers.ts).
+   */
+  cspSources?: string[];
   /** Progress lines for the operator. */
   say: (msg: string) => void;
   onFirst: (kind: string, message: string) => void;
@@ -130,6 +138,11 @@ export async function startUp(o: UpOptions): Promise<Up> {
     authorize: operatorOnly(broker.logins),
     onFirst: o.onFirst,
   });
+  const keepOut = keepOutRoute({
+    dirs: modelDirs,
+    authorize: operatorOnly(broker.logins),
+    onFirst: o.onFirst,
+  });
   const robotImport = importRoute({
     modelsDir: modelDirs[0]!,
     authorize: operatorOnly(broker.logins),
@@ -138,6 +151,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
   const api = async (req: http.IncomingMessage, res: http.ServerResponse) => {
     if (req.url === '/api/whoami') return whoami(req, res, broker.logins);
     if (isCalibrationRequest(req)) return calibration.handle(req, res);
+    if (isKeepOutRequest(req)) return keepOut.handle(req, res);
     if (isImportRequest(req)) return robotImport.handle(req, res);
     if (broker.logins) await basicToBearer(req, broker.logins, apiToken);
     if (mw?.middleware.handler(req, res)) return;
@@ -157,7 +171,11 @@ export async function startUp(o: UpOptions): Promise<Up> {
         onFirst: o.onFirst,
       })
     : null;
+  const headers = Object.entries(
+    securityHeaders({ ...DEFAULT_HUD_HEADERS_OPTIONS, extraSources: o.cspSources ?? [] }),
+  );
   const onRequest = (req: http.IncomingMessage, res: http.ServerResponse) => {
+    for (const [name, value] of headers) res.setHeader(name, value);
     if (camera?.handleRequest(req, res)) return;
     if (req.url === '/api' || req.url?.startsWith('/api/')) {
       api(req, res).catch((err: unknown) => {
@@ -202,13 +220,29 @@ export async function startUp(o: UpOptions): Promise<Up> {
       },
     );
     const profile = profiles[k]!;
-    return startMqttSim(client, {
+    const started = startMqttSim(client, {
       armId: id,
       rate: o.rate,
       onFirst: o.onFirst,
       model: profile.model,
       profile,
     });
+    // Zones edited in the HUD (PUT …/keep-out) reach this sim through the profile file.
+    const name = armSpecs[k]!.profile;
+    const zones = followZones({
+      client,
+      armId: id,
+      name,
+      modelsDir: profileDir(modelDirs, name),
+      sim: profile,
+      runner: started.runner,
+      onFirst: o.onFirst,
+    });
+    const stop = () => {
+      zones.stop();
+      return started.stop();
+    };
+    return { ...started, stop };
   });
   const sim = sims[0]!;
 
@@ -288,7 +322,7 @@ function operatorOnly(logins: LoginThrottle | null): Authorize {
     if (!logins) return { ok: true };
     const who = await basicUser(req, logins);
     if (!who.ok) return { ok: false, status: 401, error: 'log in as an operator' };
-    if (who.principal.role !== 'operator')
+    if (who.principal.role !== 'operator' && who.principal.role !== 'admin')
       return { ok: false, status: 403, error: `${who.principal.role}s may not change a robot` };
     return { ok: true };
   };

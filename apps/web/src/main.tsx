@@ -2,6 +2,7 @@
  * Mounts the HUD: the page's objects come from ./hud/createHud.ts (the one composition root);
  * React draws the panels over the 3D view, re-mounting them when the robot changes.
  */
+import './noEval.ts';
 import { StrictMode } from 'react';
 import { createRoot } from 'react-dom/client';
 import { createHud } from './hud/createHud.ts';

@@ -84,7 +84,12 @@ describe('ArmLink', () => {
       reconnectPeriod: 1000,
     });
     expect(store.connection).toBe('connected');
-    expect(client.subscribed).toEqual(['arm/arm1/status', 'arm/arm1/online']);
+    expect(client.subscribed).toEqual([
+      'arm/arm1/status',
+      'arm/arm1/online',
+      'arm/arm1/holder',
+      'arm/arm1/audit',
+    ]);
     link.stop();
     expect(client.ended).toBe(true);
   });

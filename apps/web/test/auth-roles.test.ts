@@ -78,7 +78,7 @@ describe('whoami', () => {
     expect(parseWhoami(429, null, '287')).toEqual({ kind: 'locked', retryS: 287 });
     expect(parseWhoami(429, null, null)).toEqual({ kind: 'locked', retryS: 60 });
     expect(parseWhoami(404, null)).toEqual({ kind: 'unavailable', reason: 'HTTP 404' });
-    expect(parseWhoami(200, { name: 'x', role: 'admin' }).kind).toBe('unavailable');
+    expect(parseWhoami(200, { name: 'x', role: 'root' }).kind).toBe('unavailable');
     expect(parseWhoami(200, '<html>').kind).toBe('unavailable');
   });
 

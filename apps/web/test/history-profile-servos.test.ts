@@ -22,7 +22,7 @@ function overview(ids: string[]): OverviewViews {
       data: {
         ...echo,
         unit: 'deg',
-        stride: 1,
+        thinnedEveryMs: null,
         truncated: false,
         joints: ids.map((id) => ({ id, samples: 1, meanAbsError: 0, maxAbsError: 0, maxAt: 0 })),
       },

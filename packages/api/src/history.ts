@@ -76,9 +76,31 @@ export interface TrackingJoint {
 
 export interface TrackingAnswer extends RangeEcho {
   unit: 'deg';
-  stride: number;
+  /**
+   * null: every actual sample in range was compared. Otherwise more than the bound were there,
+   * and the first sample of each window of this many ms was compared (the true maximum may be missed).
+   */
+  thinnedEveryMs: number | null;
   truncated: boolean;
   joints: TrackingJoint[];
+}
+
+/** One control event as stored (PROTOCOL § Control, `arm/{id}/audit`): who did what, when. */
+export interface AuditRecord {
+  /** Epoch ms. */
+  at: number;
+  /** The user it came from; '' = the plain control topic (no log-in). */
+  by: string;
+  /** `taken`, `granted`, `refused-command`, … (`AUDIT_KINDS` in @armtwin/protocol). */
+  kind: string;
+  /** A sentence for people. */
+  detail: string;
+}
+
+/** `/history/audit`: the arm's control events in range, in time order. */
+export interface AuditAnswer extends RangeEcho {
+  truncated: boolean;
+  events: AuditRecord[];
 }
 
 /** Every error answer of the history API: `{error}` with a 4xx or 5xx status. */

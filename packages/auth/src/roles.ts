@@ -1,11 +1,13 @@
 /**
- * Who may do what on the broker: the four roles as topic rules, and the matching
+ * Who may do what on the broker: the five roles as topic rules, and the matching
  * used by the embedded broker's hooks. The same table is written out as Mosquitto's ACL file
  * (./mosquitto-config.ts), so both brokers enforce one policy. Pure, no I/O.
  *
- * `{arm}` in a rule is the device user's own arm id; `+` is any arm.
+ * `{arm}` in a rule is the device user's own arm id; `{user}` is the user's own name (the
+ * per-user control topics: a message on `arm/arm1/control/alice` can only come from alice,
+ * docs/protocol.md "Control: one operator at a time"); `+` is any arm.
  */
-export const ROLES = ['viewer', 'operator', 'device', 'middleware'] as const;
+export const ROLES = ['viewer', 'operator', 'device', 'middleware', 'admin'] as const;
 export type Role = (typeof ROLES)[number];
 
 export interface RoleRules {
@@ -25,6 +27,22 @@ const VIEWER_READ = [
   'arm/+/camera/+',
   // A camera's calibration (docs/protocol.md § Cameras): the pose and fov operators set by eye.
   'arm/+/camera/+/calibration',
+  // Who holds each arm (retained) and the control events (docs/protocol.md § Control).
+  'arm/+/holder',
+  'arm/+/audit',
+] as const;
+
+// An operator moves an arm only on its own control topic, and claims it on its own claim topic:
+// the plain `arm/+/control` is not theirs (the controller could not tell who sent it).
+const OPERATOR_WRITE = [
+  'arm/+/control/{user}',
+  'arm/+/claim/{user}',
+  'arm/+/operator',
+  'arm/+/request',
+  'arm/+/request/{user}',
+  'arm/+/sim',
+  'arm/+/torque',
+  'arm/+/camera/+/calibration',
 ] as const;
 
 export const ROLE_RULES: Record<Role, RoleRules> = {
@@ -34,21 +52,20 @@ export const ROLE_RULES: Record<Role, RoleRules> = {
     // `arm/+/torque`: a bus arm's torque off (`0`) and on (`1`), through its gateway.
     // `arm/+/camera/+/calibration`: a camera's pose and fov as set by eye (retained), never
     // the announcement itself, which only the camera's device may write.
-    write: [
-      'arm/+/control',
-      'arm/+/operator',
-      'arm/+/request',
-      'arm/+/sim',
-      'arm/+/torque',
-      'arm/+/camera/+/calibration',
-    ],
+    write: OPERATOR_WRITE,
   },
+  // An operator that may also take an arm outright, whoever holds it.
+  admin: { read: VIEWER_READ, write: [...OPERATOR_WRITE, 'arm/+/override/{user}'] },
   device: {
     read: [
       'arm/{arm}/control',
+      'arm/{arm}/control/+',
+      'arm/{arm}/claim/+',
+      'arm/{arm}/override/+',
       'arm/{arm}/operator',
       'arm/{arm}/sim',
       'arm/{arm}/request',
+      'arm/{arm}/request/+',
       'arm/{arm}/torque',
     ],
     write: [
@@ -59,9 +76,14 @@ export const ROLE_RULES: Record<Role, RoleRules> = {
       'arm/{arm}/feedback',
       // The arm's cameras (PROTOCOL.md §7): the camera server logs in as the arm's device.
       'arm/{arm}/camera/+',
+      'arm/{arm}/holder',
+      'arm/{arm}/audit',
     ],
   },
-  middleware: { read: ['arm/+/status', 'arm/+/control'], write: [] },
+  middleware: {
+    read: ['arm/+/status', 'arm/+/control', 'arm/+/control/+', 'arm/+/audit'],
+    write: [],
+  },
 };
 
 /** What a connected client is. `arm` is set for (and only for) devices. */
@@ -71,10 +93,10 @@ export interface Principal {
   arm?: string;
 }
 
-/** The rules of one principal, with `{arm}` filled in. */
+/** The rules of one principal, with `{arm}` and `{user}` filled in. */
 export function rulesFor(p: Principal): RoleRules {
   const r = ROLE_RULES[p.role];
-  const fill = (t: string) => t.replaceAll('{arm}', p.arm ?? '');
+  const fill = (t: string) => t.replaceAll('{arm}', p.arm ?? '').replaceAll('{user}', p.name);
   return { read: r.read.map(fill), write: r.write.map(fill) };
 }
 

@@ -71,9 +71,22 @@ describe('roles', () => {
     expect(canPublish(viewer, 'arm/arm1/control')).toBe(false);
   });
 
-  test('operator adds control, operator, request and sim', () => {
-    for (const k of ['control', 'operator', 'request', 'sim'])
+  test('operator adds its own control and claim topics, operator, request and sim', () => {
+    for (const k of [
+      `control/${operator.name}`,
+      `claim/${operator.name}`,
+      'operator',
+      'request',
+      'sim',
+    ])
       expect(canPublish(operator, `arm/arm7/${k}`)).toBe(true);
+    // One operator at a time (docs/protocol.md § Control): not the plain control topic, nobody
+    // else's, and no take-over (that is an admin's).
+    expect(canPublish(operator, 'arm/arm7/control')).toBe(false);
+    expect(canPublish(operator, 'arm/arm7/control/someone-else')).toBe(false);
+    expect(canPublish(operator, `arm/arm7/override/${operator.name}`)).toBe(false);
+    expect(canPublish({ name: 'root', role: 'admin' }, 'arm/arm7/override/root')).toBe(true);
+    expect(canPublish({ name: 'root', role: 'admin' }, 'arm/arm7/override/alice')).toBe(false);
     expect(canPublish(operator, 'arm/arm7/status')).toBe(false);
     expect(canPublish(operator, 'arm/arm7/sim/faults')).toBe(false);
   });

@@ -51,6 +51,7 @@ export function mayWatch(p: Principal, armId: string | null): boolean {
   switch (p.role) {
     case 'viewer':
     case 'operator':
+    case 'admin':
       return true;
     case 'device':
       return armId !== null && p.arm === armId;

@@ -5,7 +5,8 @@
  * queued goals; `#IIIPRAD!` / `#IIIPRTV!` are answered from the last reads; `$PNG` is echoed.
  * `$KMS` goes through the profile's IK (`./bus-kms.ts`) when one is given, answered `$KMS:c!`
  * and moved only with 0. Refusals are `$ERR` replies. Goals that would put the tool or a joint
- * below the floor are refused (`$ERR:floor …`, `$KMS:1!`), as the simulator refuses them.
+ * below the floor are refused (`$ERR:floor …`, `$KMS:1!`), and moves whose path enters a keep-out
+ * zone (`$ERR:zone …`, `$KMS:25!`), as the simulator refuses them.
  */
 import {
   createReader,
@@ -17,7 +18,14 @@ import {
   SERVO_ID_ALL,
   type Frame,
 } from '@armtwin/protocol';
-import { KMS_FLOOR_CODE, KMS_LIMIT_CODE, type BusKeepOut, type BusKmsSolver } from './bus-kms.ts';
+import {
+  KMS_FLOOR_CODE,
+  KMS_LIMIT_CODE,
+  KMS_ZONE_CODE,
+  type BusKeepOut,
+  type BusKmsSolver,
+} from './bus-kms.ts';
+import { keepOutKind } from '@armtwin/motion';
 import {
   angleGoal,
   goalFor,
@@ -141,9 +149,11 @@ export class BusControl {
         if (g.ok) goals.push(g.goal);
         else code = KMS_LIMIT_CODE;
       });
-    if (code === 0 && this.floorReason(now, goals)) {
-      code = KMS_FLOOR_CODE;
-      this.counters.refused.floor = (this.counters.refused.floor ?? 0) + 1;
+    const keepOut = code === 0 ? this.floorReason(now, goals) : '';
+    if (keepOut) {
+      const kind = keepOutKind(keepOut);
+      code = kind === 'zone' ? KMS_ZONE_CODE : KMS_FLOOR_CODE;
+      this.counters.refused[kind] = (this.counters.refused[kind] ?? 0) + 1;
     }
     this.replies.push(encodeKmsResult(code));
     if (code === 0 && goals.length) this.target.writeGoals(goals);
@@ -170,7 +180,7 @@ export class BusControl {
       }
     }
     const floor = this.floorReason(this.positionsNow(), goals);
-    if (floor) return this.refuse('floor', floor);
+    if (floor) return this.refuse(keepOutKind(floor), floor);
     if (goals.length) this.target.writeGoals(goals);
   }
 

@@ -5,7 +5,13 @@
  * same degrees; the arm's present angles seed it.
  */
 import { pwmFromServo, servoFromPwm } from '@armtwin/ik';
-import { checkFloorMove, exactPwmFromServo, solveTip, type MotionRobot } from '@armtwin/motion';
+import {
+  checkFloorMove,
+  exactPwmFromServo,
+  keepOutReason,
+  solveTip,
+  type MotionRobot,
+} from '@armtwin/motion';
 
 /** (x, y, z mm, pitch deg or undefined, degrees now by servo index) → code and target degrees (NaN = leave). */
 export type BusKmsSolver = (
@@ -36,6 +42,9 @@ export const KMS_LIMIT_CODE = 8;
 /** The `$KMS` code for a solution below the floor: §4's code 1 (docs/protocol.md, "The floor"). */
 export const KMS_FLOOR_CODE = 1;
 
+/** The `$KMS` code for a solution whose path enters a keep-out zone: 25 (docs/protocol.md). */
+export const KMS_ZONE_CODE = 25;
+
 /**
  * Keep-out zones on a bus (degrees by servo index, from = the positions read now, to = after
  * the command; NaN = unknown): the refusal reason, or '' when the move may run.
@@ -50,4 +59,15 @@ export function busFloorKeepOut(robot: MotionRobot): BusKeepOut {
     const c = checkFloorMove(robot, pwm(fromDeg), pwm(toDeg));
     return c.ok ? '' : `floor: ${c.message}`;
   };
+}
+
+/**
+ * The floor, the keep-out zones and self-collision as the bus gateway checks them:
+ * `keepOutReason` of @armtwin/motion in degrees (the goal against the floor, the straight path
+ * to it against the zones), `floor: …` or `zone: …`.
+ */
+export function busZonesKeepOut(robot: MotionRobot): BusKeepOut {
+  const servos = robot.profile.servos;
+  const pwm = (deg: readonly number[]) => servos.map((s, i) => exactPwmFromServo(s, deg[i]!));
+  return (fromDeg, toDeg) => keepOutReason(robot, pwm(fromDeg), pwm(toDeg));
 }

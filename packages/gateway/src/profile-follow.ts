@@ -5,15 +5,20 @@
  * when it changes (the HUD's calibration wizard writes it through `armtwin up`, or someone
  * edits it) it is read again and, if it parses and drives the same servos, put in force at once
  * (`BusGatewayCore.reconfigure`: new polarity, offset and limits, the arm holding where it is)
- * and announced again. A file that does not parse is reported and the old profile kept.
+ * and announced again. A file that does not parse is reported and leaves the arm stopped (an
+ * emergency stop, then every move and `$KMS` refused) until a good file is written.
  */
 import fs from 'node:fs';
 import path from 'node:path';
 import type { MqttClient } from 'mqtt';
 import { readRobotFolder } from '@armtwin/motion/robot-folder';
-import { topic } from '@armtwin/protocol';
-import { busFloorKeepOut, busKmsSolver } from './bus-kms.ts';
+import { EMERGENCY_STOP, topic } from '@armtwin/protocol';
+import { parseProfile } from '@armtwin/ik';
+import { busKmsSolver, busZonesKeepOut } from './bus-kms.ts';
 import type { BusGatewayCore } from './bus-gateway.ts';
+
+/** What every move is answered with while the profile file does not parse. */
+const refuseAll = () => 'zone: profile.json invalid';
 
 /** How often the profile file is looked at, ms (a stat; renames are seen too). */
 export const PROFILE_POLL_MS = 500;
@@ -48,13 +53,21 @@ export function followProfile(o: ProfileFollowOptions): { stop(): void } {
   const reload = () => {
     try {
       const { profile, raw, robot } = readRobotFolder(o.name, o.modelsDir);
-      const error = o.core.reconfigure(profile, busKmsSolver(robot), busFloorKeepOut(robot));
+      const error = o.core.reconfigure(profile, busKmsSolver(robot), busZonesKeepOut(robot));
       if (error) return o.onFirst('profile:reload', error);
       announce(raw);
       o.onReload?.(profile.name);
     } catch (err) {
       o.onFirst('profile:reload', `${file} not taken: ${(err as Error).message}`);
+      stopUntilFixed();
     }
+  };
+  // A file that does not parse (a zone file with nonsense in it) leaves the arm stopped: every
+  // servo stops where it is, and every move is refused until a good file is written.
+  const started = parseProfile(o.raw);
+  const stopUntilFixed = () => {
+    o.core.fromControl(EMERGENCY_STOP);
+    if (started.ok) o.core.reconfigure(started.profile, undefined, refuseAll);
   };
   const onChange = (now: fs.Stats, before: fs.Stats) => {
     if (now.mtimeMs !== before.mtimeMs || now.ino !== before.ino) reload();

@@ -9,7 +9,7 @@ import type { MotionRobot } from '@armtwin/motion';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { armTopics, SYSTEM_CLOCK, topic } from '@armtwin/protocol';
 import type { BusProtocol } from '@armtwin/servo-bus';
-import { busFloorKeepOut, busKmsSolver } from './bus-kms.ts';
+import { busKmsSolver, busZonesKeepOut } from './bus-kms.ts';
 import {
   BusGatewayCore,
   DEFAULT_BUS_GATEWAY_OPTIONS,
@@ -99,7 +99,7 @@ export function startBusGateway(
     healthRate: o.healthRate,
     operatorLeaseMs: o.operatorLeaseMs,
     kms: busKmsSolver(robot),
-    keepOut: busFloorKeepOut(robot),
+    keepOut: busZonesKeepOut(robot),
   };
   const core = new BusGatewayCore(coreOptions, {
     ...SYSTEM_CLOCK,
@@ -109,7 +109,7 @@ export function startBusGateway(
     write: (data) => link.write(Buffer.from(data.buffer, data.byteOffset, data.byteLength)),
     onFirst: o.onFirst,
   });
-  wireGatewayMqtt(client, o, core, { [torque]: (p) => core.fromTorque(p) });
+  const control = wireGatewayMqtt(client, o, core, { [torque]: (p) => core.fromTorque(p) });
   const follow = followProfile({
     ...o,
     client,
@@ -131,6 +131,7 @@ export function startBusGateway(
     async stop() {
       follow.stop();
       core.operator.reset();
+      control.reset();
       core.serialClosed();
       if (client.connected)
         await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});

@@ -7,6 +7,11 @@ import mqtt, { type MqttClient } from 'mqtt';
 import type { Logger } from 'pino';
 import {
   armTopics,
+  auditTopic,
+  ControlArbiter,
+  encodeControllerError,
+  encodeTime,
+  holderTopic,
   linkOptions,
   MQTT_KEEPALIVE_S,
   MQTT_RECONNECT_MS,
@@ -50,6 +55,8 @@ export const DEFAULT_GATEWAY_OPTIONS = {
 
 export interface Gateway {
   core: GatewayCore;
+  /** Who holds the arm; only their moves reach the serial line. */
+  control: ControlArbiter;
   client: MqttClient;
   link: SerialLink;
   stop(): Promise<void>;
@@ -83,16 +90,37 @@ export interface GatewayMqttCore {
 /**
  * Subscribes the arm's control and operator topics (and `extra`: topic → handler) at every
  * connect, hands their messages to `core`, and tells it when the broker comes and goes.
+ * Control goes through a `ControlArbiter` (one operator at a time, docs/protocol.md), which
+ * also takes the per-user control, claim and override topics; it is returned.
  */
 export function wireGatewayMqtt(
   client: MqttClient,
-  o: Pick<GatewayOptions, 'armId' | 'log' | 'onFirst'>,
+  o: Pick<GatewayOptions, 'armId' | 'log' | 'onFirst'> & { operatorLeaseMs?: number },
   core: GatewayMqttCore,
   extra: Record<string, (payload: Buffer) => void> = {},
-): void {
+): ControlArbiter {
   const topics = armTopics(o.armId);
+  const publish = (topic: string, payload: string, retain = false) => {
+    if (client.connected) client.publish(topic, payload, { qos: retain ? 1 : 0, retain });
+  };
+  const control = new ControlArbiter(
+    o.armId,
+    {
+      ...SYSTEM_CLOCK,
+      forward: (payload) => core.fromControl(Buffer.from(payload)),
+      refuse: (message) =>
+        publish(
+          topics.status,
+          encodeTime(Math.round(SYSTEM_CLOCK.now())) + encodeControllerError(message),
+        ),
+      holder: (record) => publish(holderTopic(o.armId), JSON.stringify(record), true),
+      audit: (event) =>
+        client.connected &&
+        void client.publish(auditTopic(o.armId), JSON.stringify(event), { qos: 1 }),
+    },
+    o.operatorLeaseMs === undefined ? {} : { leaseMs: o.operatorLeaseMs },
+  );
   const handlers: Record<string, (payload: Buffer) => void> = {
-    [topics.control]: (p) => core.fromControl(p),
     [topics.operator]: (p) => core.fromOperator(p),
     ...extra,
   };
@@ -100,15 +128,19 @@ export function wireGatewayMqtt(
     o.log?.info({ arm: o.armId }, 'broker connected');
     core.brokerConnected(true);
     client.subscribe(
-      Object.keys(handlers),
+      [topics.control, ...control.filters, ...Object.keys(handlers)],
       { qos: 1 },
       (err) => err && o.onFirst('subscribe', err.message),
     );
+    control.announce();
   });
   client.on('close', () => core.brokerConnected(false));
   client.on('offline', () => o.log?.warn('broker unreachable; reconnecting'));
   client.on('error', (err) => o.onFirst(`mqtt:${err.message}`, `mqtt: ${err.message}`));
-  client.on('message', (topic, payload) => handlers[topic]?.(payload));
+  client.on('message', (topic, payload) => {
+    if (!control.fromMessage(topic, payload)) handlers[topic]?.(payload);
+  });
+  return control;
 }
 
 export function startGateway(
@@ -144,16 +176,22 @@ export function startGateway(
     },
     o.operatorLeaseMs,
   );
-  wireGatewayMqtt(client, o, core);
+  const control = wireGatewayMqtt(client, o, core);
   link.start();
   return {
     core,
+    control,
     client,
     link,
     async stop() {
       core.operator.reset();
-      if (client.connected)
+      control.reset();
+      if (client.connected) {
         await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
+        await client
+          .publishAsync(holderTopic(o.armId), '', { qos: 1, retain: true })
+          .catch(() => {});
+      }
       await client.endAsync().catch(() => {});
       await link.stop();
       log?.info({ counters: core.counters, serial: link.counters }, 'gateway stopped');

@@ -11,6 +11,7 @@ export * from './cartesian-plan.ts';
 export * from './frames.ts';
 export * from './pose-check.ts';
 export * from './floor.ts';
+export * from './zones/index.ts';
 export * from './codes.ts';
 export * from './request.ts';
 export * from './motion.ts';

@@ -7,9 +7,17 @@
  */
 import { servoFromPwm, servoWithinLimits } from '@armtwin/ik';
 import { planCartesian, type CartesianWaypoint } from './cartesian-plan.ts';
-import { CODE_BELOW_FLOOR, CODE_INVALID, CODE_SERVO_LIMIT, motionCodeMessage } from './codes.ts';
+import {
+  CODE_BELOW_FLOOR,
+  CODE_INVALID,
+  CODE_IN_ZONE,
+  CODE_SELF_COLLISION,
+  CODE_SERVO_LIMIT,
+  motionCodeMessage,
+} from './codes.ts';
 import { planBelowFloor } from './floor.ts';
 import { planJoint } from './joint-plan.ts';
+import { planInZone } from './zones/zones.ts';
 import type { PlanOptions } from './options.ts';
 import { nextTargetIndex, type MotionMode, type Plan } from './plan.ts';
 import type { MotionRequest, RequestTarget } from './request.ts';
@@ -154,20 +162,30 @@ export function planSpec(
   return planned(robot, r.plan, spec);
 }
 
-/** A plan that stays above the floor is `planned`; one that dips below it is refused (24). */
+/**
+ * A plan that stays above the floor and out of every keep-out zone (its path between samples
+ * included) is `planned`; one that dips below the floor is refused (24), one that enters a zone
+ * (25) or folds onto itself (26) too, naming the target it was heading for.
+ */
 function planned(robot: MotionRobot, plan: Plan, spec: MotionSpec): PlanOutcome {
   const low = planBelowFloor(robot, plan);
-  if (!low) return { status: 'planned', code: 0, plan, spec, message: summary(plan, spec) };
-  const t = plan.samples[low.sample]!.t;
+  const hit = low ? null : planInZone(robot, plan);
+  if (!low && !hit) return { status: 'planned', code: 0, plan, spec, message: summary(plan, spec) };
+  const t = plan.samples[(low ?? hit)!.sample]!.t;
   const target = Math.max(
     0,
     plan.targetTimes.findIndex((tt) => tt >= t),
   );
+  const code = low
+    ? CODE_BELOW_FLOOR
+    : hit!.check.kind === 'zone'
+      ? CODE_IN_ZONE
+      : CODE_SELF_COLLISION;
   return {
     status: 'unreachable',
-    code: CODE_BELOW_FLOOR,
+    code,
     target,
-    message: `targets[${target}]: ${low.check.message}`,
+    message: `targets[${target}]: ${(low ?? hit)!.check.message}`,
   };
 }
 

@@ -10,3 +10,5 @@ export * from './health.ts';
 export * from './operator.ts';
 export * from './link.ts';
 export * from './clock.ts';
+export * from './control-claims.ts';
+export * from './control-arbiter.ts';

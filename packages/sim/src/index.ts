@@ -10,3 +10,4 @@ export * from './profile.ts';
 export * from './runner.ts';
 export * from './serial-sim.ts';
 export * from './start-sim.ts';
+export * from './zones-follow.ts';

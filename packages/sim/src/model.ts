@@ -25,6 +25,7 @@ import {
 } from '@armtwin/protocol';
 import { DEFAULT_SIM_MODEL_OPTIONS, type ReportUnits, type SimModelOptions } from './options.ts';
 import { Servos } from './servos.ts';
+import { keepOutKind } from '@armtwin/motion';
 
 const id3 = (id: number) => String(id).padStart(3, '0');
 
@@ -35,7 +36,10 @@ export interface SimCounters {
   kms: number;
   stops: number;
   emergencyStops: number;
-  rejected: Record<'limit' | 'floor' | 'unknown-servo' | 'group' | 'unexpected' | 'ik', number>;
+  rejected: Record<
+    'limit' | 'floor' | 'zone' | 'unknown-servo' | 'group' | 'unexpected' | 'ik',
+    number
+  >;
 }
 
 export class SimModel {
@@ -47,11 +51,11 @@ export class SimModel {
     kms: 0,
     stops: 0,
     emergencyStops: 0,
-    rejected: { limit: 0, floor: 0, 'unknown-servo': 0, group: 0, unexpected: 0, ik: 0 },
+    rejected: { limit: 0, floor: 0, zone: 0, 'unknown-servo': 0, group: 0, unexpected: 0, ik: 0 },
   };
 
   private readonly kmsSolver: SimModelOptions['kms'];
-  private readonly keepOut: SimModelOptions['keepOut'];
+  private keepOut: SimModelOptions['keepOut'];
   /** Per servo index: 1 when its position is reported in §8 angle frames. */
   readonly reportsAngle: Uint8Array;
   /** Per servo index: mounting polarity, for servo angle ↔ the model's pulse-equivalent. */
@@ -149,6 +153,11 @@ export class SimModel {
     if (reads.length > 0) out.push(encodeGroup(reads));
   }
 
+  /** Puts other keep-out rules in force (a profile file edited while running: zones-follow.ts). */
+  setKeepOut(check: SimModelOptions['keepOut']): void {
+    this.keepOut = check;
+  }
+
   /** Stops every servo where it is now (`#255PDST!`). */
   emergencyStop(t: number): void {
     this.advance(t);
@@ -224,8 +233,8 @@ export class SimModel {
   }
 
   /**
-   * The keep-out zones (the floor) for the goal pose these (already checked) frames leave the
-   * arm in: '' when it may run, else the reason (counted as `floor`). Changes nothing.
+   * The keep-out rules (the floor, the zones) for the move these (already checked) frames start:
+   * '' when it may run, else the reason (counted as `floor` or `zone`). Changes nothing.
    */
   private checkKeepOut(frames: readonly Frame[]): string {
     if (!this.keepOut) return '';
@@ -241,7 +250,7 @@ export class SimModel {
       }
     }
     const reason = moved ? this.keepOut(Array.from(s.to), to) : '';
-    if (reason) this.counters.rejected.floor++;
+    if (reason) this.counters.rejected[keepOutKind(reason)]++;
     return reason;
   }
 
@@ -296,14 +305,19 @@ export class SimModel {
     }
   }
 
-  /** Whether a `$KMS` solution (pulses by servo index, NaN = leave) ends below the floor. */
-  private kmsBelowFloor(pwm: readonly number[]): boolean {
-    if (!this.keepOut) return false;
+  /**
+   * The `$KMS` code the keep-out rules give a solution (pulses by servo index, NaN = leave):
+   * 0 when it may run, `KMS_FLOOR_CODE` below the floor, `KMS_ZONE_CODE` into a zone.
+   */
+  private kmsKeepOutCode(pwm: readonly number[]): number {
+    if (!this.keepOut) return 0;
     const from = Array.from(this.servos.to);
     const to = from.map((p, i) => (Number.isNaN(pwm[i]) || pwm[i] === undefined ? p : pwm[i]!));
-    if (!this.keepOut(from, to)) return false;
-    this.counters.rejected.floor++;
-    return true;
+    const reason = this.keepOut(from, to);
+    if (!reason) return 0;
+    const kind = keepOutKind(reason);
+    this.counters.rejected[kind]++;
+    return kind === 'zone' ? KMS_ZONE_CODE : KMS_FLOOR_CODE;
   }
 
   /** `$KMS`: solve, answer `$KMS:c!`, move servos 000–003 together only when c is 0. */
@@ -322,7 +336,7 @@ export class SimModel {
       // Another arm's IK (profile.ts): every servo it gives a pulse moves, together.
       const now = Array.from({ length: s.count }, (_, i) => s.pwmAt(i, t));
       const k = this.kmsSolver(x, y, z, alpha, now);
-      const code = k.code === 0 && this.kmsBelowFloor(k.pwm) ? KMS_FLOOR_CODE : k.code;
+      const code = k.code === 0 ? this.kmsKeepOutCode(k.pwm) : k.code;
       if (code !== 0) this.counters.rejected.ik++;
       out.push(encodeKmsResult(code));
       if (code === 0) k.pwm.forEach((p, i) => Number.isNaN(p) || s.moveTo(i, Math.round(p), ms, t));
@@ -335,8 +349,8 @@ export class SimModel {
     if (r.code !== 0) this.counters.rejected.ik++;
     const sol = new Array<number>(s.count).fill(NaN);
     idx.forEach((i, j) => (sol[i] = r.pwm[j]!));
-    const low = ok && this.kmsBelowFloor(sol);
-    out.push(encodeKmsResult(low ? KMS_FLOOR_CODE : r.code === 0 && !ok ? 8 : r.code));
+    const low = ok ? this.kmsKeepOutCode(sol) : 0;
+    out.push(encodeKmsResult(low || (r.code === 0 && !ok ? 8 : r.code)));
     if (!ok || low) return;
     for (let j = 0; j < 4; j++) s.moveTo(idx[j]!, r.pwm[j]!, ms, t);
   }
@@ -347,6 +361,12 @@ export class SimModel {
  * ("below the floor"), docs/protocol.md "The floor".
  */
 export const KMS_FLOOR_CODE = 1;
+
+/**
+ * The `$KMS` code for a solution whose path takes a link into a keep-out zone or onto another
+ * link: motion code 25 (docs/protocol.md, "Keep-out zones").
+ */
+export const KMS_ZONE_CODE = 25;
 
 /** Whether a servo is reported in angle frames: as asked, or (`auto`) as its profile says. */
 function reportAngle(report: ReportUnits, speaksAngleFrames: boolean): boolean {

@@ -22,7 +22,7 @@ import {
   type ExecuteOptions,
   type MotionFeedback,
 } from '@armtwin/motion';
-import { armTopics, type Clock } from '@armtwin/protocol';
+import { armTopics, parseUserTopic, type Clock } from '@armtwin/protocol';
 import type { SimProfile } from './profile.ts';
 import { TokenBucket } from './rate-limit.ts';
 import type { SimRunner } from './runner.ts';
@@ -34,6 +34,13 @@ export interface MotionServiceOptions {
   requestRate: number;
   /** Requests accepted at once after a quiet spell. */
   requestBurst: number;
+  /**
+   * Whether the sender of a request (`''`: the plain topic; else the user of
+   * `arm/{id}/request/{user}`) may move the arm now: '' if so, else why not. An executing
+   * request refused here is answered `failed` and nothing moves (one operator at a time,
+   * docs/protocol.md § Control). Unset: everyone may.
+   */
+  mayExecute?: (user: string) => string;
 }
 
 export const DEFAULT_MOTION_SERVICE_OPTIONS: MotionServiceOptions = {
@@ -169,7 +176,7 @@ export function startMotionService(
     }
     timer = clock.setTimeout(tick, exo.stepMs);
   };
-  const onRequest = (payload: Buffer) => {
+  const onRequest = (payload: Buffer, user: string) => {
     const now = clock.now();
     if (!bucket.take(now)) {
       if ((counters.rateLimited = (counters.rateLimited ?? 0) + 1) === 1)
@@ -197,6 +204,14 @@ export function startMotionService(
       });
     }
     const req = v.request;
+    const refused = req.execute === true ? (o.mayExecute?.(user) ?? '') : '';
+    if (refused)
+      return send({
+        id: req.id,
+        status: 'failed',
+        code: CODE_INVALID,
+        message: `not executed: ${refused}`,
+      });
     runner.model.advance(now);
     const outcome = planRequest(sim.robot, req, pose(now));
     send(outcome_(req.id, outcome, req.execute === true));
@@ -240,14 +255,15 @@ export function startMotionService(
 
   const onConnect = () => {
     client.publish(topics.profile, sim.announcement, { qos: 1, retain: true });
-    client.subscribe(topics.request, { qos: 1 }, (err) => {
+    client.subscribe([topics.request, `${topics.request}/+`], { qos: 1 }, (err) => {
       if (err) onFirst('subscribe', err.message);
     });
   };
   const onMessage = (topic: string, payload: Buffer) => {
-    if (topic !== topics.request) return;
+    const byUser = parseUserTopic(topic);
+    if (topic !== topics.request && !(byUser?.kind === 'request' && byUser.armId === armId)) return;
     try {
-      onRequest(payload);
+      onRequest(payload, byUser?.user ?? '');
     } catch (err) {
       // Never let a request take the controller down: answer it and carry on.
       const message = err instanceof Error ? err.message : String(err);

@@ -7,11 +7,20 @@
  * Deadman: `arm/{id}/operator` is watched (`OperatorWatch`): a `0` there (the operator let go,
  * or the broker published its last will because its page dropped), or a beating operator whose
  * lease ran out, stops a moving arm (`runner.operatorLeft`).
+ * One operator at a time: control comes in through a `ControlArbiter` (@armtwin/protocol), which
+ * keeps who holds the arm (retained on `arm/{id}/holder`), takes claims on `arm/{id}/claim/+`
+ * and `arm/{id}/override/+`, lets only the holder's moves through and reports on
+ * `arm/{id}/audit` (docs/protocol.md, "Control: one operator at a time").
  * The MQTT client is injected.
  */
 import type { IClientOptions, MqttClient } from 'mqtt';
 import {
   armTopics,
+  auditTopic,
+  ControlArbiter,
+  encodeControllerError,
+  encodeTime,
+  holderTopic,
   OPERATOR_LEASE_MS,
   OperatorWatch,
   SYSTEM_CLOCK,
@@ -35,6 +44,8 @@ export interface MqttSimOptions extends Partial<SimRunnerOptions> {
 export interface MqttSim {
   runner: SimRunner;
   operator: OperatorWatch;
+  /** Who holds the arm; only their moves reach the runner. */
+  control: ControlArbiter;
   /** Publishes online `0` (retained), stops the loops, ends the client. */
   stop(): Promise<void>;
 }
@@ -87,6 +98,32 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
     options.operatorLeaseMs ?? OPERATOR_LEASE_MS,
   );
 
+  const control = new ControlArbiter(
+    options.armId,
+    {
+      now: () => clock.now(),
+      setTimeout: (fn, ms) => clock.setTimeout(fn, ms),
+      clearTimeout: (handle) => clock.clearTimeout(handle),
+      forward: (payload) => runner.receive(payload),
+      refuse: (message) => {
+        if (client.connected)
+          client.publish(
+            topics.status,
+            encodeTime(Math.round(clock.now())) + encodeControllerError(message),
+            { qos: 0 },
+          );
+      },
+      holder: (record) =>
+        void client.publish(holderTopic(options.armId), JSON.stringify(record), {
+          qos: 1,
+          retain: true,
+        }),
+      audit: (event) =>
+        void client.publish(auditTopic(options.armId), JSON.stringify(event), { qos: 1 }),
+    },
+    { leaseMs: options.operatorLeaseMs ?? OPERATOR_LEASE_MS },
+  );
+
   const publishFaults = (error?: string) =>
     client.publish(
       topics.simFaults,
@@ -99,13 +136,18 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
 
   const onConnect = () => {
     client.publish(topics.online, '1', { qos: 1, retain: true });
-    client.subscribe([topics.control, topics.sim, topics.operator], { qos: 1 }, (err) => {
-      if (err) onFirst('subscribe', err.message);
-    });
+    client.subscribe(
+      [topics.control, topics.sim, topics.operator, ...control.filters],
+      { qos: 1 },
+      (err) => {
+        if (err) onFirst('subscribe', err.message);
+      },
+    );
     publishFaults();
+    control.announce();
   };
   const onMessage = (topic: string, payload: Buffer) => {
-    if (topic === topics.control) return runner.receive(payload);
+    if (control.fromMessage(topic, payload)) return;
     if (topic === topics.operator) return operator.receive(payload);
     if (topic !== topics.sim) return;
     try {
@@ -122,14 +164,18 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
   if (client.connected) onConnect();
   runner.start();
   const motion = options.profile
-    ? startMotionService(client, runner, options.armId, options.profile, clock, onFirst)
+    ? startMotionService(client, runner, options.armId, options.profile, clock, onFirst, {
+        mayExecute: (user) => control.refusal(user, 'a motion request on the arm'),
+      })
     : undefined;
 
   return {
     runner,
     operator,
+    control,
     async stop() {
       operator.reset();
+      control.reset();
       runner.stop();
       motion?.stop();
       client.removeListener('message', onMessage);
@@ -137,6 +183,9 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
       if (client.connected) {
         await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
         await client.publishAsync(topics.simFaults, '', { qos: 1, retain: true }).catch(() => {});
+        await client
+          .publishAsync(holderTopic(options.armId), '', { qos: 1, retain: true })
+          .catch(() => {});
       }
       await client.endAsync().catch(() => {});
     },

@@ -16,7 +16,13 @@ import {
   pulseEquivalentArm,
   type Profile,
 } from '@armtwin/ik';
-import { checkFloorMove, createMotionRobot, solveTip, type MotionRobot } from '@armtwin/motion';
+import {
+  checkFloorMove,
+  createMotionRobot,
+  keepOutReason,
+  solveTip,
+  type MotionRobot,
+} from '@armtwin/motion';
 import { MODELS_DIR, PROFILE_NAME, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { PWM_CENTRE } from '@armtwin/protocol';
 import type { KeepOutCheck, KmsSolver, SimModelOptions } from './options.ts';
@@ -59,6 +65,14 @@ export function floorKeepOut(robot: MotionRobot): KeepOutCheck {
   };
 }
 
+/**
+ * The floor, the keep-out zones and self-collision as the controller checks them (docs/protocol.md,
+ * "Keep-out zones"): the goal pose against the floor, the straight path to it against the zones.
+ */
+export function zonesKeepOut(robot: MotionRobot): KeepOutCheck {
+  return (from, to) => keepOutReason(robot, from, to);
+}
+
 /** Builds the sim's view of a parsed profile; `urdf` is needed for a numeric one. */
 export function simProfile(profile: Profile, raw: unknown, urdf?: string): SimProfile {
   let chain;
@@ -73,7 +87,7 @@ export function simProfile(profile: Profile, raw: unknown, urdf?: string): SimPr
   const model: Partial<SimModelOptions> = {
     arm: analytic ?? pulseEquivalentArm(profile),
     initialPwm: robot.table.map((s) => (Number.isFinite(s.homePwm) ? s.homePwm : PWM_CENTRE)),
-    keepOut: floorKeepOut(robot),
+    keepOut: zonesKeepOut(robot),
   };
   if (!analytic) model.kms = numericKms(robot);
   const announcement = JSON.stringify({ name: profile.name, title: profile.title, profile: raw });

@@ -13,6 +13,7 @@ import type { Fault } from './faults.ts';
 import { simWill, startMqttSim } from './mqtt-sim.ts';
 import type { ReportUnits } from './options.ts';
 import { DEFAULT_PROFILE, loadSimProfile, MODELS_DIR } from './profile.ts';
+import { followZones } from './zones-follow.ts';
 import { DEFAULT_SIM_RUNNER_OPTIONS, type SimRunner } from './runner.ts';
 import { startSerialSim } from './serial-sim.ts';
 
@@ -130,6 +131,17 @@ export async function startSim(
     profile,
     operatorLeaseMs: o.operatorLeaseMs,
   });
+  // Keep-out zones follow the profile file (the HUD's Zones section writes it): zones-follow.ts.
+  const zones = followZones({
+    client,
+    armId: o.armId,
+    name: o.profile,
+    modelsDir: o.modelsDir,
+    sim: profile,
+    runner: sim.runner,
+    onFirst: o.onFirst,
+    onReload: (ok, message) => (ok ? log.info : log.warn).call(log, { arm: o.armId }, message),
+  });
   log.info(
     {
       arm: o.armId,
@@ -145,6 +157,7 @@ export async function startSim(
     runner: sim.runner,
     closed: new Promise<string>(() => {}),
     async stop() {
+      zones.stop();
       await sim.stop();
       log.info({ counters: sim.runner.counters, model: sim.runner.model.counters }, 'sim stopped');
     },

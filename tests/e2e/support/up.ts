@@ -25,7 +25,11 @@ export interface UpProcess {
   stop(): Promise<void>;
 }
 
-export async function startUp(logFile: string, extraArgs: string[] = []): Promise<UpProcess> {
+export async function startUp(
+  logFile: string,
+  extraArgs: string[] = [],
+  usersFile = USERS_FILE,
+): Promise<UpProcess> {
   const [httpPort = 0, mqttPort = 0] = await freePorts(2);
   fs.mkdirSync(path.dirname(logFile), { recursive: true });
   const child = spawn(
@@ -42,7 +46,7 @@ export async function startUp(logFile: string, extraArgs: string[] = []): Promis
     ],
     {
       cwd: REPO_ROOT,
-      env: { ...process.env, ARMTWIN_USERS: USERS_FILE, ARMTWIN_TLS_CERT: '', ARMTWIN_TLS_KEY: '' },
+      env: { ...process.env, ARMTWIN_USERS: usersFile, ARMTWIN_TLS_CERT: '', ARMTWIN_TLS_KEY: '' },
       stdio: ['ignore', 'pipe', 'pipe'],
     },
   );

@@ -1,8 +1,7 @@
 import fs from 'node:fs';
 import { once } from 'node:events';
 import { Option, type Command } from 'commander';
-import { InfluxDB } from '@influxdata/influxdb-client';
-import { loadConfig } from '@armtwin/middleware';
+import { historyReader, influxSource, loadConfig } from '@armtwin/middleware';
 import {
   EXPORT_FORMATS,
   exportRecording,
@@ -73,14 +72,7 @@ Example:
       const out = fs.createWriteStream(flags.out);
       await once(out, 'open');
       const summary = await exportRecording({
-        source: {
-          queryApi: new InfluxDB({
-            url: config.influxUrl,
-            token: config.influxToken || undefined,
-            timeout: 120_000,
-          }).getQueryApi(config.influxOrg),
-          bucket: config.influxBucket,
-        },
+        reader: historyReader(influxSource(config, 120_000), config.influxQueryLanguage),
         arm: flags.arm,
         startMs,
         stopMs,
@@ -90,9 +82,9 @@ Example:
       });
       out.end();
       await once(out, 'close');
-      const { servo, command, ik } = summary.points;
+      const { servo, command, ik, audit } = summary.points;
       process.stderr.write(
-        `${flags.out}: ${servo} servo, ${command} command and ${ik} ik points` +
+        `${flags.out}: ${servo} servo, ${command} command and ${ik} ik points, ${audit} control events` +
           (flags.format === 'mcap'
             ? ` in ${Object.keys(summary.topics).length} topics${robot ? '' : ' (no --profile: no joint states or transforms)'}`
             : '') +

@@ -1,7 +1,7 @@
 import path from 'node:path';
 import { InvalidArgumentError, type Command } from 'commander';
 import { DEFAULT_PROFILE, PROFILE_NAME } from '@armtwin/sim';
-import { runUp } from '@armtwin/up';
+import { parseExtraSources, runUp } from '@armtwin/up';
 import { loadCliConfig } from '../config.ts';
 import { createLogger, firstOnly } from '../log.ts';
 import { armId, number } from './options.ts';
@@ -20,6 +20,15 @@ export function parseArms(value: string): { id: string; profile: string }[] {
   return arms;
 }
 
+/** `--csp-sources` / ARMTWIN_CSP_SOURCES: a bad source is a usage error naming it. */
+function cspSources(value: string): string[] {
+  try {
+    return parseExtraSources(value);
+  } catch (err) {
+    throw new InvalidArgumentError((err as Error).message);
+  }
+}
+
 interface UpFlags {
   users?: string;
   port?: number;
@@ -32,6 +41,7 @@ interface UpFlags {
   middleware: boolean;
   camera?: string;
   models?: string;
+  cspSources?: string[];
 }
 
 export function registerUp(program: Command): void {
@@ -72,6 +82,11 @@ export function registerUp(program: Command): void {
       '--camera <source>',
       'a demo camera of the first arm through ffmpeg: testsrc, /dev/video0, rtsp://… or an MJPEG URL',
     )
+    .option(
+      '--csp-sources <list>',
+      "other brokers and camera servers the HUD may reach, e.g. 'wss://broker.lab https://cams.lab:8443' (env ARMTWIN_CSP_SOURCES; added to its Content-Security-Policy)",
+      cspSources,
+    )
     .addHelpText(
       'after',
       `
@@ -106,6 +121,7 @@ Ctrl-C stops everything: the arm says offline, the middleware flushes, influxd s
         middleware: flags.middleware,
         ...(flags.camera ? { camera: flags.camera } : {}),
         ...(flags.models ? { modelsDir: path.resolve(flags.models) } : {}),
+        cspSources: flags.cspSources ?? cspSources(env.cspSources),
         env: process.env,
         say,
         onFirst: firstOnly(log),

@@ -9,9 +9,10 @@ import { parseUrdfJoints } from '@armtwin/ik';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { csvLines } from './csv.ts';
 import { streamWritable, writeMcap, type McapCounts, type RecordingRobot } from './mcap.ts';
-import { readRecording, type RecordingSource } from './read-recording.ts';
+import type { HistoryReader } from '../history/reader.ts';
+import { readRecording } from './read-recording.ts';
 
-export { readRecording, type RecordingSource } from './read-recording.ts';
+export { readRecording } from './read-recording.ts';
 export { writeMcap, streamWritable, type RecordingRobot, type McapCounts } from './mcap.ts';
 export { csvLines, CSV_HEADER } from './csv.ts';
 export type { Recording } from './recording.ts';
@@ -30,7 +31,8 @@ export function loadRecordingRobot(name: string, modelsDir = MODELS_DIR): Record
 }
 
 export interface ExportOptions {
-  source: RecordingSource;
+  /** Reads InfluxDB: `historyReader(source, language)`. */
+  reader: HistoryReader;
   arm: string;
   startMs: number;
   stopMs: number;
@@ -41,15 +43,20 @@ export interface ExportOptions {
 }
 
 export interface ExportSummary {
-  points: { servo: number; command: number; ik: number };
+  points: { servo: number; command: number; ik: number; audit: number };
   /** MCAP: messages per topic. */
   topics: McapCounts;
 }
 
 /** Reads the range and writes it to `out` (not ended). */
 export async function exportRecording(o: ExportOptions): Promise<ExportSummary> {
-  const rec = await readRecording(o.source, o.arm, o.startMs, o.stopMs);
-  const points = { servo: rec.servo.length, command: rec.command.length, ik: rec.ik.length };
+  const rec = await readRecording(o.reader, o.arm, o.startMs, o.stopMs);
+  const points = {
+    servo: rec.servo.length,
+    command: rec.command.length,
+    ik: rec.ik.length,
+    audit: rec.audit.length,
+  };
   if (o.format === 'csv') {
     for (const line of csvLines(rec))
       if (!o.out.write(line)) await new Promise((r) => o.out.once('drain', r));

@@ -6,12 +6,13 @@
  *   /arm/{arm}/ik             armtwin.IkResult     one per stored `ik` point
  *   /arm/{arm}/joint_states   foxglove.JointStates the profile's joints at each reported instant
  *   /tf                       foxglove.FrameTransforms every URDF joint's transform at those instants
+ *   /arm/{arm}/audit          foxglove.Log         one per control event (who took, gave, lost control)
  * The last two need the arm's robot (profile and URDF); without it they are left out. Every
  * message's log and publish time is the point's own time. Messages go out in time order.
  */
 import type { Writable } from 'node:stream';
 import { McapWriter, type IWritable } from '@mcap/core';
-import { FrameTransforms, JointStates } from '@foxglove/schemas/jsonschema';
+import { FrameTransforms, JointStates, Log } from '@foxglove/schemas/jsonschema';
 import type { Profile, UrdfJoint } from '@armtwin/ik';
 import type { Recording } from './recording.ts';
 import { jointSamples, linkTransforms, type JointSample } from './robot-motion.ts';
@@ -68,6 +69,17 @@ const SCHEMAS = {
     },
   },
 } as const;
+
+/** foxglove.LogLevel: INFO, WARNING. Refusals and lost or taken-over control are warnings. */
+const LOG_INFO = 2;
+const LOG_WARNING = 3;
+const WARNING_KINDS = new Set([
+  'refused',
+  'refused-command',
+  'refused-claim',
+  'lost',
+  'admin-take-over',
+]);
 
 /** How many messages went to each topic. */
 export type McapCounts = Record<string, number>;
@@ -165,6 +177,17 @@ export async function writeMcap(
       write: () => add(`${base}/command/${r.id}`, SCHEMAS.command, ns, r),
     })),
     rec.ik.map(({ ns, ...r }) => ({ ns, write: () => add(`${base}/ik`, SCHEMAS.ik, ns, r) })),
+    rec.audit.map(({ ns, ...e }) => ({
+      ns,
+      write: () =>
+        add(`${base}/audit`, Log, ns, {
+          level: WARNING_KINDS.has(e.kind) ? LOG_WARNING : LOG_INFO,
+          message: e.detail,
+          name: `${e.kind} by ${e.by || 'the plain control topic'}`,
+          file: '',
+          line: 0,
+        }),
+    })),
   ];
   if (robot)
     streams.push(jointSamples(robot.profile, rec.servo).map((s) => motion(s, robot, base, add)));

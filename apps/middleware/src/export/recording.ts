@@ -34,6 +34,14 @@ export interface IkRow {
   a?: number;
 }
 
+/** `audit`: one control event (docs/protocol.md § Control). */
+export interface AuditRow {
+  ns: bigint;
+  kind: string;
+  by: string;
+  detail: string;
+}
+
 export interface Recording {
   arm: string;
   startMs: number;
@@ -41,6 +49,7 @@ export interface Recording {
   servo: ServoRow[];
   command: CommandRow[];
   ik: IkRow[];
+  audit: AuditRow[];
 }
 
 /** The fields of each measurement, in the order exports write them. */

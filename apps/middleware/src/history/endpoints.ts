@@ -1,50 +1,45 @@
 /**
- * The four endpoints: build the Flux, run it on the injected `QueryApi`, shape the answer.
- * The only I/O is `queryApi.collectRows`.
+ * The four endpoints: ask the injected `HistoryReader` (Flux or InfluxQL), shape the answer.
+ * The only I/O is the reader's.
  */
-import type { QueryApi } from '@influxdata/influxdb-client';
-import type { AlarmsAnswer, PoseAnswer, SeriesAnswer, TrackingAnswer } from '@armtwin/api';
+import type {
+  AlarmsAnswer,
+  AuditAnswer,
+  AuditRecord,
+  PoseAnswer,
+  SeriesAnswer,
+  TrackingAnswer,
+} from '@armtwin/api';
 import { alarmEpisodes, sortEpisodes, type AlarmEpisode } from './alarms.ts';
-import type { HistoryOptions } from './options.ts';
+import { actualFromMs, type HistoryOptions } from './options.ts';
 import type { HistoryParams } from './params.ts';
-import {
-  actualCountQuery,
-  actualQuery,
-  alarmsQuery,
-  commandsQuery,
-  poseQuery,
-  seriesQuery,
-} from './queries.ts';
-import { rowTime, samplesBy, toPoseFrames, toSeries, type Row } from './shape.ts';
+import type { HistoryReader } from './reader.ts';
+import { rowTime, samplesBy, toPoseFrames, toSeries } from './shape.ts';
 import { trackingStats, type Command, type TrackingStats } from './tracking.ts';
 import { windowFor } from './window.ts';
 
 export interface EndpointContext {
-  queryApi: QueryApi;
-  bucket: string;
+  reader: HistoryReader;
   options: HistoryOptions;
 }
-
-const rows = (ctx: EndpointContext, q: Parameters<QueryApi['collectRows']>[0]): Promise<Row[]> =>
-  ctx.queryApi.collectRows<Row>(q);
 
 const range = (p: HistoryParams) => ({ arm: p.arm, start: p.startMs, stop: p.stopMs });
 
 export async function series(ctx: EndpointContext, p: HistoryParams): Promise<SeriesAnswer> {
   const every = windowFor(p.startMs, p.stopMs, ctx.options.maxPoints);
-  const result = toSeries(await rows(ctx, seriesQuery(ctx.bucket, p, every.text)));
+  const result = toSeries(await ctx.reader.series(p, every.text));
   return { ...range(p), field: p.field, every: every.text, everyMs: every.ms, series: result };
 }
 
 export async function pose(ctx: EndpointContext, p: HistoryParams): Promise<PoseAnswer> {
   const every = windowFor(p.startMs, p.stopMs, ctx.options.maxPoints);
-  const result = toSeries(await rows(ctx, poseQuery(ctx.bucket, p, every.text)));
+  const result = toSeries(await ctx.reader.pose(p, every.text));
   return { ...range(p), every: every.text, everyMs: every.ms, ...toPoseFrames(result) };
 }
 
 export async function alarms(ctx: EndpointContext, p: HistoryParams): Promise<AlarmsAnswer> {
   const max = ctx.options.maxAlarmRows;
-  const result = await rows(ctx, alarmsQuery(ctx.bucket, p, max));
+  const result = await ctx.reader.alarms(p, max);
   const byKey = samplesBy(
     result.map((r) => ({ ...r, key: `${String(r._field)}/${String(r.id)}` })),
     'key',
@@ -64,12 +59,16 @@ export async function alarms(ctx: EndpointContext, p: HistoryParams): Promise<Al
 
 export async function tracking(ctx: EndpointContext, p: HistoryParams): Promise<TrackingAnswer> {
   const { maxTrackingSamples, commandLookbackMs, maxCommands } = ctx.options;
-  const counts = await rows(ctx, actualCountQuery(ctx.bucket, p));
+  const counts = await ctx.reader.actualCount(p);
   const most = Math.max(0, ...counts.map((r) => Number(r._value)));
-  const stride = Math.max(1, Math.ceil(most / maxTrackingSamples));
+  // Denser than the bound: the first sample of each window, windows sized as for series.
+  const thin =
+    most > maxTrackingSamples
+      ? windowFor(actualFromMs(p.startMs), p.stopMs, maxTrackingSamples)
+      : null;
   const [cmdRows, actualRows] = await Promise.all([
-    rows(ctx, commandsQuery(ctx.bucket, p, commandLookbackMs, maxCommands)),
-    rows(ctx, actualQuery(ctx.bucket, p, stride)),
+    ctx.reader.commands(p, commandLookbackMs, maxCommands),
+    ctx.reader.actual(p, thin?.text ?? null),
   ]);
   const commands = new Map<string, Command[]>();
   for (const r of cmdRows) {
@@ -90,5 +89,20 @@ export async function tracking(ctx: EndpointContext, p: HistoryParams): Promise<
   const joints: TrackingStats[] = ids.map((id) =>
     trackingStats(id, commands.get(id) ?? [], actual.get(id) ?? [], p.startMs, p.stopMs),
   );
-  return { ...range(p), unit: 'deg', stride, truncated, joints };
+  return { ...range(p), unit: 'deg', thinnedEveryMs: thin?.ms ?? null, truncated, joints };
+}
+
+export async function audit(ctx: EndpointContext, p: HistoryParams): Promise<AuditAnswer> {
+  const max = ctx.options.maxAuditRows;
+  const events: AuditRecord[] = (await ctx.reader.audit(p, max))
+    .map((r) => ({
+      at: rowTime(r),
+      by: typeof r.by === 'string' ? r.by : '',
+      kind: String(r.kind ?? ''),
+      detail: typeof r.detail === 'string' ? r.detail : '',
+    }))
+    .sort((a, b) => a.at - b.at);
+  const truncated = events.length > max;
+  if (truncated) events.length = max;
+  return { ...range(p), truncated, events };
 }

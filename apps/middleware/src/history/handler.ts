@@ -1,8 +1,8 @@
 /**
  * The history API over HTTP: `GET /history/{series,alarms,tracking,pose}?…` → JSON. The
  * caller strips its own prefix (e.g. `/api`) and hands over everything else; the handler
- * answers false for paths outside `/history`. Dependencies are injected: the QueryApi of
- * @influxdata/influxdb-client (a real one in integration tests), the bucket, the clock.
+ * answers false for paths outside `/history`. Dependencies are injected: the `HistoryReader`
+ * (InfluxQL or Flux; a real one in integration tests), the clock.
  *
  *   200 JSON             the answer (see README.md)
  *   200 file             /history/export: the range as MCAP or CSV (an attachment)
@@ -12,7 +12,6 @@
  *   502 {error}          InfluxDB failed or is unreachable
  */
 import type { IncomingMessage, ServerResponse } from 'node:http';
-import type { QueryApi } from '@influxdata/influxdb-client';
 import { PROFILE_NAME } from '@armtwin/motion/robot-folder';
 import {
   EXPORT_FORMATS,
@@ -21,15 +20,15 @@ import {
   type ExportFormat,
   type RecordingRobot,
 } from '../export/index.ts';
+import { auditCsv } from './audit-csv.ts';
 import * as endpoints from './endpoints.ts';
 import { DEFAULT_HISTORY_OPTIONS, type HistoryOptions } from './options.ts';
 import { parseParams, type Endpoint, type HistoryParams } from './params.ts';
+import type { HistoryReader } from './reader.ts';
 
 export interface HistoryHandlerDeps {
-  /** `new InfluxDB({url, token}).getQueryApi(org)`. */
-  queryApi: QueryApi;
-  /** 2.x bucket, or `db/rp` on 1.8 (`armtwin/autogen`). */
-  bucket: string;
+  /** What runs the queries: `historyReader(source, language)` (./reader.ts). */
+  reader: HistoryReader;
   /** Clock for `now` and relative times, epoch ms. Default `Date.now`. */
   now?: () => number;
   /** Limits; defaults in `DEFAULT_HISTORY_OPTIONS`. */
@@ -53,6 +52,7 @@ const ROUTES: Record<
   alarms: endpoints.alarms,
   tracking: endpoints.tracking,
   pose: endpoints.pose,
+  audit: endpoints.audit,
 };
 
 function send(res: ServerResponse, status: number, body: unknown, head = false): void {
@@ -68,7 +68,7 @@ function send(res: ServerResponse, status: number, body: unknown, head = false):
 export function createHistoryHandler(deps: HistoryHandlerDeps): HistoryHandler {
   const options: HistoryOptions = { ...DEFAULT_HISTORY_OPTIONS, ...deps.options };
   const now = deps.now ?? Date.now;
-  const ctx: endpoints.EndpointContext = { queryApi: deps.queryApi, bucket: deps.bucket, options };
+  const ctx: endpoints.EndpointContext = { reader: deps.reader, options };
   const robotFor = deps.robotFor ?? ((profile: string) => loadRecordingRobot(profile));
 
   /** `/history/export?arm&start&stop&format=mcap|csv&profile=NAME`: the range as a download. */
@@ -116,7 +116,7 @@ export function createHistoryHandler(deps: HistoryHandlerDeps): HistoryHandler {
     if (head) return void res.end();
     try {
       await exportRecording({
-        source: { queryApi: deps.queryApi, bucket: deps.bucket },
+        reader: deps.reader,
         arm: p.arm,
         startMs: p.startMs,
         stopMs: p.stopMs,
@@ -160,7 +160,23 @@ export function createHistoryHandler(deps: HistoryHandlerDeps): HistoryHandler {
       await exportFile(res, head, parsed.params, url.searchParams);
       return true;
     }
+    const format = url.searchParams.get('format');
+    if (endpoint === 'audit' && format !== null && format !== 'json' && format !== 'csv') {
+      send(res, 400, { error: 'format must be json or csv', parameter: 'format' }, head);
+      return true;
+    }
     try {
+      if (endpoint === 'audit' && format === 'csv') {
+        const text = auditCsv((await endpoints.audit(ctx, parsed.params)).events);
+        const stamp = new Date(parsed.params.startMs).toISOString().replace(/[:.]/g, '-');
+        res.writeHead(200, {
+          'content-type': 'text/csv; charset=utf-8',
+          'content-disposition': `attachment; filename="${parsed.params.arm}-audit-${stamp}.csv"`,
+          'cache-control': 'no-store',
+        });
+        res.end(head ? undefined : text);
+        return true;
+      }
       send(res, 200, await ROUTES[endpoint](ctx, parsed.params), head);
     } catch (err) {
       deps.onError?.(err, path);

@@ -23,6 +23,8 @@ export interface HistoryOptions {
   commandLookbackMs: number;
   /** Most commands read per joint by `/history/tracking`. */
   maxCommands: number;
+  /** Most control events `/history/audit` returns (beyond it, `truncated: true`). */
+  maxAuditRows: number;
 }
 
 export const DEFAULT_HISTORY_OPTIONS: HistoryOptions = {
@@ -32,6 +34,7 @@ export const DEFAULT_HISTORY_OPTIONS: HistoryOptions = {
   maxTrackingSamples: 10_000,
   commandLookbackMs: 24 * 3600_000,
   maxCommands: 50_000,
+  maxAuditRows: 10_000,
 };
 
 /** §5 of PROTOCOL.md. */
@@ -43,3 +46,6 @@ export const THRESHOLDS = {
 
 /** Longest move a command can ask for (`tttt` ≤ 9999 ms, PROTOCOL.md §1). */
 export const MAX_MOVE_MS = 9999;
+
+/** Where the actual samples for tracking are read from: `MAX_MOVE_MS` + 1 s before start. */
+export const actualFromMs = (startMs: number): number => startMs - MAX_MOVE_MS - 1000;

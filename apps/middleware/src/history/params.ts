@@ -10,7 +10,7 @@ import { parseTime } from './time.ts';
 export const FIELDS = HISTORY_FIELDS;
 export type Field = HistoryField;
 /** `export` streams a file (MCAP or CSV, ../export/) instead of answering JSON. */
-export type Endpoint = 'series' | 'alarms' | 'tracking' | 'pose' | 'export';
+export type Endpoint = 'series' | 'alarms' | 'tracking' | 'pose' | 'audit' | 'export';
 
 /** `'all'` or a sorted list of distinct three-digit servo ids. */
 export type IdSet = 'all' | string[];
@@ -35,6 +35,7 @@ const ALLOWED: Record<Endpoint, readonly string[]> = {
   alarms: ['arm', 'id', 'start', 'stop'],
   tracking: ['arm', 'id', 'start', 'stop'],
   pose: ['arm', 'id', 'start', 'stop'],
+  audit: ['arm', 'start', 'stop', 'format'],
   export: ['arm', 'start', 'stop', 'format', 'profile'],
 };
 

@@ -14,7 +14,7 @@ import {
   toFluxValue,
   type ParameterizedQuery,
 } from '@influxdata/influxdb-client';
-import { MAX_MOVE_MS, THRESHOLDS } from './options.ts';
+import { actualFromMs, THRESHOLDS } from './options.ts';
 import type { Field, HistoryParams, IdSet } from './params.ts';
 
 /** ` and (r.id == "000" or r.id == "003")`, or nothing for every id. Ids are escaped again here. */
@@ -44,9 +44,15 @@ function head(
   stopMs: number,
 ): ParameterizedQuery {
   const fieldExpr = fluxExpression(fields.map((f) => `r._field == ${toFluxValue(f)}`).join(' or '));
-  return flux`from(bucket: ${bucket})
+  const q = flux`from(bucket: ${bucket})
   |> range(start: ${new Date(startMs)}, stop: ${fluxDateTime(lastNsBefore(stopMs))})
   |> filter(fn: (r) => r._measurement == ${measurement} and r.arm == ${arm} and (${fieldExpr})${idClause(ids)})`;
+  // A command's author is a tag (`user`, docs/protocol.md § Control), so one servo's commands
+  // may be several series: one table per servo and field, in time order, as InfluxQL's GROUP BY "id".
+  if (measurement !== 'command') return q;
+  return flux`${q}
+  |> group(columns: ["id", "_field"])
+  |> sort(columns: ["_time"])`;
 }
 
 /**
@@ -109,9 +115,6 @@ union(tables: [before, during])
   |> keep(columns: ["_time", "id", "angle", "ms"])`;
 }
 
-/** Where the actual samples for tracking are read from: `MAX_MOVE_MS` + 1 s before start. */
-export const actualFromMs = (startMs: number): number => startMs - MAX_MOVE_MS - 1000;
-
 /** How many actual `angle` samples each joint has in the tracking window. */
 export function actualCountQuery(bucket: string, p: HistoryParams): ParameterizedQuery {
   return flux`${head(bucket, 'servo', p.arm, ['angle'], p.ids, actualFromMs(p.startMs), p.stopMs)}
@@ -119,15 +122,46 @@ export function actualCountQuery(bucket: string, p: HistoryParams): Parameterize
   |> keep(columns: ["_value", "id"])`;
 }
 
-/** Actual `angle` samples per joint, every `stride`-th one (1 = all). */
-export function actualQuery(bucket: string, p: HistoryParams, stride: number): ParameterizedQuery {
+/** Actual `angle` samples per joint: all, or the first of each `every` window (thinned). */
+export function actualQuery(
+  bucket: string,
+  p: HistoryParams,
+  every: string | null,
+): ParameterizedQuery {
   const q = head(bucket, 'servo', p.arm, ['angle'], p.ids, actualFromMs(p.startMs), p.stopMs);
-  if (stride <= 1)
+  if (every === null)
     return flux`${q}
   |> keep(columns: ["_time", "_value", "id"])`;
   return flux`${q}
-  |> sample(n: ${fluxInteger(stride)}, pos: 0)
+  |> aggregateWindow(every: ${fluxDuration(every)}, fn: first, createEmpty: false, timeSrc: "_start")
   |> keep(columns: ["_time", "_value", "id"])`;
+}
+
+/** The control events of `/history/audit`, one row per event in time order, at most `maxRows + 1`. */
+export function auditQuery(bucket: string, p: HistoryParams, maxRows: number): ParameterizedQuery {
+  return flux`from(bucket: ${bucket})
+  |> range(start: ${new Date(p.startMs)}, stop: ${fluxDateTime(lastNsBefore(p.stopMs))})
+  |> filter(fn: (r) => r._measurement == "audit" and r.arm == ${p.arm})
+  |> pivot(rowKey: ["_time"], columnKey: ["_field"], valueColumn: "_value")
+  |> group()
+  |> sort(columns: ["_time"])
+  |> limit(n: ${fluxInteger(maxRows + 1)})
+  |> keep(columns: ["_time", "kind", "by", "detail"])`;
+}
+
+/** Every point of one measurement of one arm in [start, stop), fields pivoted into one row per point. */
+export function measurementQuery(
+  bucket: string,
+  measurement: string,
+  arm: string,
+  startMs: number,
+  stopMs: number,
+): ParameterizedQuery {
+  return flux`from(bucket: ${bucket})
+  |> range(start: ${new Date(startMs)}, stop: ${fluxDateTime(lastNsBefore(stopMs))})
+  |> filter(fn: (r) => r._measurement == ${measurement} and r.arm == ${arm})
+  |> pivot(rowKey: ["_time"], columnKey: ["_field"], valueColumn: "_value")
+  |> drop(columns: ["_start", "_stop", "_measurement", "arm"])`;
 }
 
 export type { Field };

@@ -7,7 +7,7 @@
 import type { ArmLink } from '../mqtt/ArmLink.ts';
 import type { HudSettings } from '../config/settings.ts';
 import { INITIAL_LOGIN, loginReducer, type LoginEvent, type LoginState } from './loginMachine.ts';
-import { permissionsFor, type Permissions } from './roles.ts';
+import { controlIdentity, permissionsFor, type Permissions } from './roles.ts';
 import { resolveAccess, type Whoami } from './whoami.ts';
 
 export interface SessionDeps {
@@ -58,14 +58,18 @@ export class Session {
     this.permissions = permissionsFor(access);
     this.dispatch({ type: 'role', access });
     try {
-      link.start(this.permissions, {
-        connected: () => gen === this.generation && this.dispatch({ type: 'connected' }),
-        authRefused: (message) => {
-          if (gen !== this.generation) return;
-          this.permissions = null; // not connected: no role, nothing to offer
-          this.dispatch({ type: 'refused', message });
+      link.start(
+        this.permissions,
+        {
+          connected: () => gen === this.generation && this.dispatch({ type: 'connected' }),
+          authRefused: (message) => {
+            if (gen !== this.generation) return;
+            this.permissions = null; // not connected: no role, nothing to offer
+            this.dispatch({ type: 'refused', message });
+          },
         },
-      });
+        controlIdentity(access, s.username),
+      );
       this.error = '';
     } catch (err) {
       this.error = `Could not connect: ${err instanceof Error ? err.message : String(err)}`;

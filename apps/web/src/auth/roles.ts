@@ -5,6 +5,8 @@
  * connection). Pure: no I/O.
  */
 import { ROLES, type Role } from '@armtwin/auth/roles';
+import { CONTROL_USER_PATTERN } from '@armtwin/protocol';
+import { guestName, type ControlIdentity } from '../mqtt/ControlClaim.ts';
 
 /**
  * Where the role came from: `server` = `/api/whoami` with our credentials; `demo` = the
@@ -49,7 +51,7 @@ export const STOP_NEEDS_OPERATOR =
   'Emergency stop needs an operator account — use the physical stop';
 
 export function permissionsFor(a: Access): Permissions {
-  if (a.role === 'operator') {
+  if (a.role === 'operator' || a.role === 'admin') {
     return {
       command: true,
       stop: true,
@@ -81,6 +83,16 @@ export function permissionsFor(a: Access): Permissions {
         ? VIEWER_REASON
         : `Signed in as ${a.role}: this page only watches. Log in with an operator account to move the arm.`,
   };
+}
+
+/**
+ * The name this page claims arms under (docs/protocol.md § Control): the logged-in user, whom
+ * the broker vouches for; in the anonymous demo a self-declared one (`?user=`, else a guest name).
+ */
+export function controlIdentity(a: Access, username: string): ControlIdentity {
+  const enforced = a.source !== 'demo' && CONTROL_USER_PATTERN.test(a.name);
+  const declared = CONTROL_USER_PATTERN.test(username) ? username : guestName();
+  return { name: enforced ? a.name : declared, enforced, admin: a.role === 'admin' };
 }
 
 export const isRole = (v: unknown): v is Role =>

@@ -15,6 +15,8 @@ import type { RequestLog } from '../panels/Command/RequestLog.ts';
 import type { CameraHub } from '../cameras/CameraHub.ts';
 import type { CameraScreens } from '../scene/CameraScreens.ts';
 import type { CalibrationSession } from '../panels/Calibration/CalibrationSession.ts';
+import type { HoldJog } from '../panels/Jog/HoldJog.ts';
+import type { GamepadJog } from '../panels/Jog/GamepadJog.ts';
 
 /** The Plan panel's plain objects. */
 export interface PlanTools {
@@ -49,6 +51,8 @@ export interface Hud {
   cameraScreens: CameraScreens;
   /** The calibration wizard of a bus arm (its ghost comes before the plan preview's). */
   calibration: CalibrationSession;
+  /** Hold-to-jog (buttons, keys, gamepad) of the Jog panel. */
+  jog: { hold: HoldJog; gamepad: GamepadJog };
   /** Controls another arm (the fleet list): saves it and reconnects. */
   selectArm(armId: string): void;
 }

@@ -32,6 +32,8 @@ import { RequestLog } from '../panels/Command/RequestLog.ts';
 import { CameraHub } from '../cameras/CameraHub.ts';
 import { CameraScreens } from '../scene/CameraScreens.ts';
 import { CalibrationSession } from '../panels/Calibration/CalibrationSession.ts';
+import { HoldJog } from '../panels/Jog/HoldJog.ts';
+import { GamepadJog } from '../panels/Jog/GamepadJog.ts';
 import type { Hud, PlanTools } from './HudContext.ts';
 import { installDebugHook } from './debugHook.ts';
 
@@ -73,6 +75,7 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
   const view: RobotView = {
     show(spec, urdfUrl) {
       replay.configure(polaritiesOf(spec.storeArm));
+      viewer.showZones(spec.profile.keepOut);
       return viewer.load(urdfUrl, spec.joints);
     },
   };
@@ -91,6 +94,22 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
   const firstLink = new ArmLink(store, settings, connect, workerIntervals);
   cameras.attach(firstLink);
   const cameraScreens = new CameraScreens(viewer, cameras, cameras.decoders);
+  // Hold-to-jog reads the link live (it is replaced on reconnect); the e-stop lets go of it.
+  const hold = new HoldJog({
+    store,
+    link: () => hud.link,
+    robot: () => ({ sliders: robots.active.spec.sliders, motion: robots.active.motion }),
+  });
+  const gamepad = new GamepadJog(hold, () => hud.link.emergencyStop(), {
+    getGamepads: () => navigator.getGamepads?.() ?? [],
+    requestAnimationFrame: (fn) => window.requestAnimationFrame(fn),
+    cancelAnimationFrame: (h) => window.cancelAnimationFrame(h),
+    addEventListener: (t, fn) => window.addEventListener(t, fn),
+    removeEventListener: (t, fn) => window.removeEventListener(t, fn),
+    storage: window.localStorage,
+  });
+  const letGoOnStop = (link: ArmLink) => link.stopListeners.add(() => hold.releaseAll(false));
+  letGoOnStop(firstLink);
 
   const hud: Hud = {
     store,
@@ -104,12 +123,14 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
     cameras,
     cameraScreens,
     calibration,
+    jog: { hold, gamepad },
     link: firstLink,
     selectArm(armId: string) {
       const next = settingsForArm(hud.settings, armId);
       if (next) hud.reconnect(next);
     },
     reconnect(next: HudSettings) {
+      hold.releaseAll();
       hud.link.stop();
       store.resetArm();
       store.setInterpolationAlpha(next.interpolationAlpha);
@@ -117,6 +138,7 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
       hud.settings = next;
       hud.link = new ArmLink(store, next, connect, workerIntervals);
       cameras.attach(hud.link);
+      letGoOnStop(hud.link);
       plan.runner.cancel(prev.armId === next.armId ? '' : 'stopped: another arm was selected');
       plan.preview.clear();
       robots.switched(prev, next);
@@ -140,6 +162,8 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
     // Let go of the arm when the page goes away (the deadman's `0` at once, not after the will).
     window.addEventListener('pagehide', () => hud.link.release());
     window.addEventListener('pageshow', (e) => e.persisted && hud.reconnect(hud.settings));
+    hold.attach(window, document);
+    gamepad.start();
     render(hud);
     els.message.textContent = 'Loading the arm model…';
     robots.start(settings.armId);

@@ -5,12 +5,15 @@
  */
 import {
   armTopics,
+  auditTopic,
+  holderTopic,
   EMERGENCY_STOP,
   angleFromPwm,
   encodeAngleMove,
   encodeKms,
   encodeMove,
   encodePing,
+  encodeStop,
   OPERATOR_BEAT_MS,
   type ArmTopics,
 } from '@armtwin/protocol';
@@ -22,6 +25,7 @@ import { GapTracker } from './GapTracker.ts';
 import { NO_PERMISSIONS, type LinkPermissions } from '../auth/roles.ts';
 import { connectOptions } from './connectOptions.ts';
 import type { MqttConnect, MqttLike } from './MqttLike.ts';
+import { ControlClaim, guestName, type ControlIdentity } from './ControlClaim.ts';
 
 /** What the page hears from the link besides data (src/auth/Session.ts listens). */
 export interface LinkEvents {
@@ -47,6 +51,8 @@ const NATIVE_INTERVALS: IntervalTimers = {
 };
 
 const now = () => performance.now();
+/** A payload of stops only: sent whoever holds the arm (the e-stop wins over everything). */
+const STOPS_ONLY = /^(#\d{3}PDST!)+$/;
 const decoder = new TextDecoder();
 
 /**
@@ -75,6 +81,8 @@ export class ArmLink {
   private events: LinkEvents = {};
   private connected = false;
   private readonly taps: LinkTap[] = [];
+  /** Who holds the arm, and this page's claims on it (docs/protocol.md § Control). */
+  control: ControlClaim;
 
   constructor(
     private readonly store: ArmStore,
@@ -83,6 +91,7 @@ export class ArmLink {
     private readonly intervals: IntervalTimers = NATIVE_INTERVALS,
   ) {
     this.topics = armTopics(settings.armId);
+    this.control = this.controlFor({ name: guestName(), enforced: false, admin: false });
     this.coalescer = new MoveCoalescer((id, pwm) => this.sendMove(id, pwm), {
       intervalMs: settings.jogIntervalMs,
     });
@@ -94,9 +103,14 @@ export class ArmLink {
    * (settings.deadmanKeepAliveS), a retained `1` at every connect and every OPERATOR_BEAT_MS
    * after (the lease a controller watches, docs/protocol.md), and a last will `0`.
    */
-  start(permissions: LinkPermissions = UNCHECKED_PERMISSIONS, events: LinkEvents = {}): void {
+  start(
+    permissions: LinkPermissions = UNCHECKED_PERMISSIONS,
+    events: LinkEvents = {},
+    who?: ControlIdentity,
+  ): void {
     const s = this.settings;
     this.permissions = permissions;
+    if (who) this.control = this.controlFor(who);
     this.events = events;
     this.store.connection = 'connecting';
     const deadman = permissions.deadman;
@@ -119,6 +133,9 @@ export class ArmLink {
       if (deadman) this.holdOperator(client);
       this.events.connected?.();
       client.subscribe([this.topics.status, this.topics.online], { qos: 0 }, (err) => {
+        if (err) this.store.connectionError = `subscribe failed: ${err.message}`;
+      });
+      client.subscribe([this.holderTopic, this.auditTopic], { qos: 1 }, (err) => {
         if (err) this.store.connectionError = `subscribe failed: ${err.message}`;
       });
       this.subscribeTaps(client);
@@ -155,7 +172,9 @@ export class ArmLink {
     this.pingTimer = setInterval(() => this.ping(), s.pingIntervalMs);
     if (deadman)
       this.beatTimer = this.intervals.setInterval(() => {
-        if (this.connected && current()) this.holdOperator(client);
+        if (!this.connected || !current()) return;
+        this.holdOperator(client);
+        this.control.beat();
       }, OPERATOR_BEAT_MS);
   }
 
@@ -214,9 +233,37 @@ export class ArmLink {
     this.beatTimer = undefined;
   }
 
+  /** Moves from this page would reach the arm: its role may command and nobody else holds it. */
+  get mayMove(): boolean {
+    return this.permissions.command && this.control.mayMove;
+  }
+
+  private get holderTopic(): string {
+    return holderTopic(this.settings.armId);
+  }
+
+  private get auditTopic(): string {
+    return auditTopic(this.settings.armId);
+  }
+
+  private controlFor(who: ControlIdentity): ControlClaim {
+    return new ControlClaim(this.settings.armId, who, (topic, payload) => {
+      const client = this.client;
+      if (!client || !this.permissions.command) return false;
+      client.publish(topic, payload, { qos: 1 }, (err) => {
+        if (err) this.lastPublishError = err.message;
+      });
+      return true;
+    });
+  }
+
   private onMessage(topic: string, payload: Uint8Array): void {
     if (topic === this.topics.status) {
       this.store.ingest(payload, now());
+    } else if (topic === this.holderTopic) {
+      this.control.onHolder(payload);
+    } else if (topic === this.auditTopic) {
+      this.control.onAudit(payload);
     } else if (topic === this.topics.online) {
       const text = decoder.decode(payload).trim();
       this.store.armOnline = text === '1' ? true : text === '0' ? false : null;
@@ -235,8 +282,12 @@ export class ArmLink {
   private publish(payload: string, isCommand = true, allowed = this.permissions.command): boolean {
     const client = this.client;
     if (!client || !allowed) return false;
+    if (isCommand && !this.control.mayMove && !STOPS_ONLY.test(payload)) {
+      this.lastPublishError = `not sent: ${this.control.heldBy} controls the arm`;
+      return false;
+    }
     if (isCommand) this.store.counters.published++;
-    client.publish(this.topics.control, payload, { qos: 1 }, (err) => {
+    client.publish(this.control.controlTopic, payload, { qos: 1 }, (err) => {
       if (err) this.lastPublishError = err.message;
     });
     return true;
@@ -289,6 +340,30 @@ export class ArmLink {
     this.publish(encodeKms(x, y, z, Math.round(this.settings.kmsMoveMs), alpha));
   }
 
+  /**
+   * A hold-to-jog keep-alive (docs/protocol.md § Hold-to-jog): each servo to its pulse in `ms`,
+   * one frame, or one `{…}` group for several (one command for the rate limit). A move outside
+   * its servo's limits is never sent: then nothing is, and the answer is false.
+   */
+  holdMoves(moves: ReadonlyArray<readonly [id: number, pwm: number]>, ms: number): boolean {
+    if (moves.length === 0 || !moves.every(([id, pwm]) => this.allowed(id, pwm))) return false;
+    const t = Math.round(ms);
+    const frames = moves.map(([id, pwm]) => {
+      this.store.commandedPwm[id] = pwm;
+      const deg = this.wireAngle(id, pwm);
+      return Number.isNaN(deg) ? encodeMove(id, pwm, t) : encodeAngleMove(id, deg, t);
+    });
+    return this.publish(frames.length === 1 ? frames[0]! : `{${frames.join('')}}`);
+  }
+
+  /** `#IIIPDST!` for each servo, one payload (a hold-to-jog released); pending jogs dropped. */
+  stopServos(ids: readonly number[]): boolean {
+    if (ids.length === 0) return false;
+    this.coalescer.cancelAll();
+    for (const id of ids) this.store.commandedPwm[id] = NaN;
+    return this.publish(ids.map(encodeStop).join(''), true, this.permissions.stop);
+  }
+
   /** A `{…}` group of timed moves (a plan streamed by the Plan panel); false if not sent. */
   sendGroup(frame: string): boolean {
     return this.publish(frame);
@@ -321,6 +396,8 @@ export class ArmLink {
     const client = this.client;
     this.client = null;
     if (!client) return;
+    if (this.connected && this.control.holding)
+      client.publish(this.control.claimTopic, 'release', { qos: 1 });
     if (this.permissions.deadman && this.connected)
       client.publish(this.topics.operator, '0', { qos: 1, retain: true });
     client.end(false);

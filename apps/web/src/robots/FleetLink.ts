@@ -137,12 +137,15 @@ export class FleetLink {
     if (this.state.has(old)) this.watchStatus(old);
   }
 
-  /** Publishes a motion request to the selected arm; false when not connected. */
-  request(req: MotionRequest): boolean {
+  /**
+   * Publishes a motion request to the selected arm (on `topic`: the user's own request topic
+   * when it is given, docs/protocol.md § Control); false when not connected.
+   */
+  request(req: MotionRequest, topic = armTopics(this.selected).request): boolean {
     const c = this.client;
     if (!c || !this.connected) return false;
     this.counters.requests++;
-    c.publish(armTopics(this.selected).request, JSON.stringify(req), { qos: 1 }, (err) => {
+    c.publish(topic, JSON.stringify(req), { qos: 1 }, (err) => {
       if (err) this.lastError = `request not sent: ${err.message}`;
     });
     return true;

@@ -1,6 +1,7 @@
 /**
  * The translucent ghost arm: the plan preview while there is one (`GhostSource`), else the previewed
- * IK solution of the Cartesian target, else the pose this HUD last commanded (store/ghostPose.ts),
+ * IK solution of the Cartesian target (refused by a keep-out zone: its offending link red), a
+ * refused jog's pose (its offending link red), else the pose this HUD last commanded (store/ghostPose.ts),
  * hidden when that is where the live arm already is or when the Ghost panel turns it off. Posed
  * every frame by the Viewer's loop by mutation: the inputs to `ghostPose` are one object,
  * refilled in place, and the angles one array; nothing is allocated per frame.
@@ -34,7 +35,21 @@ export const ghostMaterial: MaterialFactory = () =>
     roughness: 0.4,
   });
 
+/** The offending link of a refused target (keep-out zone, self-collision): opaque-ish red. */
+const hitMaterial = new THREE.MeshStandardMaterial({
+  color: 0xef4444,
+  emissive: 0x7f1d1d,
+  emissiveIntensity: 0.6,
+  transparent: true,
+  opacity: 0.75,
+  depthWrite: false,
+  roughness: 0.4,
+});
+
 export class Ghost {
+  /** The URDF joint whose child link is painted red now ('' = none). */
+  painted = '';
+  private readonly saved = new Map<THREE.Mesh, THREE.Material | THREE.Material[]>();
   private readonly angles: Float64Array;
   /** `ghostPose`'s inputs, refilled each frame (the store's arrays are replaced on `configure`). */
   private readonly inputs: GhostInputs;
@@ -76,19 +91,58 @@ export class Ghost {
     const t = this.target;
     const shows = !t.ghostEnabled
       ? 'nothing'
-      : source?.sample(now, this.angles)
-        ? 'plan'
-        : ghostPose(this.refill(), this.angles);
+      : t.refused
+        ? this.refusedPose()
+        : source?.sample(now, this.angles)
+          ? 'plan'
+          : ghostPose(this.refill(), this.angles);
     t.ghostShows = shows;
     const robot = this.posed.robot;
     const visible = shows !== 'nothing';
-    let changed = false;
+    let changed = this.paint(
+      shows === 'preview' ? t.hitJoint : shows === 'refused' ? t.refusedJoint : '',
+    );
     if (robot.visible !== visible) {
       robot.visible = visible;
       changed = true;
     }
     if (visible && this.posed.pose(this.angles)) changed = true;
     return changed;
+  }
+
+  /**
+   * Paints the child link of URDF joint `joint` red (a refused target's offending link) and
+   * restores the rest; true when that changed anything. Runs only when the joint changes.
+   */
+  private paint(joint: string): boolean {
+    if (joint === this.painted) return false;
+    for (const [mesh, material] of this.saved) mesh.material = material;
+    this.saved.clear();
+    this.painted = joint;
+    const link = joint
+      ? this.posed.robot.joints[joint]?.children.find(
+          (c) => (c as { isURDFLink?: boolean }).isURDFLink,
+        )
+      : undefined;
+    const visit = (o: THREE.Object3D) => {
+      if ((o as { isURDFJoint?: boolean }).isURDFJoint) return; // the next link: not this one
+      const mesh = o as THREE.Mesh;
+      if (mesh.isMesh) {
+        this.saved.set(mesh, mesh.material);
+        mesh.material = hitMaterial;
+      }
+      o.children.forEach(visit);
+    };
+    link?.children.forEach(visit);
+    return true;
+  }
+
+  /** A refused jog's pose (servos it leaves be where the arm is drawn). */
+  private refusedPose(): 'refused' {
+    const a = this.target.refusedAngles;
+    for (let i = 0; i < this.angles.length; i++)
+      this.angles[i] = Number.isNaN(a[i]!) ? (this.store.rendered[i] ?? 0) : a[i]!;
+    return 'refused';
   }
 
   private refill(): GhostInputs {
@@ -98,7 +152,8 @@ export class Ghost {
     g.arm = s.opts.arm;
     g.rendered = s.rendered;
     g.commandedPwm = s.commandedPwm;
-    g.previewOk = t.active && t.code === 0;
+    // A target refused by a zone is shown too, its offending link red (`paint`).
+    g.previewOk = t.active && (t.code === 0 || t.hitJoint !== '');
     g.previewAngles = t.angles;
     return g;
   }

@@ -18,6 +18,8 @@ import { RobotModelLoader, solidMaterial, type MeshFailure } from './loadRobot.t
 import { MeshFailureNote } from './MeshFailureNote.ts';
 import { createStage, type Stage } from './stage.ts';
 import { Ghost, ghostMaterial } from './Ghost.ts';
+import { ZonesView } from './ZonesView.ts';
+import type { ProfileKeepOut } from '@armtwin/ik';
 import { PosedRobot } from './PosedRobot.ts';
 import { TargetMarker } from './TargetMarker.ts';
 import { FloorPicker } from './FloorPicker.ts';
@@ -41,6 +43,8 @@ export class Viewer {
   /** The replay's sibling arm (History panel), when a ReplayPlayer is given. */
   private sibling: ReplaySibling | null = null;
   private readonly marker: TargetMarker;
+  /** The active robot's keep-out zones, translucent. */
+  readonly zones: ZonesView;
   private readonly picker: FloorPicker;
   private readonly failureNote: MeshFailureNote;
   /** The meshes of the loaded robot that could not be loaded (shown over the view). */
@@ -102,6 +106,7 @@ export class Viewer {
     this.controls.addEventListener('change', () => (this.needsRender = true));
     this.stage = createStage(this.scene);
     this.marker = new TargetMarker(this.stage, target);
+    this.zones = new ZonesView(this.stage.world);
     this.picker = new FloorPicker(this.renderer.domElement, this.camera, this.stage, target);
     this.failureNote = new MeshFailureNote(container);
   }
@@ -121,6 +126,16 @@ export class Viewer {
   /** The live arm's URDF model (null before a robot loads); replaced when another loads. */
   get liveRobot(): URDFRobot | null {
     return this.live?.robot ?? null;
+  }
+
+  /** Draws the active robot's keep-out zones (its profile's `keepOut`). */
+  showZones(keepOut: ProfileKeepOut | undefined): void {
+    if (this.zones.show(keepOut)) this.needsRender = true;
+  }
+
+  /** The URDF joint whose child link the ghost paints red ('' = none): a refused target's. */
+  get ghostPainted(): string {
+    return this.ghost?.painted ?? '';
   }
 
   /** The URDF joint values drawn now (rad or m), in servo order ([] before a robot loads). */

@@ -17,20 +17,56 @@ export class TargetPreview {
   code = 0;
   /** Servo angles of the previewed solution, degrees (NaN for servos it leaves be). */
   readonly angles = new Float64Array(MAX_PREVIEW_SERVOS).fill(NaN);
+  /**
+   * A target refused by a keep-out zone or self-collision: the URDF joint whose child link the
+   * ghost paints red, and why ('' when none). The ghost then shows the refused pose.
+   */
+  hitJoint = '';
+  hitMessage = '';
   /** Whether the ghost is drawn at all (the Ghost panel's switch). */
   ghostEnabled = true;
   /** What the ghost shows this frame; written by the 3D view, read by the Ghost panel. */
-  ghostShows: 'nothing' | 'preview' | 'commanded' | 'plan' = 'nothing';
+  ghostShows: 'nothing' | 'preview' | 'commanded' | 'plan' | 'refused' = 'nothing';
+  /**
+   * A jog refused by a keep-out zone or self-collision: the pose it would have reached (servo
+   * angles, degrees) and the URDF joint whose child link the ghost paints red. Shown until the
+   * next jog that is sent, or a Cartesian target.
+   */
+  refused = false;
+  readonly refusedAngles = new Float64Array(MAX_PREVIEW_SERVOS).fill(NaN);
+  refusedJoint = '';
 
   private readonly placeListeners = new Set<(x: number, y: number) => void>();
 
-  set(x: number, y: number, z: number, code: number, angles: ArrayLike<number>): void {
+  set(
+    x: number,
+    y: number,
+    z: number,
+    code: number,
+    angles: ArrayLike<number>,
+    hit?: { joint: string; message: string },
+  ): void {
     this.active = true;
+    this.refused = false;
+    this.hitJoint = hit?.joint ?? '';
+    this.hitMessage = hit?.message ?? '';
     this.x = x;
     this.y = y;
     this.z = z;
     this.code = code;
     for (let i = 0; i < MAX_PREVIEW_SERVOS; i++) this.angles[i] = angles[i] ?? NaN;
+  }
+
+  /** Shows a refused jog's pose on the ghost, `joint`'s link red. */
+  refuse(angles: ArrayLike<number>, joint: string): void {
+    this.refused = true;
+    this.refusedJoint = joint;
+    for (let i = 0; i < MAX_PREVIEW_SERVOS; i++) this.refusedAngles[i] = angles[i] ?? NaN;
+  }
+
+  clearRefused(): void {
+    this.refused = false;
+    this.refusedJoint = '';
   }
 
   setGhostEnabled(on: boolean): void {
@@ -39,6 +75,8 @@ export class TargetPreview {
 
   clear(): void {
     this.active = false;
+    this.hitJoint = '';
+    this.hitMessage = '';
     this.angles.fill(NaN);
   }
 

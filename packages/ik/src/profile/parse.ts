@@ -6,6 +6,7 @@
 import { ANGLE_DEG_MAX, PWM_MAX, PWM_MIN, SERVO_ID_MAX } from '@armtwin/protocol';
 import { pwmFromServo, servoFromPwm, servoWithinLimits, pwmWithinLimits } from './convert.ts';
 import { Fields, type Json } from './fields.ts';
+import { parseKeepOut } from './keep-out.ts';
 import {
   PROFILE_FORMAT,
   PROFILE_SERVO_DEFAULTS as D,
@@ -217,7 +218,7 @@ export function parseProfile(json: unknown): ParseProfileResult {
   const f = new Fields();
   const o = f.object('profile', json);
   if (!o) return { ok: false, errors: f.errors };
-  f.noUnknownKeys('', o, ['format', 'name', 'title', 'urdf', 'ik', 'servos', 'poses']);
+  f.noUnknownKeys('', o, ['format', 'name', 'title', 'urdf', 'ik', 'servos', 'poses', 'keepOut']);
   if (o.format !== PROFILE_FORMAT)
     f.fail('format', `must be "${PROFILE_FORMAT}", got ${JSON.stringify(o.format)}`);
   const name = f.string('name', o.name, NAME, NAME_WHAT);
@@ -265,6 +266,8 @@ export function parseProfile(json: unknown): ParseProfileResult {
           .join(', ')})`,
       );
   }
+  const keepOut = parseKeepOut(f, o.keepOut);
   if (f.errors.length > 0) return { ok: false, errors: f.errors };
-  return { ok: true, profile: { name: name!, title: title!, urdf: urdf!, ik: ik!, servos, poses } };
+  const profile = { name: name!, title: title!, urdf: urdf!, ik: ik!, servos, poses };
+  return { ok: true, profile: keepOut ? { ...profile, keepOut } : profile };
 }

@@ -96,6 +96,47 @@ export interface ProfileIk {
   readonly floorZ?: number;
 }
 
+/** The shapes a keep-out zone can take (docs/robots.md, "Keep-out zones"). Declared once. */
+export const ZONE_SHAPES = ['box', 'cylinder', 'plane'] as const;
+export type ZoneShape = (typeof ZONE_SHAPES)[number];
+
+/** A keep-out zone, mm in the arm's base frame (the frame of `ik.baseLink`, z up). */
+export type Zone =
+  | {
+      readonly name: string;
+      readonly shape: 'box';
+      /** Axis-aligned corners, each component of `min` below that of `max`. */
+      readonly min: readonly [number, number, number];
+      readonly max: readonly [number, number, number];
+    }
+  | {
+      readonly name: string;
+      readonly shape: 'cylinder';
+      /** A vertical cylinder: axis through (x, y), radius > 0, from zMin up to zMax. */
+      readonly center: readonly [number, number];
+      readonly radius: number;
+      readonly zMin: number;
+      readonly zMax: number;
+    }
+  | {
+      readonly name: string;
+      readonly shape: 'plane';
+      /** A half-space: every point p with (p − point)·normal > 0 is kept out. */
+      readonly point: readonly [number, number, number];
+      /** Unit length (the parser normalises it). */
+      readonly normal: readonly [number, number, number];
+    };
+
+/** Keep-out settings of a profile (`keepOut`): zones and the links' collision size. */
+export interface ProfileKeepOut {
+  /** Zones no link may enter. */
+  readonly zones: readonly Zone[];
+  /** Radius of every link's capsule, mm; absent: `DEFAULT_ZONE_OPTIONS.linkRadius` of @armtwin/motion. */
+  readonly linkRadius?: number;
+  /** Whether non-adjacent links are checked against each other; absent: true. */
+  readonly selfCollision?: boolean;
+}
+
 export interface Profile {
   /** Folder name under public/models, `[a-z0-9-_]+`. */
   readonly name: string;
@@ -111,6 +152,8 @@ export interface Profile {
    * present and complete. `posePwm` turns one into pulses.
    */
   readonly poses: Readonly<Record<string, readonly number[]>>;
+  /** Keep-out zones and link size; absent: no zones (the floor and self-collision still apply). */
+  readonly keepOut?: ProfileKeepOut;
 }
 
 export type ParseProfileResult =

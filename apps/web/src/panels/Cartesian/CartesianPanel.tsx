@@ -47,7 +47,9 @@ export function CartesianPanel() {
       )
     : null;
   const ikCodeMessage = (code: number) =>
-    code === result?.code && result.floor ? result.floor : codeWords(code, result?.via ?? 'kms');
+    code === result?.code && (result.floor ?? result.zone)
+      ? (result.floor ?? result.zone!.message)
+      : codeWords(code, result?.via ?? 'kms');
 
   // Mirror the preview into the plain store the 3D view reads (marker and ghost).
   useEffect(() => {
@@ -55,7 +57,7 @@ export function CartesianPanel() {
       target.clear();
       return;
     }
-    target.set(parsed.x, parsed.y, parsed.z, result.code, result.servoAngles);
+    target.set(parsed.x, parsed.y, parsed.z, result.code, result.servoAngles, result.zone);
   });
   useEffect(() => () => target.clear(), [target]);
 
@@ -70,10 +72,7 @@ export function CartesianPanel() {
   );
 
   const live = useSampled(() => ({
-    enabled:
-      link.permissions.command &&
-      store.connection === 'connected' &&
-      !store.isStale(performance.now()),
+    enabled: link.mayMove && store.connection === 'connected' && !store.isStale(performance.now()),
     replies: store.kmsReplies,
     reply: store.kmsReply,
   }));
@@ -96,8 +95,11 @@ export function CartesianPanel() {
       const targets = [parsed.pitch === undefined ? t : { ...t, pitch: parsed.pitch }];
       const id = nextRequestId();
       if (
-        !link.permissions.command ||
-        !robots.fleet.request({ id, mode: 'joint', targets, execute: true })
+        !link.mayMove ||
+        !robots.fleet.request(
+          { id, mode: 'joint', targets, execute: true },
+          link.control.requestTopic,
+        )
       )
         return setRefusal('Not sent: the broker is not connected.');
       requests.sent(id, `move to ${parsed.x} ${parsed.y} ${parsed.z}`);

@@ -6,7 +6,10 @@
 import { ikCodeMessage, solveIk, type ArmProfile } from '@armtwin/ik';
 import {
   CODE_BELOW_FLOOR,
+  CODE_IN_ZONE,
+  CODE_SELF_COLLISION,
   checkFloor,
+  checkZonesMove,
   motionCodeMessage,
   solveTip,
   tipPose,
@@ -27,6 +30,11 @@ export interface TargetSolution {
   via: 'kms' | 'request';
   /** With code 24: what is below the floor, in words (`tip 50.0 mm below the floor …`). */
   floor?: string;
+  /**
+   * With code 25 or 26: the link that would collide, in words (`hand 12.0 mm into zone
+   * "table"`), and the URDF joint whose child link the ghost paints red.
+   */
+  zone?: { message: string; joint: string };
 }
 
 /**
@@ -48,13 +56,19 @@ export function startFields(
   return { x: mm(tip.x), y: mm(tip.y), z: mm(tip.z), pitch: '' };
 }
 
+/** Codes the page (and the controller's `$KMS` reply) gives for keep-out refusals. */
+const KEEP_OUT_CODES: readonly number[] = [CODE_BELOW_FLOOR, CODE_IN_ZONE, CODE_SELF_COLLISION];
+
 export function codeWords(code: number, via: TargetSolution['via']): string {
-  return via === 'kms' && code !== CODE_BELOW_FLOOR ? ikCodeMessage(code) : motionCodeMessage(code);
+  return via === 'kms' && !KEEP_OUT_CODES.includes(code)
+    ? ikCodeMessage(code)
+    : motionCodeMessage(code);
 }
 
 /**
  * The floor (docs/protocol.md, "The floor"): a solution that would put the tool or a joint
- * under it becomes code 24, refused here before anything is sent (the arm refuses it too).
+ * under it becomes code 24; one whose path takes a link into a keep-out zone 25, onto another
+ * link 26: refused here before anything is sent (the arm refuses it too).
  */
 function floorChecked(
   r: TargetSolution,
@@ -66,7 +80,14 @@ function floorChecked(
     Number.isNaN(p) ? (Number.isFinite(seed[i]) ? seed[i]! : motion.table[i]!.homePwm) : p,
   );
   const c = checkFloor(motion, pwm);
-  return c.ok ? r : { ...r, code: CODE_BELOW_FLOOR, floor: c.message };
+  if (!c.ok) return { ...r, code: CODE_BELOW_FLOOR, floor: c.message };
+  // Keep-out zones and self-collision along the straight joint path the controller will take
+  // from where the arm is (docs/protocol.md, "Keep-out zones").
+  const from = Array.from(seed, (p, i) => (Number.isFinite(p) ? p : motion.table[i]!.homePwm));
+  const z = checkZonesMove(motion, from, pwm);
+  if (z.ok) return r;
+  const code = z.kind === 'zone' ? CODE_IN_ZONE : CODE_SELF_COLLISION;
+  return { ...r, code, zone: { message: z.message, joint: z.joint } };
 }
 
 export function solveTarget(

@@ -29,7 +29,7 @@ export function CommandPanel() {
         : null;
     return {
       version: log.version,
-      allowed: link.permissions.command,
+      allowed: link.mayMove,
       connected: fleet.connected,
       tip: tip ? `x ${tip.x.toFixed(1)}, y ${tip.y.toFixed(1)}, z ${tip.z.toFixed(1)} mm` : '',
     };
@@ -48,7 +48,8 @@ export function CommandPanel() {
       if (out.status === 'unreachable' && out.code === CODE_BELOW_FLOOR)
         return setError(`Not sent: ${out.message.replace(/^targets\[\d+\]: /, '')}.`);
     }
-    if (!fleet.request(r.request)) return setError('Not sent: the broker is not connected.');
+    if (!fleet.request(r.request, link.control.requestTopic))
+      return setError('Not sent: the broker is not connected.');
     store.commandedPwm.fill(NaN); // the arm now heads elsewhere than this page's last jog
     setError('');
     log.sent(id, text.trim());

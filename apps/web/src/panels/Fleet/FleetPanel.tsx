@@ -3,11 +3,13 @@
  * whether it is online, and an alarm badge from its latest health reports (PROTOCOL.md §5
  * levels). Selecting one makes the HUD control it (the URL's `arm=` follows). The selected arm's
  * health comes from the store, the others' from FleetLink. Arm ids and titles are text only.
+ * Who controls the selected arm is said under the heading (./ControlBar.tsx).
  */
 import '../../robots/robots.css';
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { fleetList, healthSummary, type FleetArm } from '../../robots/fleet.ts';
+import { ControlBar } from './ControlBar.tsx';
 
 const onlineWord = (o: boolean | null) =>
   o === true ? 'online' : o === false ? 'offline' : 'unknown';
@@ -46,6 +48,7 @@ export function FleetPanel() {
   return (
     <section className="panel fleet" aria-labelledby="fleet-title">
       <h2 id="fleet-title">Fleet</h2>
+      <ControlBar />
       {snap.rows.length === 0 ? (
         <p className="dim">No arms seen on the broker yet.</p>
       ) : (

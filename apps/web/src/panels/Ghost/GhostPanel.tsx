@@ -1,16 +1,20 @@
 /**
  * Ghost: a translucent second arm showing the previewed target pose or the pose this HUD
- * commanded, beside the live arm. A switch hides it; the legend says what it shows now.
+ * commanded, beside the live arm. A switch hides it; the legend says what it shows now. A
+ * refused target shows its offending link red; the folded Keep-out zones section lists and
+ * edits the zones (../Zones/ZonesSection.tsx).
  */
 import { useState } from 'react';
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
+import { ZonesSection } from '../Zones/ZonesSection.tsx';
 
 const WORDS = {
   preview: 'showing the previewed target pose',
   commanded: 'showing the commanded pose (the arm is not there yet)',
   nothing: 'hidden: nothing to show apart from the live arm',
   plan: 'previewing the plan (Plan panel)',
+  refused: 'showing the refused jog: the link in red would collide',
 } as const;
 
 export function GhostPanel() {
@@ -34,6 +38,7 @@ export function GhostPanel() {
       <p className="dim" data-testid="ghost-shows">
         <span className="ghost-swatch" aria-hidden="true" /> {enabled ? WORDS[shows] : 'off'}
       </p>
+      <ZonesSection />
     </section>
   );
 }

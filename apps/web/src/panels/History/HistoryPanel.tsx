@@ -30,7 +30,7 @@ import './history.css';
 type Tab = 'charts' | 'tables' | 'replay';
 const TABS: { id: Tab; label: string }[] = [
   { id: 'charts', label: 'Charts' },
-  { id: 'tables', label: 'Tracking & alarms' },
+  { id: 'tables', label: 'Tracking, alarms & control' },
   { id: 'replay', label: 'Replay' },
 ];
 

@@ -1,9 +1,10 @@
 /**
  * The tables tab: tracking error per joint (mean and maximum absolute error between commanded
  * and actual angle, samples compared — `/history/tracking`) and the alarm log (one row per
- * episode — `/history/alarms`). Every value is rendered as text.
+ * episode — `/history/alarms`) and the control log (who took, gave and lost control, refused
+ * moves — `/history/audit`). Every value is rendered as text.
  */
-import { alarmsCsv, csvFileName, trackingCsv } from './csv.ts';
+import { alarmsCsv, auditCsv, csvFileName, trackingCsv } from './csv.ts';
 import { downloadText } from './download.ts';
 import { fixed, tableTime } from './format.ts';
 import type { OverviewViews } from './loadHistory.ts';
@@ -28,7 +29,7 @@ export function TablesView({
   overview: OverviewViews;
   servoName: (id: string) => string;
 }) {
-  const { tracking, alarms, range } = overview;
+  const { tracking, alarms, audit, range } = overview;
   const ref = range.stop;
   return (
     <div className="history-tables">
@@ -74,9 +75,10 @@ export function TablesView({
             </tbody>
           </table>
         )}
-        {tracking.ok && tracking.data.stride > 1 && (
+        {tracking.ok && tracking.data.thinnedEveryMs !== null && (
           <p className="dim small-print">
-            Every {tracking.data.stride}th sample compared; the true maximum may be missed.
+            One sample per {tracking.data.thinnedEveryMs / 1000} s compared; the true maximum may be
+            missed.
           </p>
         )}
       </section>
@@ -128,6 +130,50 @@ export function TablesView({
           <p className="warn small-print">
             Too many samples: the log covers only part of the range.
           </p>
+        )}
+      </section>
+      <section className="history-view" aria-label="Control log">
+        <ViewHeader
+          title="Control log"
+          csvLabel="Download control log CSV"
+          onCsv={
+            audit.ok
+              ? () =>
+                  downloadText(
+                    csvFileName(arm, 'control-log', range.start),
+                    auditCsv(audit.data.events),
+                  )
+              : null
+          }
+        />
+        {!audit.ok && <ViewError error={audit.error} />}
+        {audit.ok && audit.data.events.length === 0 && (
+          <p className="dim" data-testid="control-log">
+            Nobody took, gave or lost control in this range.
+          </p>
+        )}
+        {audit.ok && audit.data.events.length > 0 && (
+          <table className="history-table" data-testid="control-log">
+            <thead>
+              <tr>
+                <th scope="col">When</th>
+                <th scope="col">Who</th>
+                <th scope="col">What</th>
+              </tr>
+            </thead>
+            <tbody>
+              {audit.data.events.map((e, i) => (
+                <tr key={`${e.at}-${i}`} className={`audit-${e.kind}`}>
+                  <td>{tableTime(e.at, ref)}</td>
+                  <td>{e.by || 'plain control topic'}</td>
+                  <td>{e.detail || e.kind}</td>
+                </tr>
+              ))}
+            </tbody>
+          </table>
+        )}
+        {audit.ok && audit.data.truncated && (
+          <p className="warn small-print">Too many events: the log shows the first ones.</p>
         )}
       </section>
     </div>

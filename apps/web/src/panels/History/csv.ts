@@ -4,7 +4,7 @@
  * tracking-error table, the alarm log. Times as epoch ms and ISO 8601 UTC. Pure.
  */
 import type { Aligned } from './align.ts';
-import type { AlarmEpisode, TrackingJoint } from '@armtwin/api';
+import type { AlarmEpisode, TrackingJoint, AuditRecord } from '@armtwin/api';
 
 export type Cell = string | number | null | undefined;
 
@@ -56,6 +56,14 @@ export function alarmsCsv(episodes: readonly AlarmEpisode[], name: (id: string) 
       e.end === null ? 'yes' : 'no',
       e.peak,
     ]),
+  );
+}
+
+/** The control log: one row per event. */
+export function auditCsv(events: readonly AuditRecord[]): string {
+  return toCsv(
+    ['time_utc', 'by', 'kind', 'detail'],
+    events.map((e) => [iso(e.at), e.by, e.kind, e.detail]),
   );
 }
 

@@ -1,11 +1,12 @@
 /**
  * What one load of the History panel fetches, all for the same [start, stop): temperature and
  * voltage of every servo, the tracking-error table, the alarm log — and, per chosen joint, its
- * actual and commanded angle. Each view fails alone (its error is shown in its place).
+ * actual and commanded angle, and the control log (who took, gave and lost control; refused
+ * moves). Each view fails alone (its error is shown in its place).
  */
 import type { HistoryApi } from './historyApi.ts';
 import type { TimeRange } from './range.ts';
-import type { AlarmsAnswer, SeriesAnswer, TrackingAnswer } from '@armtwin/api';
+import type { AlarmsAnswer, AuditAnswer, SeriesAnswer, TrackingAnswer } from '@armtwin/api';
 import type { Loaded } from './loaded.ts';
 
 export interface OverviewViews {
@@ -14,6 +15,7 @@ export interface OverviewViews {
   volt: Loaded<SeriesAnswer>;
   tracking: Loaded<TrackingAnswer>;
   alarms: Loaded<AlarmsAnswer>;
+  audit: Loaded<AuditAnswer>;
 }
 
 export interface AngleViews {
@@ -33,13 +35,14 @@ export async function loadOverview(
   signal?: AbortSignal,
 ): Promise<OverviewViews> {
   const p = base(arm, range);
-  const [temp, volt, tracking, alarms] = await Promise.all([
+  const [temp, volt, tracking, alarms, audit] = await Promise.all([
     api.get<SeriesAnswer>('series', { ...p, field: 'temp' }, signal),
     api.get<SeriesAnswer>('series', { ...p, field: 'volt' }, signal),
     api.get<TrackingAnswer>('tracking', p, signal),
     api.get<AlarmsAnswer>('alarms', p, signal),
+    api.get<AuditAnswer>('audit', p, signal),
   ]);
-  return { range, temp, volt, tracking, alarms };
+  return { range, temp, volt, tracking, alarms, audit };
 }
 
 export async function loadAngles(

@@ -54,6 +54,7 @@ export function onlyProfileServos(o: OverviewViews, ids: readonly string[]): Pro
       (a, episodes) => ({ ...a, episodes }),
       ours,
     ),
+    audit: o.audit, // who did what: the arm's, not a servo's
   };
   return { overview, others: [...others].sort() };
 }

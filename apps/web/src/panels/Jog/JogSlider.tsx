@@ -1,4 +1,4 @@
-import { useEffect, useId, useRef, useState } from 'react';
+import { useEffect, useId, useRef, useState, type ReactNode } from 'react';
 import type { SliderSpec } from '../../robots/robotSpec.ts';
 
 /** After the user last changed a slider, it follows the arm again after this long, ms. */
@@ -10,6 +10,8 @@ interface Props {
   live: number;
   disabled: boolean;
   onJog(pwm: number): void;
+  /** Shown around the slider: the hold-to-jog − / + buttons (./HoldButtons.tsx). */
+  hold?: { minus: ReactNode; plus: ReactNode };
 }
 
 /**
@@ -18,7 +20,7 @@ interface Props {
  * user last changed it (so it does not jump back while the arm catches up). Focus alone does
  * not hold it.
  */
-export function JogSlider({ spec, live, disabled, onJog }: Props) {
+export function JogSlider({ spec, live, disabled, onJog, hold }: Props) {
   const id = useId();
   const [deg, setDeg] = useState(0);
   const touchedAt = useRef(-Infinity);
@@ -57,27 +59,31 @@ export function JogSlider({ spec, live, disabled, onJog }: Props) {
           </span>
         </span>
       </div>
-      <input
-        id={id}
-        type="range"
-        min={spec.min}
-        max={spec.max}
-        step={spec.step}
-        value={deg}
-        disabled={disabled}
-        onPointerDown={() => {
-          held.current = true;
-          window.addEventListener('pointerup', letGo, { once: true });
-          window.addEventListener('pointercancel', letGo, { once: true });
-        }}
-        aria-valuetext={`${deg} ${spec.unit === 'deg' ? 'degrees' : 'millimetres'}, ${pwm} microseconds`}
-        onChange={(e) => {
-          const next = Number(e.currentTarget.value);
-          touchedAt.current = performance.now();
-          setDeg(next);
-          onJog(spec.pwmFromValue(next));
-        }}
-      />
+      <div className="jog-line">
+        {hold?.minus}
+        <input
+          id={id}
+          type="range"
+          min={spec.min}
+          max={spec.max}
+          step={spec.step}
+          value={deg}
+          disabled={disabled}
+          onPointerDown={() => {
+            held.current = true;
+            window.addEventListener('pointerup', letGo, { once: true });
+            window.addEventListener('pointercancel', letGo, { once: true });
+          }}
+          aria-valuetext={`${deg} ${spec.unit === 'deg' ? 'degrees' : 'millimetres'}, ${pwm} microseconds`}
+          onChange={(e) => {
+            const next = Number(e.currentTarget.value);
+            touchedAt.current = performance.now();
+            setDeg(next);
+            onJog(spec.pwmFromValue(next));
+          }}
+        />
+        {hold?.plus}
+      </div>
     </div>
   );
 }

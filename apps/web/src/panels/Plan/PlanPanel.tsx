@@ -8,6 +8,7 @@
  */
 import { useState } from 'react';
 import {
+  CODE_BELOW_FLOOR,
   motionCodeMessage,
   planRequest,
   tipPose,
@@ -41,7 +42,7 @@ export function PlanPanel() {
     message: runner.message,
     progress: Math.round(runner.progress * 100),
     enabled:
-      link.permissions.command &&
+      link.mayMove &&
       store.connection === 'connected' &&
       !store.isStale(performance.now()) &&
       robots.active.motion !== null,
@@ -78,10 +79,12 @@ export function PlanPanel() {
         out.status === 'unreachable'
           ? ` at waypoint ${out.target + 1}${out.step !== undefined ? `, step ${out.step}` : ''}`
           : '';
-      setNote({
-        text: `Unreachable${where}: ${motionCodeMessage(out.code)} (code ${out.code}).`,
-        bad: true,
-      });
+      // A keep-out refusal (floor 24, zone 25, self-collision 26) names the link and zone.
+      const why =
+        out.status === 'unreachable' && out.code >= CODE_BELOW_FLOOR
+          ? out.message.replace(/^targets\[\d+\]: /, '')
+          : motionCodeMessage(out.code);
+      setNote({ text: `Unreachable${where}: ${why} (code ${out.code}).`, bad: true });
       return null;
     }
     const p = { plan: out.plan, spec: out.spec };

@@ -10,7 +10,7 @@ import { useSampled } from '../../hud/useSampled.ts';
 
 export function TorqueControl({ onSent }: { onSent?(on: boolean): void }) {
   const { link } = useHud();
-  const allowed = useSampled(() => link.permissions.command);
+  const allowed = useSampled(() => link.mayMove);
   const [state, setState] = useState('Torque: on (as the gateway holds the arm)');
   const send = (on: boolean) => {
     if (!link.setTorque(on)) {

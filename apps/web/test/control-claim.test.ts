@@ -1,0 +1,91 @@
+import { afterEach, beforeEach, describe, expect, it, vi } from 'vitest';
+import { ArmStore } from '../src/store/ArmStore.ts';
+import { ArmLink, UNCHECKED_PERMISSIONS } from '../src/mqtt/ArmLink.ts';
+import type { MqttLike } from '../src/mqtt/MqttLike.ts';
+import { defaultSettings } from '../src/config/settings.ts';
+import type { ControlIdentity } from '../src/mqtt/ControlClaim.ts';
+
+class FakeClient implements MqttLike {
+  handlers = new Map<string, ((...args: never[]) => void)[]>();
+  published: { topic: string; payload: string }[] = [];
+  on(event: string, cb: (...args: never[]) => void) {
+    this.handlers.set(event, [...(this.handlers.get(event) ?? []), cb]);
+    return this;
+  }
+  emit(event: string, ...args: unknown[]) {
+    for (const cb of this.handlers.get(event) ?? []) (cb as (...a: unknown[]) => void)(...args);
+  }
+  subscribe() {
+    return this;
+  }
+  publish(topic: string, payload: string) {
+    this.published.push({ topic, payload });
+    return this;
+  }
+  end() {
+    return this;
+  }
+}
+
+const enc = (s: string) => new TextEncoder().encode(s);
+
+function setup(who: ControlIdentity) {
+  const client = new FakeClient();
+  const link = new ArmLink(
+    new ArmStore(),
+    defaultSettings({ protocol: 'http:', host: 'h' }),
+    () => client,
+  );
+  link.start(UNCHECKED_PERMISSIONS, {}, who);
+  client.emit('connect');
+  const holder = (json: object) =>
+    client.emit('message', 'arm/arm1/holder', enc(JSON.stringify(json)));
+  const sent = () => client.published.filter((p) => !p.payload.startsWith('$PNG'));
+  return { client, link, holder, sent };
+}
+
+describe('ControlClaim in the page (docs/protocol.md § Control)', () => {
+  beforeEach(() => vi.useFakeTimers());
+  afterEach(() => vi.useRealTimers());
+
+  it('logged in: takes control at log-in when nobody holds it, and commands on its own topic', () => {
+    const { link, holder, sent } = setup({ name: 'alice', enforced: true, admin: false });
+    holder({ user: null, requests: [] });
+    expect(sent()).toEqual([{ topic: 'arm/arm1/claim/alice', payload: 'take' }]);
+    holder({ user: 'alice', role: 'operator', since: 1, requests: ['bob'] });
+    expect(link.mayMove).toBe(true);
+    link.emergencyStop();
+    expect(sent().at(-1)).toEqual({ topic: 'arm/arm1/control/alice', payload: '#255PDST!' });
+    link.control.grant('bob');
+    expect(sent().at(-1)).toEqual({ topic: 'arm/arm1/claim/alice', payload: 'grant bob' });
+  });
+
+  it('someone else holds the arm: moves are not sent, the stop is, and the page can ask', () => {
+    const { link, holder, sent } = setup({ name: 'bob', enforced: true, admin: false });
+    holder({ user: 'alice', role: 'operator', since: 1, requests: [] });
+    expect(link.mayMove).toBe(false);
+    expect(link.control.heldBy).toBe('alice');
+    expect(link.sendGroup('{#000P1500T500!}')).toBe(false);
+    expect(link.emergencyStop()).toBe(true);
+    link.control.ask();
+    expect(sent().map((p) => p.payload)).toEqual(['#255PDST!', 'ask']);
+  });
+
+  it('anonymous demo: the plain topic until the page takes control under its own name', () => {
+    const { link, holder, sent } = setup({ name: 'guest-1a2b', enforced: false, admin: false });
+    holder({ user: null, requests: [] });
+    expect(sent()).toEqual([]); // nothing is taken by itself in the demo
+    link.sendGroup('{#000P1500T500!}');
+    expect(sent().at(-1)?.topic).toBe('arm/arm1/control');
+    holder({ user: 'guest-1a2b', role: 'operator', since: 1, requests: [] });
+    link.sendGroup('{#000P1500T500!}');
+    expect(sent().at(-1)?.topic).toBe('arm/arm1/control/guest-1a2b');
+  });
+
+  it('an administrator takes a held arm on its override topic', () => {
+    const { link, holder, sent } = setup({ name: 'root', enforced: true, admin: true });
+    holder({ user: 'alice', role: 'operator', since: 1, requests: [] });
+    link.control.take();
+    expect(sent().at(-1)).toEqual({ topic: 'arm/arm1/override/root', payload: 'take' });
+  });
+});

@@ -1,0 +1,184 @@
+import { describe, expect, it } from 'vitest';
+import { encodeGroup, encodePosition } from '@armtwin/protocol';
+import { ArmStore } from '../src/store/ArmStore.ts';
+import { ArmLink } from '../src/mqtt/ArmLink.ts';
+import type { MqttLike } from '../src/mqtt/MqttLike.ts';
+import { defaultSettings } from '../src/config/settings.ts';
+import { robotSpec } from '../src/robots/robotSpec.ts';
+import { DEFAULT_PROFILE } from '../src/robots/defaultProfile.ts';
+import { HoldJog } from '../src/panels/Jog/HoldJog.ts';
+import { createMotionRobot, tipPose } from '@armtwin/motion';
+import { solveIk } from '@armtwin/ik';
+import {
+  combinedRate,
+  holdTarget,
+  keyHold,
+  DEFAULT_HOLD_KEYS,
+} from '../src/panels/Jog/holdJogMath.ts';
+
+class FakeClient implements MqttLike {
+  handlers = new Map<string, ((...args: never[]) => void)[]>();
+  published: string[] = [];
+  on(event: string, cb: (...args: never[]) => void) {
+    this.handlers.set(event, [...(this.handlers.get(event) ?? []), cb]);
+    return this;
+  }
+  emit(event: string, ...args: unknown[]) {
+    for (const cb of this.handlers.get(event) ?? []) (cb as (...a: unknown[]) => void)(...args);
+  }
+  subscribe() {
+    return this;
+  }
+  publish(_topic: string, payload: string) {
+    if (!payload.startsWith('$PNG') && _topic.endsWith('/control')) this.published.push(payload);
+    return this;
+  }
+  end() {
+    return this;
+  }
+}
+
+/** A connected link to the 5-axis demo arm at home (1500 µs), a HoldJog whose ticks the test runs. */
+function setup(withMotion = false) {
+  const store = new ArmStore();
+  const client = new FakeClient();
+  const link = new ArmLink(store, defaultSettings({ protocol: 'http:', host: 'h' }), () => client);
+  link.start();
+  client.emit('connect');
+  const report = (pwm: number[]) =>
+    client.emit(
+      'message',
+      'arm/arm1/status',
+      new TextEncoder().encode(encodeGroup(pwm.map((p, i) => encodePosition(i, p)))),
+    );
+  report([1500, 1500, 1500, 1500, 1500, 1500]);
+  const spec = robotSpec(DEFAULT_PROFILE);
+  const motion = createMotionRobot(DEFAULT_PROFILE);
+  let tickFn: (() => void) | null = null;
+  const hold = new HoldJog({
+    store,
+    link: () => link,
+    robot: () => ({ sliders: spec.sliders, motion: withMotion ? motion : null }),
+    timers: {
+      setInterval: (fn) => ((tickFn = fn), 1),
+      clearInterval: () => (tickFn = null),
+    },
+  });
+  const tick = () => tickFn?.();
+  return { store, client, link, hold, report, tick, motion, ticking: () => tickFn !== null };
+}
+
+describe('hold-to-jog arithmetic', () => {
+  it('aims one horizon ahead at the chosen speed, within the limits', () => {
+    expect(holdTarget(10, 1, 20, 250, -90, 90)).toBe(15);
+    expect(holdTarget(10, -0.5, 20, 250, -90, 90)).toBe(7.5);
+    expect(holdTarget(89, 1, 20, 250, -90, 90)).toBe(90);
+    expect(holdTarget(NaN, 1, 20, 250, -90, 90)).toBeNaN();
+  });
+  it('adds the inputs on one joint within ±1, and maps keys to joints', () => {
+    expect(combinedRate([1, 1])).toBe(1);
+    expect(combinedRate([1, -1])).toBe(0);
+    expect(keyHold(DEFAULT_HOLD_KEYS, 'KeyW')).toEqual({ index: 1, rate: 1 });
+    expect(keyHold(DEFAULT_HOLD_KEYS, 'KeyS')).toEqual({ index: 1, rate: -1 });
+    expect(keyHold(DEFAULT_HOLD_KEYS, 'KeyZ')).toBeNull();
+  });
+});
+
+describe('HoldJog', () => {
+  it('sends a short move at once and every keep-alive, and a per-servo stop on release', () => {
+    const { client, hold, tick, ticking } = setup();
+    hold.speed = 20;
+    hold.press('key:KeyW', 1, 1);
+    // 20 °/s × 250 ms = 5° ahead of home, in 250 ms
+    expect(client.published).toHaveLength(1);
+    expect(client.published[0]).toMatch(/^#001P\d{4}T0250!$/);
+    const first = Number(client.published[0]!.slice(5, 9));
+    expect(first).toBeGreaterThan(1500);
+    tick();
+    expect(client.published).toHaveLength(2);
+    hold.release('key:KeyW');
+    expect(client.published.at(-1)).toBe('#001PDST!');
+    expect(ticking()).toBe(false);
+  });
+
+  it('groups several held joints into one command, and stops only the joint let go', () => {
+    const { client, hold, tick } = setup();
+    hold.press('a', 0, 1);
+    hold.press('b', 2, -1);
+    tick();
+    expect(client.published.at(-1)).toMatch(/^\{#000P\d{4}T0250!#002P\d{4}T0250!\}$/);
+    hold.release('a');
+    expect(client.published.at(-1)).toBe('#000PDST!');
+    tick();
+    expect(client.published.at(-1)).toMatch(/^#002P\d{4}T0250!$/);
+  });
+
+  it('lets go of everything on the emergency stop without sending stops of its own', () => {
+    const { client, hold, link, ticking } = setup();
+    link.stopListeners.add(() => hold.releaseAll(false));
+    hold.press('pad:axis0', 0, 0.5);
+    link.emergencyStop();
+    expect(client.published.at(-1)).toBe('#255PDST!');
+    expect(hold.held()).toEqual([]);
+    expect(ticking()).toBe(false);
+  });
+
+  it('stops and says why when the data goes stale mid-hold', () => {
+    const { client, hold, tick, store } = setup();
+    hold.press('k', 1, 1);
+    store.connection = 'reconnecting';
+    tick();
+    expect(client.published.at(-1)).toBe('#001PDST!');
+    expect(hold.refusal).toMatch(/Stopped/);
+    expect(hold.held()).toEqual([]);
+  });
+
+  it('does not start a hold while the link cannot command', () => {
+    const { client, hold, store } = setup();
+    store.connection = 'reconnecting';
+    hold.press('k', 1, 1);
+    expect(client.published).toEqual([]);
+  });
+
+  it('moves the tip up along z through the IK, pitch kept, and stops every servo it moved', () => {
+    const { client, hold, report, motion } = setup(true);
+    const spec = robotSpec(DEFAULT_PROFILE);
+    // a pose the IK itself chose, tip at (250, 0, 200) pointing level
+    const ik = solveIk(250, 0, 200, 0, spec.storeArm);
+    const bent = [...ik.pwm.slice(0, 4), 1500, 1500];
+    report(bent);
+    hold.setSpeed(60);
+    hold.press('t', 'z', 1);
+    const sent = client.published.at(-1)!;
+    expect(sent).toMatch(/^\{(#00[0-3]P\d{4}T0250!)+\}$/);
+    const to = [...bent];
+    for (const m of sent.matchAll(/#00(\d)P(\d{4})T/g)) to[Number(m[1])] = Number(m[2]);
+    const a = tipPose(motion, bent);
+    const b = tipPose(motion, to);
+    expect(b.z - a.z).toBeGreaterThan(10); // 60 mm/s × 250 ms = 15 mm (pulses are whole µs)
+    expect(Math.abs(b.x - a.x)).toBeLessThan(2);
+    expect(Math.abs(b.pitch - a.pitch)).toBeLessThan(1);
+    hold.release('t');
+    expect(client.published.at(-1)).toMatch(/^(#00[0-3]PDST!)+$/);
+    expect(hold.held()).toEqual([]);
+  });
+
+  it('stops and says why when the tip cannot go further', () => {
+    const { client, hold } = setup(true); // at home the arm points straight up: no higher
+    hold.press('t', 'z', 1);
+    expect(hold.refusal).toMatch(/^Stopped: /);
+    expect(hold.held()).toEqual([]);
+    expect(client.published.filter((p) => !p.includes('PDST'))).toEqual([]);
+  });
+
+  it('stops rather than turn a joint fast near a singularity', () => {
+    const { client, hold, report } = setup(true);
+    // nearly stretched out: 15 mm up needs the elbow to turn about 20°
+    const ik = solveIk(200, 0, 150, -45, robotSpec(DEFAULT_PROFILE).storeArm);
+    report([...ik.pwm.slice(0, 4), 1500, 1500]);
+    hold.setSpeed(60);
+    hold.press('t', 'z', 1);
+    expect(hold.refusal).toMatch(/^Stopped: moving the tip would turn Elbow \d+° at once/);
+    expect(client.published.filter((p) => !p.includes('PDST'))).toEqual([]);
+  });
+});
