@@ -30,6 +30,7 @@ import { deadmanSection } from './deadman.ts';
 import { cameraSection } from './camera.ts';
 import { telegrafSection } from './telegraf.ts';
 import { holdJogSection } from './holdjog.ts';
+import { handoverSection } from './handover.ts';
 
 const SECTIONS: Section[] = [
   rttSection,
@@ -42,6 +43,7 @@ const SECTIONS: Section[] = [
   cameraSection,
   telegrafSection,
   holdJogSection,
+  handoverSection,
 ];
 /** Broker settings for every section (recorded in the JSON): see BENCHMARKS.md on Nagle. */
 export const BROKER_EXTRA = ['set_tcp_nodelay true', 'max_queued_messages 1000000'];
@@ -54,6 +56,7 @@ const NEEDS_BROKER = new Set([
   'camera',
   'telegraf',
   'holdjog',
+  'handover',
 ]);
 const NEEDS_INFLUX = new Set(['ingest', 'cpu', 'telegraf']);
 

@@ -21,7 +21,7 @@ afterAll(async () => {
 });
 
 describe('control events → InfluxDB → /history/audit', () => {
-  test("the arm's taken and refused-command events come back, in order, as JSON and CSV", async () => {
+  test("the arm's control events come back in order, as JSON and CSV: control taken, a refused move, an emergency stop and who set the arm going again", async () => {
     const mw = await mws.spawn({ env: { FLUSH_INTERVAL_MS: '200' } });
     sim = armtwin(['sim', '--arm', 'audit1', '--mqtt', broker().url]);
     const client = await mqtt.connectAsync(broker().url, { clientId: `audit-${process.pid}` });
@@ -51,6 +51,22 @@ describe('control events → InfluxDB → /history/audit', () => {
       'alice,taken',
       'bob,refused-command',
     ]);
+    // An emergency stop and the move that sets the arm going again are recorded with their senders.
+    await client.publishAsync('arm/audit1/control', '#255PDST!', { qos: 1 });
+    await client.publishAsync('arm/audit1/claim/alice', 'release', { qos: 1 });
+    await client.publishAsync('arm/audit1/control/carol', '#000P1600T500!', { qos: 1 });
+    const later = await waitForValue(
+      async () => {
+        const body = (await (await fetch(url)).json()) as AuditAnswer;
+        return body.events
+          .slice(2)
+          .map((e) => `${e.kind} by ${e.by}`)
+          .join('; ');
+      },
+      'e-stop by ; released by alice; e-stop-released by carol',
+      20_000,
+    );
+    expect(later).toBe('e-stop by ; released by alice; e-stop-released by carol');
     await client.endAsync();
   });
 });

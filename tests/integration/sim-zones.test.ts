@@ -25,6 +25,8 @@ let sim: Child;
 let w: StatusWatcher;
 let fb: MqttClient;
 const feedback: { id: string; status: string; code: number; message: string }[] = [];
+/** The sim's control events (arm/{id}/audit): a refusal by a zone is part of the record. */
+const audits: { by: string; kind: string; detail: string }[] = [];
 
 beforeAll(async () => {
   models = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-zones-'));
@@ -38,8 +40,10 @@ beforeAll(async () => {
   const url = broker().url;
   w = await StatusWatcher.connect(url, ARM);
   fb = await mqtt.connectAsync(url);
-  fb.on('message', (_t, payload) => feedback.push(JSON.parse(payload.toString())));
-  await fb.subscribeAsync(`arm/${ARM}/feedback`, { qos: 1 });
+  fb.on('message', (t, payload) =>
+    (t.endsWith('/audit') ? audits : feedback).push(JSON.parse(payload.toString())),
+  );
+  await fb.subscribeAsync([`arm/${ARM}/feedback`, `arm/${ARM}/audit`], { qos: 1 });
   await w.client.subscribeAsync(`arm/${ARM}/profile`, { qos: 1 });
   sim = armtwin(['sim', '--mqtt', url, '--arm', ARM, '--rate', '50', '--models', models]);
   await w.until(
@@ -89,6 +93,13 @@ describe('keep-out zones at the simulator', () => {
     });
     const t = await simNow();
     for (const id of [1, 2, 3]) expect(new Set(await pulsesAfter(id, t))).toEqual(new Set([1500]));
+    const refusal = await w.until(
+      () => audits.find((e) => e.kind === 'refused-keep-out'),
+      10_000,
+      'audit event',
+    );
+    expect(refusal).toMatchObject({ by: '' });
+    expect(refusal.detail).toMatch(/^a client on a plain topic: .*"table"/);
   });
 
   test('$KMS into the table is $KMS:25!, above it $KMS:0!', async () => {

@@ -81,6 +81,9 @@ export class BusControl {
     return out;
   }
 
+  /** Moves refused by a keep-out rule so far, and why the last one was (for the audit record). */
+  keepOutRefusals = { count: 0, last: '' };
+
   private refuse(kind: string, text: string): void {
     this.counters.refused[kind] = (this.counters.refused[kind] ?? 0) + 1;
     this.replies.push(encodeControllerError(text));
@@ -193,6 +196,8 @@ export class BusControl {
     if (!this.keepOut || goals.length === 0) return '';
     const to = [...now];
     for (const g of goals) to[this.joints.findIndex((j) => j.id === g.id)] = g.degrees;
-    return this.keepOut(now, to);
+    const reason = this.keepOut(now, to);
+    if (reason) this.keepOutRefusals = { count: this.keepOutRefusals.count + 1, last: reason };
+    return reason;
   }
 }

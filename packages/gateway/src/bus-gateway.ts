@@ -167,6 +167,11 @@ export class BusGatewayCore {
     this.operator.receive(payload);
   }
 
+  /** Moves refused by a keep-out rule so far, and why the last one was. */
+  keepOutRefusals(): { count: number; last: string } {
+    return this.control.keepOutRefusals;
+  }
+
   fromControl(payload: Uint8Array | string): void {
     const replies = this.control.receive(payload);
     if (replies.length) this.status(replies);
@@ -204,7 +209,9 @@ export class BusGatewayCore {
     this.line.recalibrate();
     this.reports.forgetGoals();
     const old = this.control.counters;
+    const refusals = this.control.keepOutRefusals;
     this.control = new BusControl(this, this.joints, kms, keepOut);
+    this.control.keepOutRefusals = refusals;
     Object.assign(this.control.counters.refused, old.refused);
     this.control.counters.frames = old.frames;
     return '';

@@ -85,6 +85,8 @@ export interface GatewayMqttCore {
   brokerConnected(connected: boolean): void;
   fromControl(payload: Buffer): void;
   fromOperator(payload: Buffer): void;
+  /** A bus arm's moves refused by its keep-out rules so far, and why the last one was. */
+  keepOutRefusals?(): { count: number; last: string };
 }
 
 /**
@@ -107,7 +109,19 @@ export function wireGatewayMqtt(
     o.armId,
     {
       ...SYSTEM_CLOCK,
-      forward: (payload) => core.fromControl(Buffer.from(payload)),
+      forward: (payload) => {
+        // A move the arm refuses by its keep-out rules is part of the record, with its sender.
+        const before = core.keepOutRefusals?.().count ?? 0;
+        core.fromControl(Buffer.from(payload));
+        const after = core.keepOutRefusals?.();
+        if (!after || after.count === before) return;
+        const by = control.author;
+        control.record(
+          by,
+          'refused-keep-out',
+          `${by || 'a client on a plain topic'}: ${after.last}`,
+        );
+      },
       refuse: (message) =>
         publish(
           topics.status,

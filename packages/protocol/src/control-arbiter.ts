@@ -12,6 +12,9 @@
  * - Every change of holder (release, grant, admin take-over, a lapsed lease) stops the arm.
  * - The holder's lease: once a holder repeats `beat`, `leaseMs` without one loses the arm
  *   (the page went idle or away), as the operator lease does (./operator.ts).
+ * - Every emergency stop (`#255PDST!`) that reaches the arm is an audit event `e-stop` with its
+ *   sender, and the first move after it that reaches the arm is `e-stop-released` with its
+ *   sender: who stopped the arm, and who set it going again.
  *
  * Pure: the clock, the timers and every output are injected.
  */
@@ -27,6 +30,7 @@ import {
 } from './control-claims.ts';
 import { EMERGENCY_STOP, encodeFrame } from './encode.ts';
 import type { FrameType } from './frames.ts';
+import { SERVO_ID_ALL } from './limits.ts';
 import { OPERATOR_LEASE_MS, OperatorWatch } from './operator.ts';
 import { createReader } from './reader.ts';
 
@@ -75,6 +79,10 @@ export class ControlArbiter {
   private readonly lease: OperatorWatch;
   private readonly o: ControlArbiterOptions;
   private readonly lastReport = new Map<string, number>();
+  /** An emergency stop reached the arm and nothing has moved it since. */
+  private stopped = false;
+  /** The sender of the payload being handed to the arm right now ('' = the plain topic). */
+  private forwarding = PLAIN;
 
   constructor(
     readonly armId: string,
@@ -136,17 +144,45 @@ export class ControlArbiter {
   /** A control payload from `user` ('' = the plain topic, nobody in particular). */
   fromControl(user: string, payload: Uint8Array | string): void {
     const h = this.current;
-    if (!h || (user !== PLAIN && h.user === user)) {
+    const seen = screen(payload);
+    if (!h || (user !== PLAIN && h.user === user) || !seen.blocked) {
       this.counters.forwarded++;
-      return this.io.forward(payload);
+      return this.hand(user, payload, seen);
     }
-    const { blocked, passed } = screen(payload);
-    if (!blocked) {
-      this.counters.forwarded++;
-      return this.io.forward(payload);
-    }
-    if (passed.length) this.io.forward(passed.join('')); // the stops in it still stop the arm
+    // The stops in it still stop the arm.
+    if (seen.passed.length) this.hand(user, seen.passed.join(''), { ...seen, blocked: false });
     if (this.report(user, h.user, 'to move the arm')) this.io.refuse(`controlled by ${h.user}`);
+  }
+
+  /**
+   * The sender of the payload the arm is taking in right now, while `forward` runs: the
+   * controller names it when it refuses a move itself (a keep-out zone: `record`).
+   */
+  get author(): string {
+    return this.forwarding;
+  }
+
+  /** An event the controller itself saw (a move refused by a keep-out zone), published as audit. */
+  record(by: string, kind: AuditKind, detail: string): void {
+    this.event(by, kind, detail);
+  }
+
+  /** Hands a payload to the arm, noting an emergency stop and the first move after one. */
+  private hand(user: string, payload: Uint8Array | string, seen: Screened): void {
+    const who = user || 'a client on a plain topic';
+    if (seen.emergencyStop) {
+      this.stopped = true;
+      this.event(user, 'e-stop', `${who} pressed the emergency stop`);
+    } else if (this.stopped && seen.blocked) {
+      this.stopped = false;
+      this.event(user, 'e-stop-released', `${who} moved the arm again after the emergency stop`);
+    }
+    this.forwarding = user;
+    try {
+      this.io.forward(payload);
+    } finally {
+      this.forwarding = PLAIN;
+    }
   }
 
   /**
@@ -274,23 +310,33 @@ export class ControlArbiter {
   }
 }
 
-/**
- * Reads a non-holder's payload: `blocked` when anything in it could move the arm (a move, a
- * `$KMS`, a group, unreadable bytes); `passed` holds its stops, which are sent all the same.
- */
-function screen(payload: Uint8Array | string): { blocked: boolean; passed: string[] } {
+interface Screened {
+  /** Anything in it could move the arm: a move, a `$KMS`, a group, unreadable bytes. */
+  blocked: boolean;
+  /** Its stops, which are sent even when the rest is refused. */
+  passed: string[];
+  /** It holds `#255PDST!`. */
+  emergencyStop: boolean;
+}
+
+/** Reads a control payload: whether it could move the arm, its stops, an emergency stop. */
+function screen(payload: Uint8Array | string): Screened {
   let blocked = false;
+  let emergencyStop = false;
   const passed: string[] = [];
   const reader = createReader({
     onFrame: (f) => {
       if (f.type === 'time') return;
       if (!ANYONE.has(f.type)) blocked = true;
-      else if (f.type === 'stop') passed.push(encodeFrame(f));
+      else if (f.type === 'stop') {
+        passed.push(encodeFrame(f));
+        if (f.id === SERVO_ID_ALL) emergencyStop = true;
+      }
     },
     onGroup: () => void (blocked = true),
     onError: () => void (blocked = true),
   });
   reader.feed(payload);
   reader.flush();
-  return { blocked, passed };
+  return { blocked, passed, emergencyStop };
 }

@@ -94,6 +94,9 @@ export const AUDIT_KINDS = [
   'admin-take-over',
   'refused-command',
   'refused-claim',
+  'e-stop',
+  'e-stop-released',
+  'refused-keep-out',
 ] as const;
 export type AuditKind = (typeof AUDIT_KINDS)[number];
 

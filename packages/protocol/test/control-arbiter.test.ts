@@ -133,3 +133,47 @@ describe('ControlArbiter', () => {
     expect(parseHolder('')).toEqual({ user: null, requests: [] });
   });
 });
+
+describe('ControlArbiter: the record of stops', () => {
+  it('records every emergency stop with its sender, and who set the arm going again', () => {
+    const t = arbiter();
+    t.move('', '#255PDST!');
+    t.move('alice', '#000PDST!'); // one servo's stop is not an emergency stop
+    t.move('bob', '$PNG:1!'); // nothing that moves: the stop still stands
+    t.move('bob', '#000P1500T500!');
+    t.move('bob', '#000P1600T500!'); // only the first move after the stop
+    t.say('alice', 'take');
+    t.move('bob', '#255PDST!'); // a non-holder's stop still stops the arm, and is recorded
+    expect(t.sent.at(-1)).toBe('#255PDST!');
+    t.move('bob', '#000P1500T500!'); // refused: not the first move after the stop
+    t.move('alice', '#000P1500T500!');
+    expect(
+      t.audit
+        .filter((e) => e.kind.startsWith('e-stop'))
+        .map((e) => `${e.kind} ${e.by || '(plain)'}: ${e.detail}`),
+    ).toEqual([
+      'e-stop (plain): a client on a plain topic pressed the emergency stop',
+      'e-stop-released bob: bob moved the arm again after the emergency stop',
+      'e-stop bob: bob pressed the emergency stop',
+      'e-stop-released alice: alice moved the arm again after the emergency stop',
+    ]);
+  });
+
+  it('names the sender of the payload the arm is taking in, for refusals the arm makes itself', () => {
+    const seen: string[] = [];
+    const clock = new FakeClock();
+    const a: ControlArbiter = new ControlArbiter('arm1', {
+      now: () => clock.now(),
+      setTimeout: (fn, ms) => clock.setTimeout(fn, ms),
+      clearTimeout: (h) => clock.clearTimeout(h),
+      forward: () => seen.push(a.author),
+      refuse: () => {},
+      holder: () => {},
+      audit: () => {},
+    });
+    a.fromMessage('arm/arm1/control/carol', '#000P1500T500!');
+    a.fromMessage('arm/arm1/control', '#000P1500T500!');
+    expect(seen).toEqual(['carol', '']);
+    expect(a.author).toBe('');
+  });
+});

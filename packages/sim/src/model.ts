@@ -54,6 +54,8 @@ export class SimModel {
     rejected: { limit: 0, floor: 0, zone: 0, 'unknown-servo': 0, group: 0, unexpected: 0, ik: 0 },
   };
 
+  /** Why the last move refused by a keep-out rule was refused ('' = none yet). */
+  lastKeepOutRefusal = '';
   private readonly kmsSolver: SimModelOptions['kms'];
   private keepOut: SimModelOptions['keepOut'];
   /** Per servo index: 1 when its position is reported in §8 angle frames. */
@@ -250,7 +252,10 @@ export class SimModel {
       }
     }
     const reason = moved ? this.keepOut(Array.from(s.to), to) : '';
-    if (reason) this.counters.rejected[keepOutKind(reason)]++;
+    if (reason) {
+      this.counters.rejected[keepOutKind(reason)]++;
+      this.lastKeepOutRefusal = reason;
+    }
     return reason;
   }
 
@@ -317,6 +322,7 @@ export class SimModel {
     if (!reason) return 0;
     const kind = keepOutKind(reason);
     this.counters.rejected[kind]++;
+    this.lastKeepOutRefusal = reason;
     return kind === 'zone' ? KMS_ZONE_CODE : KMS_FLOOR_CODE;
   }
 

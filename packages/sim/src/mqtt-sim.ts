@@ -104,7 +104,16 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
       now: () => clock.now(),
       setTimeout: (fn, ms) => clock.setTimeout(fn, ms),
       clearTimeout: (handle) => clock.clearTimeout(handle),
-      forward: (payload) => runner.receive(payload),
+      forward: (payload) => {
+        // A move the arm refuses by its keep-out rules is part of the record, with its sender.
+        const r = runner.model.counters.rejected;
+        const before = r.zone + r.floor;
+        runner.receive(payload);
+        if (r.zone + r.floor === before) return;
+        const by = control.author;
+        const who = by || 'a client on a plain topic';
+        control.record(by, 'refused-keep-out', `${who}: ${runner.model.lastKeepOutRefusal}`);
+      },
       refuse: (message) => {
         if (client.connected)
           client.publish(
