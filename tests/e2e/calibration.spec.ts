@@ -120,7 +120,13 @@ test.afterAll(async ({}, testInfo) => {
 
 async function open(page: Page, user: string) {
   page.on('pageerror', (err) => console.error(`[page error] ${err.message}`));
-  await page.goto(`${up.url}?arm=${ARM}`);
+  // The page's deadman keep-alive long (60 s): on this 2-core machine under the whole suite, a
+  // renderer stall of over 1.5 × the default 2 s let the broker's will `0` stop the elbow
+  // half-way through a jog (a fresh clone: the elbow stopped at −31.9° of −45°, and the gateway
+  // counted two deadman stops in a test whose page's close accounts for one).
+  // Letting go on a stalled page is the deadman's job, tested in deadman.spec.ts; here the lease
+  // is off (`--operator-lease 0`) for the same reason.
+  await page.goto(`${up.url}?arm=${ARM}&keepalive=60`);
   await page.waitForFunction(() => (window as unknown as CalibWindow).__armtwin?.ready === true);
   const form = page.getByRole('form', { name: 'Log in' });
   await form.getByLabel('Username').fill(user);

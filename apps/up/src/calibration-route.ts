@@ -20,6 +20,7 @@ import {
   parseCalibrationRequest,
 } from '@armtwin/ik';
 import { PROFILE_NAME } from '@armtwin/motion/robot-folder';
+import { countedAnswer } from './counted-answer.ts';
 import { replaceProfileFile } from './profile-file.ts';
 import { readBody } from './read-body.ts';
 
@@ -46,14 +47,7 @@ export type CalibrationCounters = Record<string, number>;
 
 export function calibrationRoute(o: CalibrationRouteOptions) {
   const counters: CalibrationCounters = {};
-  const answer = (res: http.ServerResponse, status: number, body: unknown, kind: string) => {
-    counters[kind] = (counters[kind] ?? 0) + 1;
-    if (status !== 200)
-      o.onFirst(`calibration:${kind}`, `calibration ${kind}: ${JSON.stringify(body)}`);
-    res
-      .writeHead(status, { 'content-type': 'application/json', 'cache-control': 'no-store' })
-      .end(JSON.stringify(body));
-  };
+  const answer = countedAnswer('calibration', counters, o.onFirst);
   const handle = async (req: http.IncomingMessage, res: http.ServerResponse) => {
     if (req.method !== 'PUT') {
       res.writeHead(405, { allow: 'PUT' }).end();

@@ -17,6 +17,7 @@ import path from 'node:path';
 import { applyKeepOut, MAX_KEEP_OUT_REQUEST_BYTES } from '@armtwin/ik';
 import { PROFILE_NAME } from '@armtwin/motion/robot-folder';
 import type { Authorize } from './calibration-route.ts';
+import { countedAnswer, type RouteCounters } from './counted-answer.ts';
 import { replaceProfileFile } from './profile-file.ts';
 import { readBody } from './read-body.ts';
 
@@ -33,14 +34,8 @@ export interface KeepOutRouteOptions {
 export const isKeepOutRequest = (req: http.IncomingMessage): boolean => ROUTE.test(req.url ?? '');
 
 export function keepOutRoute(o: KeepOutRouteOptions) {
-  const counters: Record<string, number> = {};
-  const answer = (res: http.ServerResponse, status: number, body: unknown, kind: string) => {
-    counters[kind] = (counters[kind] ?? 0) + 1;
-    if (status !== 200) o.onFirst(`keep-out:${kind}`, `keep-out ${kind}: ${JSON.stringify(body)}`);
-    res
-      .writeHead(status, { 'content-type': 'application/json', 'cache-control': 'no-store' })
-      .end(JSON.stringify(body));
-  };
+  const counters: RouteCounters = {};
+  const answer = countedAnswer('keep-out', counters, o.onFirst);
   const handle = async (req: http.IncomingMessage, res: http.ServerResponse) => {
     if (req.method !== 'PUT') {
       res.writeHead(405, { allow: 'PUT' }).end();

@@ -18,7 +18,7 @@ import {
   type FkFrames,
 } from '@armtwin/ik';
 import type { Plan } from './plan.ts';
-import type { MotionRobot } from './robot.ts';
+import { analyticJointsInto, type MotionRobot } from './robot.ts';
 
 /** The floor's height in the base frame when a profile does not say, mm. */
 export const DEFAULT_FLOOR_Z = 0;
@@ -78,15 +78,8 @@ export function checkFloor(robot: MotionRobot, pwm: ArrayLike<number>): FloorChe
     }
   };
   if (robot.kind === 'analytic5') {
-    const arm = robot.arm!;
-    const joint = (i: number) =>
-      servoFromPwm(servos[i]!, pwm[i]!) + (arm.servos[i]?.jointOffsetDeg ?? 0);
-    joints.q0 = joint(0);
-    joints.theta5 = joint(1);
-    joints.theta4 = joint(2);
-    joints.theta3 = joint(3);
-    if (!Object.values(joints).every(Number.isFinite)) return OK;
-    armPoints(joints, arm, points);
+    if (!Object.values(analyticJointsInto(robot, pwm, joints)).every(Number.isFinite)) return OK;
+    armPoints(joints, robot.arm!, points);
     for (const name of ['tip', 'wrist', 'elbow'] as const) see(name, points[name].z);
   } else {
     const chain = robot.chain!;

@@ -126,18 +126,25 @@ function chainJoints(robot: MotionRobot, pwm: ArrayLike<number>): Float64Array {
   });
 }
 
+/** The 5-axis arm's §4 joint angles (degrees) of a pulse vector (servo order), into `out`. */
+export function analyticJointsInto<
+  T extends { q0: number; theta5: number; theta4: number; theta3: number },
+>(robot: MotionRobot, pwm: ArrayLike<number>, out: T): T {
+  const servos = robot.profile.servos;
+  const arm = robot.arm!;
+  const joint = (i: number) =>
+    servoFromPwm(servos[i]!, pwm[i]!) + (arm.servos[i]?.jointOffsetDeg ?? 0);
+  out.q0 = joint(0);
+  out.theta5 = joint(1);
+  out.theta4 = joint(2);
+  out.theta3 = joint(3);
+  return out;
+}
+
 /** FK: where the tip is for these pulses (servo order). */
 export function tipPose(robot: MotionRobot, pwm: ArrayLike<number>): TipPose {
-  const servos = robot.profile.servos;
   if (robot.kind === 'analytic5') {
-    const arm = robot.arm!;
-    const joint = (i: number) =>
-      servoFromPwm(servos[i]!, pwm[i]!) + (arm.servos[i]?.jointOffsetDeg ?? 0);
-    fkJoints.q0 = joint(0);
-    fkJoints.theta5 = joint(1);
-    fkJoints.theta4 = joint(2);
-    fkJoints.theta3 = joint(3);
-    const p = forwardKinematics(fkJoints, arm, fkPose);
+    const p = forwardKinematics(analyticJointsInto(robot, pwm, fkJoints), robot.arm!, fkPose);
     return { x: p.x, y: p.y, z: p.z, pitch: p.alpha };
   }
   const m = chainFk(robot.chain!, chainJoints(robot, pwm));

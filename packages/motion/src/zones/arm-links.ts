@@ -14,7 +14,7 @@ import {
   servoFromPwm,
   type FkFrames,
 } from '@armtwin/ik';
-import type { MotionRobot } from '../robot.ts';
+import { analyticJointsInto, type MotionRobot } from '../robot.ts';
 
 export interface ArmLinks {
   /** Link names, for messages (`forearm`, `a3 link`). */
@@ -74,15 +74,8 @@ export function armLinks(robot: MotionRobot, pwm: ArrayLike<number>): ArmLinks |
   const p = s.links.points;
   const servos = robot.profile.servos;
   if (robot.kind === 'analytic5') {
-    const arm = robot.arm!;
-    const joint = (i: number) =>
-      servoFromPwm(servos[i]!, pwm[i]!) + (arm.servos[i]?.jointOffsetDeg ?? 0);
-    joints5.q0 = joint(0);
-    joints5.theta5 = joint(1);
-    joints5.theta4 = joint(2);
-    joints5.theta3 = joint(3);
-    if (!Object.values(joints5).every(Number.isFinite)) return null;
-    armPoints(joints5, arm, points5);
+    if (!Object.values(analyticJointsInto(robot, pwm, joints5)).every(Number.isFinite)) return null;
+    armPoints(joints5, robot.arm!, points5);
     p[0] = p[1] = p[2] = 0;
     const order = [points5.shoulder, points5.elbow, points5.wrist, points5.tip];
     order.forEach((v, k) => {

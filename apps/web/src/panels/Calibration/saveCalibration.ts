@@ -5,8 +5,8 @@
  * calibration at once and announces it, and the twin follows the announcement.
  */
 import type { ServoCalibrationFields } from '@armtwin/ik';
-import { authHeaders } from '../../auth/whoami.ts';
 import type { HudSettings } from '../../config/settings.ts';
+import { putRobotFile } from '../../robots/putRobotFile.ts';
 
 export type SaveResult = { ok: true; backup: string } | { ok: false; error: string };
 
@@ -14,30 +14,11 @@ export async function saveCalibration(
   settings: Pick<HudSettings, 'apiBase' | 'username' | 'password'>,
   robot: string,
   fields: ServoCalibrationFields,
-  fetchFn: typeof fetch = (url, init) => globalThis.fetch(url, init),
+  fetchFn?: typeof fetch,
 ): Promise<SaveResult> {
-  try {
-    const res = await fetchFn(
-      `${settings.apiBase}/robots/${encodeURIComponent(robot)}/calibration`,
-      {
-        method: 'PUT',
-        headers: { 'content-type': 'application/json', ...authHeaders(settings) },
-        body: JSON.stringify({ servos: [fields] }),
-        cache: 'no-store',
-        credentials: 'omit',
-      },
-    );
-    const body = (await res.json().catch(() => null)) as {
-      backup?: unknown;
-      errors?: unknown;
-    } | null;
-    if (res.ok && typeof body?.backup === 'string') return { ok: true, backup: body.backup };
-    const errors = Array.isArray(body?.errors) ? body.errors.map(String) : [];
-    return {
-      ok: false,
-      error: `HTTP ${res.status}${errors.length ? `: ${errors.join('; ')}` : ''}`,
-    };
-  } catch (err) {
-    return { ok: false, error: `not saved: ${err instanceof Error ? err.message : String(err)}` };
-  }
+  const r = await putRobotFile(settings, robot, 'calibration', { servos: [fields] }, fetchFn);
+  if (!r.ok) return r;
+  return typeof r.body.backup === 'string'
+    ? { ok: true, backup: r.body.backup }
+    : { ok: false, error: 'HTTP 200 without the backup the server keeps' };
 }

@@ -6,8 +6,8 @@
  * the profile again, and this page draws and checks them from that announcement.
  */
 import type { ProfileKeepOut } from '@armtwin/ik';
-import { authHeaders } from '../../auth/whoami.ts';
 import type { HudSettings } from '../../config/settings.ts';
+import { putRobotFile } from '../../robots/putRobotFile.ts';
 
 export type SaveKeepOutResult = { ok: true } | { ok: false; error: string };
 
@@ -15,24 +15,8 @@ export async function saveKeepOut(
   settings: Pick<HudSettings, 'apiBase' | 'username' | 'password'>,
   robot: string,
   keepOut: ProfileKeepOut,
-  fetchFn: typeof fetch = (url, init) => globalThis.fetch(url, init),
+  fetchFn?: typeof fetch,
 ): Promise<SaveKeepOutResult> {
-  try {
-    const res = await fetchFn(`${settings.apiBase}/robots/${encodeURIComponent(robot)}/keep-out`, {
-      method: 'PUT',
-      headers: { 'content-type': 'application/json', ...authHeaders(settings) },
-      body: JSON.stringify(keepOut),
-      cache: 'no-store',
-      credentials: 'omit',
-    });
-    const body = (await res.json().catch(() => null)) as { errors?: unknown } | null;
-    if (res.ok) return { ok: true };
-    const errors = Array.isArray(body?.errors) ? body.errors.map(String) : [];
-    return {
-      ok: false,
-      error: `HTTP ${res.status}${errors.length ? `: ${errors.join('; ')}` : ''}`,
-    };
-  } catch (err) {
-    return { ok: false, error: `not saved: ${err instanceof Error ? err.message : String(err)}` };
-  }
+  const r = await putRobotFile(settings, robot, 'keep-out', keepOut, fetchFn);
+  return r.ok ? { ok: true } : r;
 }
