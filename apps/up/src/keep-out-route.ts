@@ -11,15 +11,16 @@
  * non-operator log-in; 404 for an unknown robot; 413 for a body over
  * `MAX_KEEP_OUT_REQUEST_BYTES`.
  */
-import fs from 'node:fs';
 import type http from 'node:http';
-import path from 'node:path';
 import { applyKeepOut, MAX_KEEP_OUT_REQUEST_BYTES } from '@armtwin/ik';
-import { PROFILE_NAME } from '@armtwin/motion/robot-folder';
 import type { Authorize } from './calibration-route.ts';
-import { countedAnswer, type RouteCounters } from './counted-answer.ts';
+import {
+  countedAnswer,
+  readProfileFile,
+  readRobotWrite,
+  type RouteCounters,
+} from './counted-answer.ts';
 import { replaceProfileFile } from './profile-file.ts';
-import { readBody } from './read-body.ts';
 
 const ROUTE = /^\/api\/robots\/([^/?]+)\/keep-out(?:\?.*)?$/;
 
@@ -37,43 +38,14 @@ export function keepOutRoute(o: KeepOutRouteOptions) {
   const counters: RouteCounters = {};
   const answer = countedAnswer('keep-out', counters, o.onFirst);
   const handle = async (req: http.IncomingMessage, res: http.ServerResponse) => {
-    if (req.method !== 'PUT') {
-      res.writeHead(405, { allow: 'PUT' }).end();
-      return;
-    }
-    const name = decodeURIComponent(ROUTE.exec(req.url ?? '')![1]!);
-    const who = await o.authorize(req);
-    if (!who.ok) return answer(res, who.status, { ok: false, errors: [who.error] }, 'refused:role');
-    const file = PROFILE_NAME.test(name)
-      ? o.dirs.map((d) => path.join(d, name, 'profile.json')).find((f) => fs.existsSync(f))
-      : undefined;
-    if (!file)
-      return answer(res, 404, { ok: false, errors: [`no robot "${name}"`] }, 'refused:robot');
-    const body = await readBody(req, MAX_KEEP_OUT_REQUEST_BYTES);
-    if (body === null)
-      return answer(
-        res,
-        413,
-        { ok: false, errors: [`request over ${MAX_KEEP_OUT_REQUEST_BYTES} bytes`] },
-        'refused:size',
-      );
-    let json: unknown;
-    let raw: unknown;
-    try {
-      json = JSON.parse(body.toString('utf8'));
-    } catch {
-      return answer(res, 400, { ok: false, errors: ['the request is not JSON'] }, 'refused:json');
-    }
-    try {
-      raw = JSON.parse(fs.readFileSync(file, 'utf8'));
-    } catch (err) {
-      const error = `${file} does not read: ${(err as Error).message}`;
-      return answer(res, 500, { ok: false, errors: [error] }, 'failed:read');
-    }
-    const applied = applyKeepOut(raw, json);
+    const write = await readRobotWrite(req, res, o, ROUTE, MAX_KEEP_OUT_REQUEST_BYTES, answer);
+    if (!write) return;
+    const profile = readProfileFile(res, write.file, answer);
+    if (!profile) return;
+    const applied = applyKeepOut(profile.raw, write.json);
     if (!applied.ok)
       return answer(res, 400, { ok: false, errors: applied.errors }, 'refused:zones');
-    const backup = replaceProfileFile(file, applied.raw);
+    const backup = replaceProfileFile(write.file, applied.raw);
     answer(res, 200, { ok: true, keepOut: applied.keepOut, backup }, 'written');
   };
   return { counters, handle };

@@ -144,8 +144,15 @@ export class ControlArbiter {
   /** A control payload from `user` ('' = the plain topic, nobody in particular). */
   fromControl(user: string, payload: Uint8Array | string): void {
     const h = this.current;
+    const allowed = !h || (user !== PLAIN && h.user === user);
+    // The payload is read only when it matters: a non-holder's (its stops pass, its moves do not)
+    // or one that may be or follow an emergency stop (the record). A holder's jog goes straight on.
+    if (allowed && !this.stopped && !mentionsStop(payload)) {
+      this.counters.forwarded++;
+      return this.hand(user, payload, null);
+    }
     const seen = screen(payload);
-    if (!h || (user !== PLAIN && h.user === user) || !seen.blocked) {
+    if (allowed || !seen.blocked) {
       this.counters.forwarded++;
       return this.hand(user, payload, seen);
     }
@@ -167,8 +174,8 @@ export class ControlArbiter {
     this.event(by, kind, detail);
   }
 
-  /** Hands a payload to the arm, noting an emergency stop and the first move after one. */
-  private hand(user: string, payload: Uint8Array | string, seen: Screened): void {
+  /** An emergency stop, or the first move after one, goes on the record with its sender. */
+  private noteStops(user: string, seen: Screened): void {
     const who = user || 'a client on a plain topic';
     if (seen.emergencyStop) {
       this.stopped = true;
@@ -177,6 +184,11 @@ export class ControlArbiter {
       this.stopped = false;
       this.event(user, 'e-stop-released', `${who} moved the arm again after the emergency stop`);
     }
+  }
+
+  /** Hands a payload to the arm (`seen`: read, for the record of stops; null: nothing to note). */
+  private hand(user: string, payload: Uint8Array | string, seen: Screened | null): void {
+    if (seen) this.noteStops(user, seen);
     this.forwarding = user;
     try {
       this.io.forward(payload);
@@ -308,6 +320,20 @@ export class ControlArbiter {
   private event(by: string, kind: AuditKind, detail: string): void {
     this.io.audit({ at: Math.round(this.io.now()), by, kind, detail });
   }
+}
+
+/** Whether the payload holds `PDST` (a stop of some servo) anywhere: a cheap test before reading it. */
+function mentionsStop(payload: Uint8Array | string): boolean {
+  if (typeof payload === 'string') return payload.includes('PDST');
+  for (let i = 0; i + 3 < payload.length; i++)
+    if (
+      payload[i] === 0x50 &&
+      payload[i + 1] === 0x44 &&
+      payload[i + 2] === 0x53 &&
+      payload[i + 3] === 0x54
+    )
+      return true;
+  return false;
 }
 
 interface Screened {
