@@ -24,10 +24,10 @@ import { barChartSvg } from './lib/svg.ts';
 import { fmt, type BenchContext, type Row, type Section, type SectionOutput } from './lib/types.ts';
 import { CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
 import { startTrajectory, type Trajectory } from './lib/trajectory.ts';
-import { HUD_DIST, hudPrecheck, hudReady, openHudBrowser } from './lib/hud-browser.ts';
+import { startStopProbe } from './lib/estop-probe.ts';
+import { hudPrecheck, hudReady, openHudBrowser } from './lib/hud-browser.ts';
 
 const ARM = 'bench-hud';
-const DIST = HUD_DIST;
 const SERVOS = 6;
 /** The scripted trajectory: poses (µs, servos 000–005) visited in turn, each move 1000 ms. */
 const POSES = [
@@ -116,7 +116,7 @@ export const browserSection: Section = {
   async run(ctx: BenchContext): Promise<SectionOutput> {
     const windowS = ctx.quick ? 15 : 45;
     const blankS = ctx.quick ? 4 : 8;
-    const web = await serveStatic(DIST);
+    const web = await serveStatic(ctx.hudDist);
     const sim = await startSim(ctx.broker.url, ARM, 250, path.join(ctx.logDir, 'browser-sim.log'));
     const client = await connectMqtt(ctx.broker.url, `bench-hud-${process.pid}`);
     const rec = new Recorder();
@@ -189,6 +189,35 @@ export const browserSection: Section = {
       await sleep(300); // the recorder must cover the last frame's instant
       rec.on = false;
 
+      // The emergency stop while the page is busy: the arm moving, the health charts running
+      // and the History panel open (this section has no storage: it shows its error there).
+      const history = page.locator('details.history > summary');
+      if (await history.count()) await history.first().click();
+      stopTrajectory = startTrajectory(client, ARM, TRAJECTORY);
+      const stops = await startStopProbe(ctx.broker.url, ARM, page, client);
+      const estopN = ctx.quick ? 40 : 60;
+      let pose = 0;
+      const rearm = async () => {
+        const p = POSES[++pose % POSES.length]!;
+        await client.publishAsync(
+          `arm/${ARM}/control`,
+          `{${p.map((v, i) => `#00${i}P${v}T${MOVE_MS}!`).join('')}}`,
+          { qos: 1 },
+        );
+      };
+      ctx.log(`browser: emergency stop, ${estopN} clicks, ${estopN} Escape presses`);
+      const estop = {
+        click: summarize(await stops.measure('click', estopN, rearm)),
+        escape: summarize(await stops.measure('escape', estopN, rearm)),
+        node: summarize(await stops.measure('node', estopN, rearm)),
+      };
+      await stops.close();
+      stopTrajectory();
+      const estopLost = {
+        click: estopN - estop.click.n,
+        escape: estopN - estop.escape.n,
+      };
+
       const wallS = (m1.at - m0.at) / 1000;
       const busy = (m1.task - m0.task) / wallS;
       const a = analyse(probe, rec);
@@ -199,9 +228,11 @@ export const browserSection: Section = {
       const webgl = await page.evaluate(() => {
         const gl = document.createElement('canvas').getContext('webgl');
         const ext = gl?.getExtension('WEBGL_debug_renderer_info');
-        return gl
+        const name = gl
           ? String(gl.getParameter(ext ? ext.UNMASKED_RENDERER_WEBGL : gl.RENDERER))
           : 'no WebGL';
+        gl?.getExtension('WEBGL_lose_context')?.loseContext();
+        return name;
       });
       const longMax = Math.max(0, ...probe.longTasks.map((t) => t.duration));
       const rows: Row[] = [
@@ -233,6 +264,20 @@ export const browserSection: Section = {
           baseline: `stream to a Node subscriber ${fmt(a.transport.p50, 1)} / ${fmt(a.transport.p99, 1)}`,
           target: `p99 ≤ 2 frames (2 × ${fmt(frameMs, 1)} ms)`,
           met: a.latency.p99 <= 2 * frameMs,
+        },
+        {
+          figure: 'Emergency stop: click → `#255PDST!` at a subscriber, ms (p50 / p99)',
+          value: `${fmt(estop.click.p50, 1)} / ${fmt(estop.click.p99, 1)} (n = ${estop.click.n}${estopLost.click ? `, ${estopLost.click} never arrived` : ''})`,
+          baseline: `Node publisher → subscriber ${fmt(estop.node.p50, 1)} / ${fmt(estop.node.p99, 1)}; issue 17 before: 13.6 / 21.1`,
+          target: 'p99 ≤ 10 ms',
+          met: estop.click.p99 <= 10 && estopLost.click === 0,
+        },
+        {
+          figure: 'Emergency stop: Escape key → `#255PDST!` at a subscriber, ms (p50 / p99)',
+          value: `${fmt(estop.escape.p50, 1)} / ${fmt(estop.escape.p99, 1)} (n = ${estop.escape.n}${estopLost.escape ? `, ${estopLost.escape} never arrived` : ''})`,
+          baseline: `Node publisher → subscriber ${fmt(estop.node.p50, 1)} / ${fmt(estop.node.p99, 1)}; issue 17 before: 19.1 / 29.0`,
+          target: 'p99 ≤ 10 ms',
+          met: estop.escape.p99 <= 10 && estopLost.escape === 0,
         },
         {
           figure: 'Twin fidelity |sim − rendered| °, all 6 servos (mean / max)',
@@ -282,6 +327,12 @@ export const browserSection: Section = {
           viewport: '1280x800',
           chromiumArgs: CHROMIUM_ARGS,
           trajectory: TRAJECTORY,
+          estop: {
+            samples: estopN,
+            method:
+              'Playwright mouse / keyboard through CDP: t0, then the press (mouse button, released at once; Escape key); Node subscriber on arm/{id}/control; arm re-armed by a move before each sample, 200–500 ms random pause',
+            panels: 'Health charts, History open (no storage in this section)',
+          },
         },
         data: {
           framesPerS: round(fps, 2),
@@ -312,6 +363,12 @@ export const browserSection: Section = {
           blank: { ...blank, busyShare: round(blankBusy, 4) },
           pageErrors: pageErrors.slice(0, 10),
           webglRenderer: webgl,
+          renderThread: await page.evaluate(
+            () =>
+              (window as unknown as { __armtwin?: { viewer?: { thread?: string } } }).__armtwin
+                ?.viewer?.thread ?? 'main',
+          ),
+          estopMs: { ...estop, lost: estopLost },
         },
       };
     } finally {

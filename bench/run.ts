@@ -1,5 +1,5 @@
 /**
- * `npm run bench [-- --quick] [-- --only rtt,ik] [-- --keep-logs]`: runs the benchmark
+ * `npm run bench [-- --quick] [-- --only rtt,ik] [-- --keep-logs] [-- --only soak --soak-minutes 30]`: runs the benchmark
  * sections on real services (a throwaway Mosquitto and influxd from tests/helpers, the
  * simulator, the middleware, headless Chromium), each figure beside its baseline in the same
  * run, and writes bench/results/<stamp>.json, SVG plots there, and the generated block of
@@ -19,6 +19,7 @@ import { machineInfo, versions } from './lib/machine.ts';
 import { killAll, liveChildren } from './lib/proc.ts';
 import { markdown, updateBenchmarksMd, writeJson, type RunRecord } from './lib/report.ts';
 import { REPO } from './lib/stack.ts';
+import { HUD_DIST } from './lib/hud-browser.ts';
 import type { BenchContext, Section, SectionResult } from './lib/types.ts';
 import { ikSection } from './ik.ts';
 import { zonesSection } from './zones.ts';
@@ -31,12 +32,15 @@ import { cameraSection } from './camera.ts';
 import { telegrafSection } from './telegraf.ts';
 import { holdJogSection } from './holdjog.ts';
 import { handoverSection } from './handover.ts';
+import { soakSection } from './soak.ts';
+import { twinSection } from './twin.ts';
 
 const SECTIONS: Section[] = [
   rttSection,
   ingestSection,
   cpuSection,
   browserSection,
+  twinSection,
   deadmanSection,
   ikSection,
   zonesSection,
@@ -44,7 +48,10 @@ const SECTIONS: Section[] = [
   telegrafSection,
   holdJogSection,
   handoverSection,
+  soakSection,
 ];
+/** Sections left out of a run without `--only` (the soak alone takes `--soak-minutes`, 30 min). */
+const NOT_BY_DEFAULT = new Set(['soak']);
 /** Broker settings for every section (recorded in the JSON): see BENCHMARKS.md on Nagle. */
 export const BROKER_EXTRA = ['set_tcp_nodelay true', 'max_queued_messages 1000000'];
 const NEEDS_BROKER = new Set([
@@ -57,23 +64,43 @@ const NEEDS_BROKER = new Set([
   'telegraf',
   'holdjog',
   'handover',
+  'soak',
+  'twin',
 ]);
-const NEEDS_INFLUX = new Set(['ingest', 'cpu', 'telegraf']);
+const NEEDS_INFLUX = new Set(['ingest', 'cpu', 'telegraf', 'soak']);
 
 const USAGE = `usage: npm run bench [-- --quick] [-- --only ${SECTIONS.map((s) => s.id).join(',')}] [-- --keep-logs] [-- --no-md]
   --quick      shorter runs (< 5 min): 5,000 pings at 1 kHz, short ramps and windows
   --only a,b   run only these sections (e.g. --only camera: the camera section alone, ≈ 2 min)
   --keep-logs  keep child-process logs (printed at the end)
-  --no-md      do not rewrite BENCHMARKS.md (the JSON and SVGs are still written)`;
+  --no-md      do not rewrite BENCHMARKS.md (the JSON and SVGs are still written)
+  --soak-minutes N  length of the soak (default 30); the soak runs only when named: --only soak
+  --hud-dist DIR    serve this built HUD instead of apps/web/dist (e.g. a copy of an older build)`;
 
 function parseArgs(argv: string[]) {
-  const o = { quick: false, only: null as Set<string> | null, keepLogs: false, md: true };
+  const o = {
+    quick: false,
+    only: null as Set<string> | null,
+    keepLogs: false,
+    md: true,
+    soakMinutes: 30,
+    hudDist: HUD_DIST,
+  };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i]!;
     if (a === '--quick') o.quick = true;
     else if (a === '--keep-logs') o.keepLogs = true;
     else if (a === '--no-md') o.md = false;
-    else if (a === '--only' || a.startsWith('--only=')) {
+    else if (a === '--soak-minutes' || a.startsWith('--soak-minutes=')) {
+      const v = Number(a.includes('=') ? a.slice(15) : argv[++i]);
+      if (!Number.isInteger(v) || v < 3)
+        throw new Error(`--soak-minutes: a whole number ≥ 3\n${USAGE}`);
+      o.soakMinutes = v;
+    } else if (a === '--hud-dist' || a.startsWith('--hud-dist=')) {
+      const v = a.includes('=') ? a.slice(11) : (argv[++i] ?? '');
+      if (!v) throw new Error(`--hud-dist: a folder\n${USAGE}`);
+      o.hudDist = path.resolve(v);
+    } else if (a === '--only' || a.startsWith('--only=')) {
       const v = a.includes('=') ? a.slice(7) : (argv[++i] ?? '');
       o.only = new Set(v.split(',').filter(Boolean));
       const bad = [...o.only].filter((id) => !SECTIONS.some((s) => s.id === id));
@@ -90,7 +117,9 @@ const log = (m: string) => console.log(`[bench ${new Date().toISOString().slice(
 
 async function main(): Promise<number> {
   const args = parseArgs(process.argv.slice(2));
-  const sections = SECTIONS.filter((s) => !args.only || args.only.has(s.id));
+  const sections = SECTIONS.filter((s) =>
+    args.only ? args.only.has(s.id) : !NOT_BY_DEFAULT.has(s.id),
+  );
   const startedAt = new Date();
   const stamp = startedAt.toISOString().replace(/[:]/g, '-').slice(0, 19);
   const resultsDir = path.join(REPO, 'bench', 'results');
@@ -119,6 +148,8 @@ async function main(): Promise<number> {
       broker: broker!,
       influx: influx!,
       log,
+      hudDist: args.hudDist,
+      soakMinutes: args.soakMinutes,
     };
     for (const s of sections) {
       const t0 = performance.now();

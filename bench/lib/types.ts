@@ -11,6 +11,10 @@ export interface BenchContext {
   broker: MosquittoService;
   influx: InfluxService;
   log(message: string): void;
+  /** The built HUD the page sections serve (`--hud-dist`; default apps/web/dist). */
+  hudDist: string;
+  /** Length of the soak section (`--soak-minutes`, default 30). */
+  soakMinutes: number;
 }
 
 /** One line of the table: a figure, its baseline measured in the same run, and the target. */

@@ -88,6 +88,8 @@ async function retained(url: string, topic: string): Promise<Record<string, unkn
 }
 
 test.describe('camera view-through and calibration', () => {
+  // The twin's materials and the view's pixels are read back: only a main-thread view has them.
+  test.use({ hudQuery: '&render=main' });
   let cam: ServedCameras | null = null;
   let client: MqttClient | null = null;
   const cleanup: string[] = [];

@@ -78,7 +78,11 @@ export const test = base.extend<
 
   hud: async ({ page, stack, arm, hudQuery }, use) => {
     // role=operator: the static server has no /api/whoami, and an unknown role only watches.
-    const url = `${stack.web.url}?broker=${encodeURIComponent(stack.broker.wsUrl)}&arm=${arm.id}&role=operator${hudQuery}`;
+    // ARMTWIN_E2E_RENDER=worker runs every spec with the 3D view drawn in a worker.
+    const render = process.env.ARMTWIN_E2E_RENDER
+      ? `&render=${process.env.ARMTWIN_E2E_RENDER}`
+      : '';
+    const url = `${stack.web.url}?broker=${encodeURIComponent(stack.broker.wsUrl)}&arm=${arm.id}&role=operator${render}${hudQuery}`;
     page.on('pageerror', (err) => console.error(`[page error] ${err.message}`));
     await recordCspViolations(page);
     await page.goto(url);

@@ -250,55 +250,64 @@ test('history: an API failure is shown as text, not a blank panel', async ({ hud
   await shot(page, testInfo, 'history-error');
 });
 
-test('replay: the sibling arm takes the recorded poses', async ({ hud, arm, stack }, testInfo) => {
-  const { page } = hud;
-  await page.waitForTimeout(1500); // a moment recorded at home (0°)
-  const before = Date.now();
-  await moveElbow(page, arm, 45);
-  await page.waitForTimeout(1000);
-  await expect
-    .poll(
-      async () =>
-        (
-          await historyGet<{ angles: (number | null)[][] }>(stack, 'pose', {
-            arm: arm.id,
-            id: '002',
-            start: '-5m',
-          })
-        ).angles.at(-1)?.[0] ?? null,
-      { timeout: 15_000 },
-    )
-    .toBe(ELBOW_45);
+test.describe('replay on the page', () => {
+  // Reads the sibling's three.js object, which only a main-thread view holds on the page.
+  test.use({ hudQuery: '&render=main' });
 
-  await openHistory(page);
-  await page.getByRole('tab', { name: 'Replay' }).click();
-  await page.getByRole('button', { name: 'Load replay' }).click();
-  await expect(page.getByTestId('replay-angles')).toBeVisible();
-  const scrubber = page.getByRole('slider', { name: 'Replay position' });
+  test('replay: the sibling arm takes the recorded poses', async ({
+    hud,
+    arm,
+    stack,
+  }, testInfo) => {
+    const { page } = hud;
+    await page.waitForTimeout(1500); // a moment recorded at home (0°)
+    const before = Date.now();
+    await moveElbow(page, arm, 45);
+    await page.waitForTimeout(1000);
+    await expect
+      .poll(
+        async () =>
+          (
+            await historyGet<{ angles: (number | null)[][] }>(stack, 'pose', {
+              arm: arm.id,
+              id: '002',
+              start: '-5m',
+            })
+          ).angles.at(-1)?.[0] ?? null,
+        { timeout: 15_000 },
+      )
+      .toBe(ELBOW_45);
 
-  // Scrub to before the move: the sibling's elbow is at 0 while the live arm is at 45.
-  await scrubber.fill(String(before - 1000));
-  await expect.poll(() => replayAngle(page, 2)).toBeCloseTo(0, 1);
-  await expect.poll(() => siblingJointDeg(page, 'elbow')).toBeCloseTo(0, 1);
-  await shot(page, testInfo, 'replay-before-move');
+    await openHistory(page);
+    await page.getByRole('tab', { name: 'Replay' }).click();
+    await page.getByRole('button', { name: 'Load replay' }).click();
+    await expect(page.getByTestId('replay-angles')).toBeVisible();
+    const scrubber = page.getByRole('slider', { name: 'Replay position' });
 
-  // Play at 8×: the sibling follows the record to 45°.
-  await page.getByLabel('Replay speed').selectOption('8');
-  await page.getByRole('button', { name: 'Play', exact: true }).click();
-  await expect.poll(() => replayAngle(page, 2), { timeout: 10_000 }).toBeCloseTo(ELBOW_45, 3);
-  await expect.poll(() => siblingJointDeg(page, 'elbow')).toBeCloseTo(ELBOW_45, 3);
-  const position = await page.evaluate(
-    () => (window as unknown as HistoryHook).__armtwin!.replay.clock.position,
-  );
-  expect(position).toBeGreaterThan(before);
-  // At 8× the few seconds to the end of the record pass in well under a second: it stops there.
-  await expect(page.getByRole('button', { name: 'Play', exact: true })).toBeVisible();
-  await expect(page.getByTestId('replay-angles')).toContainText('Elbow 45.0°');
-  await shot(page, testInfo, 'replay-after-move');
+    // Scrub to before the move: the sibling's elbow is at 0 while the live arm is at 45.
+    await scrubber.fill(String(before - 1000));
+    await expect.poll(() => replayAngle(page, 2)).toBeCloseTo(0, 1);
+    await expect.poll(() => siblingJointDeg(page, 'elbow')).toBeCloseTo(0, 1);
+    await shot(page, testInfo, 'replay-before-move');
 
-  // Scrubbing back moves it back.
-  await scrubber.fill(String(before - 500));
-  await expect.poll(() => replayAngle(page, 2)).toBeCloseTo(0, 1);
-  await page.getByRole('button', { name: 'Close', exact: true }).click();
-  await expect.poll(() => siblingJointDeg(page, 'elbow')).toBeNull();
+    // Play at 8×: the sibling follows the record to 45°.
+    await page.getByLabel('Replay speed').selectOption('8');
+    await page.getByRole('button', { name: 'Play', exact: true }).click();
+    await expect.poll(() => replayAngle(page, 2), { timeout: 10_000 }).toBeCloseTo(ELBOW_45, 3);
+    await expect.poll(() => siblingJointDeg(page, 'elbow')).toBeCloseTo(ELBOW_45, 3);
+    const position = await page.evaluate(
+      () => (window as unknown as HistoryHook).__armtwin!.replay.clock.position,
+    );
+    expect(position).toBeGreaterThan(before);
+    // At 8× the few seconds to the end of the record pass in well under a second: it stops there.
+    await expect(page.getByRole('button', { name: 'Play', exact: true })).toBeVisible();
+    await expect(page.getByTestId('replay-angles')).toContainText('Elbow 45.0°');
+    await shot(page, testInfo, 'replay-after-move');
+
+    // Scrubbing back moves it back.
+    await scrubber.fill(String(before - 500));
+    await expect.poll(() => replayAngle(page, 2)).toBeCloseTo(0, 1);
+    await page.getByRole('button', { name: 'Close', exact: true }).click();
+    await expect.poll(() => siblingJointDeg(page, 'elbow')).toBeNull();
+  });
 });

@@ -50,10 +50,12 @@ async function pixelStats(page: Page, png: Buffer) {
 test('model: the arm renders, the canvas is not blank', async ({ hud }, testInfo) => {
   const { page } = hud;
   await expect(page.locator('#message')).toBeHidden();
-  const frames = await page.evaluate(
-    () => (window as unknown as HudWindow).__armtwin!.viewer.renderedFrames,
-  );
-  expect(frames).toBeGreaterThan(0);
+  // A render worker's first frame (at the view's size) comes a moment after the page is ready.
+  await expect
+    .poll(() =>
+      page.evaluate(() => (window as unknown as HudWindow).__armtwin!.viewer.renderedFrames),
+    )
+    .toBeGreaterThan(0);
   const png = await page.locator('#view canvas').screenshot();
   const stats = await pixelStats(page, png);
   testInfo.annotations.push({ type: 'pixels', description: JSON.stringify(stats) });

@@ -78,4 +78,20 @@ test.describe('the page itself', () => {
     await expect(page.getByTestId('estop')).toBeVisible();
     expect(await cspViolations(page)).toEqual([]);
   });
+
+  test('with the 3D view drawn in a worker, the policy blocks nothing either', async ({ page }) => {
+    await recordCspViolations(page);
+    const url = new URL(up!.url);
+    url.searchParams.set('render', 'worker');
+    await page.goto(url.href);
+    // `ready` comes once the worker has fetched and parsed the model under the worker's policy.
+    await page.waitForFunction(() => (window as unknown as HudWindow).__armtwin?.ready === true);
+    await expect(page.getByTestId('render-thread')).toHaveText('Rendering: worker');
+    await expect
+      .poll(() =>
+        page.evaluate(() => (window as unknown as HudWindow).__armtwin!.viewer.renderedFrames),
+      )
+      .toBeGreaterThan(0);
+    expect(await cspViolations(page)).toEqual([]);
+  });
 });

@@ -73,7 +73,7 @@ test('replay on track6: the sibling track6 model takes the recorded poses', asyn
   try {
     page.on('pageerror', (err) => console.error(`[page error] ${err.message}`));
     await page.goto(
-      `${stack.web.url}?broker=${encodeURIComponent(stack.broker.wsUrl)}&arm=${id}&role=operator`,
+      `${stack.web.url}?broker=${encodeURIComponent(stack.broker.wsUrl)}&arm=${id}&role=operator&render=main`, // the sibling's object lives on the page only then
     );
     await page.waitForFunction(
       () => (window as unknown as Track6Hook).__armtwin?.ready === true,

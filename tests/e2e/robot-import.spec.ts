@@ -121,7 +121,8 @@ test.afterAll(async () => {
 
 async function open(page: Page, arm: string) {
   page.on('pageerror', (err) => console.error(`[page error] ${err.message}`));
-  await page.goto(`${up.url}?arm=${arm}`);
+  // render=main: the live arm's meshes (measured below) are on the page only then.
+  await page.goto(`${up.url}?arm=${arm}&render=main`);
   await page.waitForFunction(() => (window as unknown as HudWindow).__armtwin?.ready === true);
   const form = page.getByRole('form', { name: 'Log in' });
   await form.getByLabel('Username').fill('viewer');

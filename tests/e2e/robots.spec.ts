@@ -338,7 +338,13 @@ test('plan: pose checking pauses on a stalled servo, re-plans from the actual po
   await page.getByRole('button', { name: 'Delete waypoint 2' }).click();
   await page.getByRole('button', { name: 'Execute', exact: true }).click();
   await expect(page.getByTestId('plan-run')).toContainText('Executing');
-  await page.waitForTimeout(500);
+  // Pressed as soon as the run has sent its first groups (a fixed wait could outlast the leg).
+  await expect
+    .poll(async () => {
+      const r = await runner(page);
+      return r.state === 'running' && r.sent > 0;
+    })
+    .toBe(true);
   const escapeAt = Date.now();
   await page.keyboard.press('Escape');
   await expect(page.getByTestId('plan-run')).toHaveText('Stopped: emergency stop.');

@@ -3,12 +3,21 @@
  * `DEFAULT_MIDDLEWARE_CONFIG` is the one copy of the defaults; the README quotes it.
  */
 import { z } from 'zod';
-import { MAX_PAYLOAD_BYTES, MQTT_KEEPALIVE_S, MQTT_RECONNECT_MS } from '@armtwin/protocol';
+import {
+  DEFAULT_BROKER_LIST_OPTIONS,
+  MAX_PAYLOAD_BYTES,
+  MQTT_KEEPALIVE_S,
+  MQTT_RECONNECT_MS,
+  parseBrokerList,
+} from '@armtwin/protocol';
 import { QUERY_LANGUAGES, type InfluxSource, type QueryLanguage } from './history/reader.ts';
 
 /** Every setting, with the environment variable it comes from. */
 export interface MiddlewareConfig {
-  /** MQTT_URL: broker URL (mqtt://, mqtts://, ws://, wss://). */
+  /**
+   * MQTT_URL: broker URL (mqtt://, mqtts://, ws://, wss://), or an ordered comma-separated list:
+   * the first preferred, the rest fall-backs (docs/protocol.md § Several brokers).
+   */
   mqttUrl: string;
   /** MQTT_USERNAME / MQTT_PASSWORD: broker credentials (empty = anonymous). */
   mqttUsername: string;
@@ -21,6 +30,8 @@ export interface MiddlewareConfig {
   mqttKeepaliveS: number;
   /** MQTT_RECONNECT_MS: reconnect period, ms. */
   mqttReconnectMs: number;
+  /** MQTT_PROBE_MS: while on a fall-back broker, how often the first is probed, ms. */
+  mqttProbeMs: number;
   /** MQTT_SHARE_GROUP: '' = plain subscription; else `$share/<group>/arm/+/…`. */
   mqttShareGroup: string;
   /** INFLUX_URL: '' = run without storage. */
@@ -85,6 +96,7 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   mqttQos: 1,
   mqttKeepaliveS: MQTT_KEEPALIVE_S,
   mqttReconnectMs: MQTT_RECONNECT_MS,
+  mqttProbeMs: DEFAULT_BROKER_LIST_OPTIONS.probeMs,
   mqttShareGroup: '',
   influxUrl: '',
   influxToken: '',
@@ -118,6 +130,7 @@ export const CONFIG_ENV: Record<keyof MiddlewareConfig, string> = {
   mqttQos: 'MQTT_QOS',
   mqttKeepaliveS: 'MQTT_KEEPALIVE_S',
   mqttReconnectMs: 'MQTT_RECONNECT_MS',
+  mqttProbeMs: 'MQTT_PROBE_MS',
   mqttShareGroup: 'MQTT_SHARE_GROUP',
   influxUrl: 'INFLUX_URL',
   influxToken: 'INFLUX_TOKEN',
@@ -156,13 +169,20 @@ const url = (protocols: RegExp) =>
   );
 
 const SCHEMA = z.object({
-  mqttUrl: url(/^(mqtts?|wss?|tcp|ssl):$/),
+  mqttUrl: z.string().superRefine((s, ctx) => {
+    try {
+      parseBrokerList(s);
+    } catch (err) {
+      ctx.addIssue({ code: 'custom', message: (err as Error).message });
+    }
+  }),
   mqttUsername: z.string(),
   mqttPassword: z.string(),
   mqttClientId: z.string().min(1).max(128),
   mqttQos: z.enum(['0', '1']).transform((q) => Number(q) as 0 | 1),
   mqttKeepaliveS: int(0, 65535),
   mqttReconnectMs: int(10, 3_600_000),
+  mqttProbeMs: int(100, 3_600_000),
   mqttShareGroup: z.string().regex(/^[^/+#]*$/, 'must not contain "/", "+" or "#"'),
   influxUrl: z.union([z.literal(''), url(/^https?:$/)]),
   influxToken: z.string(),

@@ -14,7 +14,8 @@ import { renderMetrics, type Metrics } from './metrics.ts';
 
 export interface HealthReport {
   ok: boolean;
-  mqtt: { connected: boolean; url: string };
+  /** `broker`: "Broker 2 of 2: mqtt://…" (docs/protocol.md § Several brokers). */
+  mqtt: { connected: boolean; url: string; broker?: string };
   influx: { reachable: boolean; url: string };
   storage: boolean;
   writeMode: 'batch' | 'sync';

@@ -3,7 +3,8 @@
  * endpoints. The orchestrator (`npm start`) and the tests call this; `main.ts` is the CLI.
  */
 import http from 'node:http';
-import type { MqttClient } from 'mqtt';
+import type { BrokerClient } from '@armtwin/link';
+import { describeBroker, redactBrokerUrl } from '@armtwin/protocol';
 import { LoginThrottle, loadUsers } from '@armtwin/auth';
 import { ConfigError, influxSource, type MiddlewareConfig } from './config.ts';
 import { createHistoryHandler, type HistoryHandlerDeps } from './history/index.ts';
@@ -109,7 +110,7 @@ export async function startMiddleware(
   }
   metrics.storageEnabled = storage !== null;
 
-  const client: MqttClient = startMqtt(
+  const client: BrokerClient = startMqtt(
     {
       url: config.mqttUrl,
       username: config.mqttUsername,
@@ -118,6 +119,7 @@ export async function startMiddleware(
       qos: config.mqttQos,
       keepaliveS: config.mqttKeepaliveS,
       reconnectMs: config.mqttReconnectMs,
+      probeMs: config.mqttProbeMs,
       shareGroup: config.mqttShareGroup,
     },
     {
@@ -129,9 +131,13 @@ export async function startMiddleware(
         metrics.mqttConnected = true;
         metrics.mqttConnects++;
         once.reset('mqtt-error');
+        const b = client.brokers.choice;
+        metrics.mqttBroker = b.index + 1;
         log.info(
           {
-            url: config.mqttUrl,
+            url: redactBrokerUrl(b.url),
+            broker: b.index + 1,
+            brokers: b.count,
             clientId: config.mqttClientId,
             qos: config.mqttQos,
             shareGroup: config.mqttShareGroup || undefined,
@@ -144,6 +150,14 @@ export async function startMiddleware(
         metrics.mqttConnected = false;
       },
       onError: (err) => once.warn('mqtt-error', { err: err.message }, 'MQTT error'),
+      onMove: (move) => {
+        if (!move.from) return;
+        metrics.mqttBrokerMoves++;
+        log.info(
+          { from: move.from.index + 1, to: move.to.index + 1, reason: move.reason },
+          `broker move: ${describeBroker(move.to)}`,
+        );
+      },
       gate: () => storage?.gate() ?? null,
     },
     deps.connect,
@@ -167,7 +181,11 @@ export async function startMiddleware(
     const influxOk = !storage || metrics.influxReachable;
     return {
       ok: metrics.mqttConnected && influxOk && !metrics.spoolFull,
-      mqtt: { connected: metrics.mqttConnected, url: config.mqttUrl },
+      mqtt: {
+        connected: metrics.mqttConnected,
+        url: redactBrokerUrl(client.brokers.choice.url),
+        broker: describeBroker(client.brokers.choice),
+      },
       influx: { reachable: storage !== null && metrics.influxReachable, url: config.influxUrl },
       storage: storage !== null,
       writeMode: config.writeMode,

@@ -51,6 +51,10 @@ export class Metrics {
   diskErrors = 0;
   mqttConnected = false;
   mqttConnects = 0;
+  /** The broker in use: its 1-based place in MQTT_URL's list (0 before the first connection). */
+  mqttBroker = 0;
+  /** Moves from one broker of the list to another. */
+  mqttBrokerMoves = 0;
   influxReachable = false;
   storageEnabled = false;
 
@@ -178,6 +182,12 @@ export function renderMetrics(m: Metrics): string {
   ]);
   family(out, `${P}mqtt_connects_total`, 'counter', 'Successful MQTT connections.', [
     line(`${P}mqtt_connects_total`, m.mqttConnects),
+  ]);
+  family(out, `${P}mqtt_broker`, 'gauge', "The broker in use: its place in MQTT_URL's list.", [
+    line(`${P}mqtt_broker`, m.mqttBroker),
+  ]);
+  family(out, `${P}mqtt_broker_moves_total`, 'counter', 'Moves to another broker of the list.', [
+    line(`${P}mqtt_broker_moves_total`, m.mqttBrokerMoves),
   ]);
   family(out, `${P}influx_reachable`, 'gauge', '1 while InfluxDB answers.', [
     line(`${P}influx_reachable`, m.influxReachable ? 1 : 0),

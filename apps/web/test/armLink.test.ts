@@ -89,6 +89,7 @@ describe('ArmLink', () => {
       'arm/arm1/online',
       'arm/arm1/holder',
       'arm/arm1/audit',
+      'arm/arm1/control/#',
     ]);
     link.stop();
     expect(client.ended).toBe(true);

@@ -54,7 +54,7 @@ describe('PingTracker', () => {
 
 describe('ArmStore', () => {
   it('takes positions from a state group and interpolates between reports', () => {
-    const s = new ArmStore();
+    const s = new ArmStore({ twinMode: 'interpolate' });
     s.ingest(`$TIM:1700000000000!${state([1500, 1500, 1500, 1500, 1500, 1500])}`, 0);
     s.ingest(state([1500 + 741, 1500, 1500, 1500, 1500, 1500]), 200); // +100.04° on servo 000
     expect(s.pwm[0]).toBe(2241);
@@ -68,7 +68,7 @@ describe('ArmStore', () => {
   });
 
   it('draws each report as it is once reports come faster than 100/s (no tween lag)', () => {
-    const s = new ArmStore();
+    const s = new ArmStore({ twinMode: 'interpolate' });
     // 250 Hz for a second, then a burst taken in at one instant (a busy page).
     for (let k = 0; k <= 250; k++)
       s.ingest(

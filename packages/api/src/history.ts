@@ -107,3 +107,47 @@ export interface AuditAnswer extends RangeEcho {
 export interface ErrorAnswer {
   error: string;
 }
+
+/**
+ * One servo's thermal and electrical model as `/history/thermal-model` fitted it from the range
+ * (the model of @armtwin/protocol's thermal-model.ts):
+ * dT/dt = (restC + gainCPerDegS·|ω| − T) / tauS and V = volt0V − sagVPerDegS·Σ|ω|.
+ */
+export interface ThermalModelParams {
+  /** Thermal time constant, s. */
+  tauS: number;
+  /** Where the servo settles at rest holding its pose, °C. */
+  restC: number;
+  /** Steady rise per deg/s of the servo's own motion, °C per (deg/s). */
+  gainCPerDegS: number;
+  /** Supply at the servo with the arm at rest, V. */
+  volt0V: number;
+  /** Supply sag per deg/s of the whole arm's motion, V per (deg/s). */
+  sagVPerDegS: number;
+}
+
+export interface ThermalServoFit {
+  id: string;
+  params: ThermalModelParams;
+  /** false: too little history in range; `params` are the generic prior (see `reason`). */
+  fitted: boolean;
+  /** false: the temperature hardly moved, so τ is the prior's. */
+  tauFitted: boolean;
+  /** Complete intervals of the grid used. */
+  intervals: number;
+  /** Fraction of the temperature changes explained (null: none). */
+  r2: number | null;
+  /** RMS error of the model run freely over the range, °C (null: none). */
+  rmseC: number | null;
+  /** RMS error of the supply model, V (null: no voltage). */
+  voltRmseV: number | null;
+  /** Why it is not (fully) fitted; '' when it is. */
+  reason: string;
+}
+
+/** `/history/thermal-model`: every servo's model fitted from its history in range. */
+export interface ThermalModelAnswer extends RangeEcho {
+  /** Grid step the fit used, ms. */
+  stepMs: number;
+  servos: ThermalServoFit[];
+}

@@ -19,6 +19,7 @@ import { followProfile } from './profile-follow.ts';
 import { SerialLink } from './serial-link.ts';
 import {
   connectGatewayMqtt,
+  gatewayPublish,
   DEFAULT_GATEWAY_OPTIONS,
   wireGatewayMqtt,
   type GatewayOptions,
@@ -103,9 +104,7 @@ export function startBusGateway(
   };
   const core = new BusGatewayCore(coreOptions, {
     ...SYSTEM_CLOCK,
-    publish: (topic, payload, opts) => {
-      if (client.connected) client.publish(topic, payload, opts);
-    },
+    publish: gatewayPublish(client),
     write: (data) => link.write(Buffer.from(data.buffer, data.byteOffset, data.byteLength)),
     onFirst: o.onFirst,
   });

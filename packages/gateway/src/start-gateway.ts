@@ -3,10 +3,12 @@
  * mqtt.js client (reconnects every `reconnectMs`, last will `0` retained on `arm/{id}/online`),
  * both kept up on their own.
  */
-import mqtt, { type MqttClient } from 'mqtt';
+import type { MqttClient } from 'mqtt';
 import type { Logger } from 'pino';
+import { connectBrokers, type BrokerClient } from '@armtwin/link';
 import {
   armTopics,
+  describeBroker,
   auditTopic,
   ControlArbiter,
   encodeControllerError,
@@ -16,6 +18,7 @@ import {
   MQTT_KEEPALIVE_S,
   MQTT_RECONNECT_MS,
   OPERATOR_LEASE_MS,
+  parseBrokerList,
   SYSTEM_CLOCK,
   topic,
 } from '@armtwin/protocol';
@@ -25,6 +28,7 @@ import { DEFAULT_SERIAL_LINK_OPTIONS, SerialLink, type SerialLinkOptions } from 
 export interface GatewayOptions {
   serialPath: string;
   baudRate: number;
+  /** The broker, or an ordered comma-separated list (docs/protocol.md § Several brokers). */
   mqttUrl: string;
   armId: string;
   username?: string;
@@ -64,20 +68,48 @@ export interface Gateway {
 
 /**
  * A gateway's MQTT client: its arm's `online` `0` as the last will, the shared link defaults,
- * and no Nagle delay (frames are small; ~40 ms tails otherwise).
+ * no Nagle delay (frames are small; ~40 ms tails otherwise), and the broker list of `mqttUrl`
+ * followed (`@armtwin/link`): a move is logged, one line each.
  */
-export function connectGatewayMqtt(o: GatewayOptions): MqttClient {
-  const client = mqtt.connect(o.mqttUrl, {
-    clientId: `armtwin-gateway-${o.armId}-${process.pid}`,
-    ...(o.username ? { username: o.username, password: o.password ?? '' } : {}),
-    will: { topic: topic(o.armId, 'online'), payload: Buffer.from('0'), qos: 1, retain: true },
-    ...linkOptions({ keepalive: o.keepaliveS, reconnectPeriod: o.reconnectMs }),
-    queueQoSZero: false,
-  });
+export function connectGatewayMqtt(o: GatewayOptions): BrokerClient {
+  const client = connectBrokers(
+    parseBrokerList(o.mqttUrl),
+    {
+      clientId: `armtwin-gateway-${o.armId}-${process.pid}`,
+      ...(o.username ? { username: o.username, password: o.password ?? '' } : {}),
+      will: { topic: topic(o.armId, 'online'), payload: Buffer.from('0'), qos: 1, retain: true },
+      ...linkOptions({ keepalive: o.keepaliveS, reconnectPeriod: o.reconnectMs }),
+      queueQoSZero: false,
+    },
+    {
+      onMove: (move) =>
+        move.from &&
+        o.log?.info(
+          { arm: o.armId, from: move.from.index + 1, to: move.to.index + 1, reason: move.reason },
+          `broker move: ${describeBroker(move.to)}`,
+        ),
+    },
+  );
   client.on('connect', () =>
     (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true),
   );
   return client;
+}
+
+/**
+ * How a gateway publishes: while connected, as asked; with several brokers the status stream
+ * goes at QoS 1 and waits in the client's queue while a move is under way (nothing published
+ * during a move is lost); anything else is dropped while offline (presence is re-sent on connect).
+ */
+export function gatewayPublish(
+  client: BrokerClient,
+): (topic: string, payload: Buffer | string, opts: { qos: 0 | 1; retain: boolean }) => void {
+  const several = client.brokers.urls.length > 1;
+  return (t, payload, opts) => {
+    if (several && !opts.retain && t.endsWith('/status'))
+      client.publish(t, payload, { ...opts, qos: 1 });
+    else if (client.connected) client.publish(t, payload, opts);
+  };
 }
 
 /** What a gateway's core takes from MQTT. */
@@ -139,7 +171,11 @@ export function wireGatewayMqtt(
     ...extra,
   };
   client.on('connect', () => {
-    o.log?.info({ arm: o.armId }, 'broker connected');
+    const b = (client as { brokers?: BrokerClient['brokers'] }).brokers?.choice;
+    o.log?.info(
+      { arm: o.armId, ...(b ? { broker: b.index + 1, brokers: b.count } : {}) },
+      'broker connected',
+    );
     core.brokerConnected(true);
     client.subscribe(
       [topics.control, ...control.filters, ...Object.keys(handlers)],
@@ -182,9 +218,7 @@ export function startGateway(
     o.armId,
     {
       ...SYSTEM_CLOCK,
-      publish: (topic, payload, opts) => {
-        if (client.connected) client.publish(topic, payload, opts); // presence is re-sent on connect
-      },
+      publish: gatewayPublish(client),
       write: (data) => link.write(data),
       onFirst: o.onFirst,
     },

@@ -18,3 +18,4 @@ export * from './motion.ts';
 export * from './execution.ts';
 export * from './feedback.ts';
 export * from './command.ts';
+export * from './teach.ts';

@@ -30,14 +30,30 @@ function trapezoidAt(t: number, d: number, w: number, a: number, T: number): num
   return d - 0.5 * a * r * r;
 }
 
-/** One segment from `from` to `to` (both complete pulse vectors). */
+/**
+ * A target's timing (a taught plan, `teach.ts`): reach it in `durationMs` (or as soon as each
+ * servo's own speed limit allows, if that is longer: `speed` does not slow a timed segment),
+ * then hold it `holdMs`.
+ */
+export interface TargetTiming {
+  durationMs?: number;
+  holdMs?: number;
+}
+
+/**
+ * One segment from `from` to `to` (both complete pulse vectors). With `durationMs`, the segment
+ * takes that long (at least the time the servos' limits need at full speed) instead of the
+ * time `speed` gives; a segment that does not move then holds still for that long.
+ */
 export function planJointSegment(
   robot: MotionRobot,
   from: readonly number[],
   to: readonly number[],
   options: Partial<PlanOptions> = {},
+  durationMs?: number,
 ): Plan {
-  const o = { ...DEFAULT_PLAN_OPTIONS, ...options };
+  const timed = durationMs !== undefined && Number.isFinite(durationMs);
+  const o = { ...DEFAULT_PLAN_OPTIONS, ...options, ...(timed ? { speed: 1 } : {}) };
   const n = from.length;
   const d: number[] = [];
   const v: number[] = [];
@@ -50,6 +66,7 @@ export function planJointSegment(
     if (d[i]! === 0) continue;
     T = Math.max(T, o.profile === 'linear' ? d[i]! / v[i]! : trapezoidTime(d[i]!, v[i]!, a[i]!));
   }
+  if (timed) T = Math.max(T, durationMs);
   const ids = robot.ids;
   if (!(T > 0))
     return {
@@ -88,19 +105,25 @@ export function planJointSegment(
 
 /**
  * A joint plan through `targets` in turn, starting at `from`. A target's NaN entries keep that
- * servo where the previous target left it.
+ * servo where the previous target left it. `timing[k]` (optional) times target k; a hold comes
+ * after the target is reached (its target time is the arrival).
  */
 export function planJoint(
   robot: MotionRobot,
   from: readonly number[],
   targets: readonly (readonly number[])[],
   options: Partial<PlanOptions> = {},
+  timing: readonly (TargetTiming | undefined)[] = [],
 ): Plan {
   const parts: Plan[] = [];
   let at = [...from];
-  for (const target of targets) {
+  for (const [k, target] of targets.entries()) {
     const to = at.map((p, i) => (Number.isNaN(target[i]) ? p : target[i]!));
-    parts.push(planJointSegment(robot, at, to, options));
+    const tk = timing[k];
+    parts.push(planJointSegment(robot, at, to, options, tk?.durationMs));
+    const hold = tk?.holdMs ?? 0;
+    if (hold > 0)
+      parts.push({ ...planJointSegment(robot, to, to, options, hold), targetTimes: [] });
     at = to;
   }
   return joinPlans('joint', robot.ids, parts);

@@ -16,15 +16,19 @@ import {
   motionCodeMessage,
 } from './codes.ts';
 import { planBelowFloor } from './floor.ts';
-import { planJoint } from './joint-plan.ts';
+import { planJoint, type TargetTiming } from './joint-plan.ts';
 import { planInZone } from './zones/zones.ts';
 import type { PlanOptions } from './options.ts';
 import { nextTargetIndex, type MotionMode, type Plan } from './plan.ts';
 import type { MotionRequest, RequestTarget } from './request.ts';
 import { exactPwmFromServo, solveTip, tipPose, type MotionRobot, type TipTarget } from './robot.ts';
 
-/** A target in the arm's terms: pulses (NaN = leave the servo) or a tip target. */
-export type ResolvedTarget = { kind: 'joint'; pwm: number[] } | { kind: 'tip'; tip: TipTarget };
+/**
+ * A target in the arm's terms: pulses (NaN = leave the servo) or a tip target. A joint target
+ * may be timed (a taught plan: `TargetTiming`; joint mode only, a Cartesian plan ignores it).
+ */
+export type ResolvedTarget =
+  ({ kind: 'joint'; pwm: number[] } & TargetTiming) | { kind: 'tip'; tip: TipTarget };
 
 /** What a plan was made from, kept so it can be re-planned from another pose. */
 export interface MotionSpec {
@@ -123,7 +127,9 @@ export function planSpec(
   let at = [...from];
   if (spec.mode === 'joint') {
     const joints: number[][] = [];
+    const timing: (TargetTiming | undefined)[] = [];
     for (const [i, t] of spec.targets.entries()) {
+      timing.push(t.kind === 'joint' ? { durationMs: t.durationMs, holdMs: t.holdMs } : undefined);
       let pwm: number[];
       if (t.kind === 'joint') pwm = t.pwm;
       else {
@@ -140,7 +146,7 @@ export function planSpec(
       at = fill(pwm, at);
       joints.push(pwm);
     }
-    return planned(robot, planJoint(robot, from, joints, spec.options), spec);
+    return planned(robot, planJoint(robot, from, joints, spec.options, timing), spec);
   }
   const waypoints: CartesianWaypoint[] = spec.targets.map((t) => {
     if (t.kind === 'tip') return { tip: t.tip };

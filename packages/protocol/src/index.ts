@@ -12,3 +12,8 @@ export * from './link.ts';
 export * from './clock.ts';
 export * from './control-claims.ts';
 export * from './control-arbiter.ts';
+export * from './thermal-model.ts';
+export * from './thermal-fit.ts';
+export * from './thermal-watch.ts';
+export * from './brokers.ts';
+export * from './thermal-trace.ts';

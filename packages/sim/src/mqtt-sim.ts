@@ -29,7 +29,7 @@ import {
 import { parseFaults } from './faults.ts';
 import { startMotionService } from './motion-service.ts';
 import type { SimProfile } from './profile.ts';
-import { SimRunner, type SimRunnerOptions } from './runner.ts';
+import { SimRunner, type PayloadKind, type SimRunnerOptions } from './runner.ts';
 
 export interface MqttSimOptions extends Partial<SimRunnerOptions> {
   /** The arm id: `[a-z0-9-]{1,32}`. */
@@ -39,6 +39,12 @@ export interface MqttSimOptions extends Partial<SimRunnerOptions> {
   profile?: SimProfile;
   /** A beating operator is let go after this long without a `1` (0 = only a `0` lets go). */
   operatorLeaseMs?: number;
+  /**
+   * QoS of the status stream (default 0: not queued while offline). With several brokers it is
+   * 1: what is published during a move waits in the client's queue and goes to the next broker,
+   * where the middleware's session keeps it (docs/protocol.md § Several brokers).
+   */
+  statusQos?: 0 | 1;
 }
 
 export interface MqttSim {
@@ -46,6 +52,8 @@ export interface MqttSim {
   operator: OperatorWatch;
   /** Who holds the arm; only their moves reach the runner. */
   control: ControlArbiter;
+  /** Status payloads handed to the client, by kind (queued ones included; not dropped ones). */
+  published: Record<PayloadKind, number>;
   /** Publishes online `0` (retained), stops the loops, ends the client. */
   stop(): Promise<void>;
 }
@@ -68,9 +76,15 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
   const onFirst = options.onFirst ?? (() => {});
   const clock = options.clock ?? SYSTEM_CLOCK;
   let offlineDrops = 0;
+  const published: Record<PayloadKind, number> = { state: 0, health: 0, reply: 0 };
   const runner = new SimRunner(
     {
-      send(payload) {
+      send(payload, kind) {
+        if (options.statusQos === 1) {
+          client.publish(topics.status, payload, { qos: 1 }); // queued while offline
+          published[kind]++;
+          return;
+        }
         // QoS 0 and not queued while offline: a stale state stream is worse than a gap.
         if (!client.connected) {
           if (offlineDrops++ === 0)
@@ -78,6 +92,7 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
           return;
         }
         client.publish(topics.status, payload, { qos: 0 });
+        published[kind]++;
       },
     },
     clock,
@@ -182,6 +197,7 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
     runner,
     operator,
     control,
+    published,
     async stop() {
       operator.reset();
       control.reset();

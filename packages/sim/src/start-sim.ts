@@ -4,9 +4,15 @@
  * profile, starts the runner with the faults in force, and logs what it does; the caller
  * decides when to stop.
  */
-import mqtt from 'mqtt';
 import type { Logger } from 'pino';
-import { linkOptions, OPERATOR_LEASE_MS } from '@armtwin/protocol';
+import { connectBrokers } from '@armtwin/link';
+import {
+  describeBroker,
+  linkOptions,
+  OPERATOR_LEASE_MS,
+  parseBrokerList,
+  redactBrokerUrl,
+} from '@armtwin/protocol';
 import type { BusProtocol } from '@armtwin/servo-bus';
 import { startBusSim, type BusSimCore } from './bus-sim.ts';
 import type { Fault } from './faults.ts';
@@ -18,7 +24,10 @@ import { DEFAULT_SIM_RUNNER_OPTIONS, type SimRunner } from './runner.ts';
 import { startSerialSim } from './serial-sim.ts';
 
 export interface SimOptions {
-  /** The broker to connect to (MQTT mode). */
+  /**
+   * The broker to connect to (MQTT mode), or an ordered, comma-separated list: the first is
+   * preferred, the others are fall-backs (docs/protocol.md § Several brokers).
+   */
   mqttUrl: string;
   /** Broker credentials ('' = anonymous). */
   username: string;
@@ -112,17 +121,33 @@ export async function startSim(
     log.info({ serial: o.serialPath, rate: o.rate }, 'simulated controller on the serial line');
     return sim;
   }
-  const client = mqtt.connect(o.mqttUrl, {
-    clientId: `armtwin-sim-${o.armId}-${process.pid}`,
-    ...(o.username ? { username: o.username, password: o.password } : {}),
-    will: simWill(o.armId),
-    ...linkOptions(),
-    queueQoSZero: false,
-  });
+  const urls = parseBrokerList(o.mqttUrl);
+  const client = connectBrokers(
+    urls,
+    {
+      clientId: `armtwin-sim-${o.armId}-${process.pid}`,
+      ...(o.username ? { username: o.username, password: o.password } : {}),
+      will: simWill(o.armId),
+      ...linkOptions(),
+      queueQoSZero: false,
+    },
+    {
+      onMove: (move) =>
+        move.from &&
+        log.info(
+          { arm: o.armId, from: move.from.index + 1, to: move.to.index + 1, reason: move.reason },
+          `broker move: ${describeBroker(move.to)}`,
+        ),
+    },
+  );
   client.on('connect', () => {
     // Frames are small: don't let Nagle's algorithm hold them back (~40 ms tails otherwise).
     (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true);
-    log.info({ url: o.mqttUrl, arm: o.armId }, 'connected');
+    const b = client.brokers.choice;
+    log.info(
+      { url: redactBrokerUrl(b.url), broker: b.index + 1, brokers: b.count, arm: o.armId },
+      'connected',
+    );
   });
   client.on('error', (err) => log.warn({ err: err.message }, 'mqtt error'));
   const sim = startMqttSim(client, {
@@ -130,6 +155,7 @@ export async function startSim(
     armId: o.armId,
     profile,
     operatorLeaseMs: o.operatorLeaseMs,
+    statusQos: urls.length > 1 ? 1 : 0,
   });
   // Keep-out zones follow the profile file (the HUD's Zones section writes it): zones-follow.ts.
   const zones = followZones({
@@ -159,7 +185,15 @@ export async function startSim(
     async stop() {
       zones.stop();
       await sim.stop();
-      log.info({ counters: sim.runner.counters, model: sim.runner.model.counters }, 'sim stopped');
+      log.info(
+        {
+          counters: sim.runner.counters,
+          model: sim.runner.model.counters,
+          published: sim.published,
+          brokerMoves: client.brokers.moves,
+        },
+        'sim stopped',
+      );
     },
   };
 }

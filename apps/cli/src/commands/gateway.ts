@@ -66,7 +66,10 @@ export function registerGateway(program: Command): void {
       number('health rate', 0.1, 100),
       DEFAULT_BUS_GATEWAY_OPTIONS.healthRate,
     )
-    .option('--mqtt <url>', 'broker URL (env MQTT_URL)')
+    .option(
+      '--mqtt <urls>',
+      'broker URL, or an ordered comma-separated list: the first preferred, the rest fall-backs (env MQTT_URL)',
+    )
     .option('--arm <id>', 'arm id', armId, 'arm1')
     .option('--username <name>', 'broker user name (env MQTT_USERNAME)')
     .option('--password <secret>', 'broker password (env MQTT_PASSWORD)')

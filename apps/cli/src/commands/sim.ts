@@ -86,7 +86,10 @@ export function registerSim(program: Command): void {
     .description(
       'run a simulated arm controller that behaves like the firmware (MQTT, or a serial line)',
     )
-    .option('--mqtt <url>', 'broker URL (env MQTT_URL)')
+    .option(
+      '--mqtt <urls>',
+      'broker URL, or an ordered comma-separated list: the first preferred, the rest fall-backs (env MQTT_URL)',
+    )
     .option('--arm <id>', 'arm id', armId, 'arm1')
     .option(
       '--profile <name>',

@@ -1,6 +1,6 @@
 /**
- * The history API over HTTP: `GET /history/{series,alarms,tracking,pose}?…` → JSON. The
- * caller strips its own prefix (e.g. `/api`) and hands over everything else; the handler
+ * The history API over HTTP: `GET /history/{series,alarms,tracking,pose,audit,thermal-model}?…`
+ * → JSON. The caller strips its own prefix (e.g. `/api`) and hands over everything else; the handler
  * answers false for paths outside `/history`. Dependencies are injected: the `HistoryReader`
  * (InfluxQL or Flux; a real one in integration tests), the clock.
  *
@@ -25,6 +25,7 @@ import * as endpoints from './endpoints.ts';
 import { DEFAULT_HISTORY_OPTIONS, type HistoryOptions } from './options.ts';
 import { parseParams, type Endpoint, type HistoryParams } from './params.ts';
 import type { HistoryReader } from './reader.ts';
+import { thermalModel } from './thermal.ts';
 
 export interface HistoryHandlerDeps {
   /** What runs the queries: `historyReader(source, language)` (./reader.ts). */
@@ -53,6 +54,7 @@ const ROUTES: Record<
   tracking: endpoints.tracking,
   pose: endpoints.pose,
   audit: endpoints.audit,
+  'thermal-model': thermalModel,
 };
 
 function send(res: ServerResponse, status: number, body: unknown, head = false): void {

@@ -2,6 +2,7 @@
  * The history API's limits, declared once. `createHistoryHandler` merges what it is given
  * over `DEFAULT_HISTORY_OPTIONS`; the README quotes these values.
  */
+import type { ThermalFitOptions } from '@armtwin/protocol';
 
 export interface HistoryOptions {
   /** Most points per series that `/history/series` and `/history/pose` return. */
@@ -25,6 +26,16 @@ export interface HistoryOptions {
   maxCommands: number;
   /** Most control events `/history/audit` returns (beyond it, `truncated: true`). */
   maxAuditRows: number;
+  /** `/history/thermal-model`: the finest grid step, ms (health arrives at 2 Hz). */
+  thermalMinStepMs: number;
+  /** `/history/thermal-model`: most grid cells; a longer range gets a coarser step. */
+  thermalMaxCells: number;
+  /** `/history/thermal-model`: the finest angle window, ms (the state stream's 50 Hz). */
+  thermalMinAngleMs: number;
+  /** `/history/thermal-model`: most angle windows per servo (a longer range: coarser ones). */
+  thermalMaxAngleCells: number;
+  /** `/history/thermal-model`: the fit's settings (defaults: `DEFAULT_THERMAL_FIT_OPTIONS`). */
+  thermalFit: Partial<ThermalFitOptions>;
 }
 
 export const DEFAULT_HISTORY_OPTIONS: HistoryOptions = {
@@ -35,6 +46,11 @@ export const DEFAULT_HISTORY_OPTIONS: HistoryOptions = {
   commandLookbackMs: 24 * 3600_000,
   maxCommands: 50_000,
   maxAuditRows: 10_000,
+  thermalMinStepMs: 1000,
+  thermalMaxCells: 7200,
+  thermalMinAngleMs: 20,
+  thermalMaxAngleCells: 40_000,
+  thermalFit: {},
 };
 
 /** §5 of PROTOCOL.md. */

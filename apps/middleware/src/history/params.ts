@@ -10,7 +10,8 @@ import { parseTime } from './time.ts';
 export const FIELDS = HISTORY_FIELDS;
 export type Field = HistoryField;
 /** `export` streams a file (MCAP or CSV, ../export/) instead of answering JSON. */
-export type Endpoint = 'series' | 'alarms' | 'tracking' | 'pose' | 'audit' | 'export';
+export type Endpoint =
+  'series' | 'alarms' | 'tracking' | 'pose' | 'audit' | 'export' | 'thermal-model';
 
 /** `'all'` or a sorted list of distinct three-digit servo ids. */
 export type IdSet = 'all' | string[];
@@ -37,6 +38,7 @@ const ALLOWED: Record<Endpoint, readonly string[]> = {
   pose: ['arm', 'id', 'start', 'stop'],
   audit: ['arm', 'start', 'stop', 'format'],
   export: ['arm', 'start', 'stop', 'format', 'profile'],
+  'thermal-model': ['arm', 'id', 'start', 'stop'],
 };
 
 const armSchema = z.string().regex(/^[a-z0-9-]{1,32}$/);

@@ -4,10 +4,14 @@
  * `?broker=ws://127.0.0.1:9001&arm=arm1&alpha=1.5`; the Connection panel saves the rest in
  * localStorage (never the password). Pure apart from `loadSettings`/`saveSettings`.
  */
-import { DEMO_ARM_ID, isValidArmId } from '@armtwin/protocol';
+import { DEMO_ARM_ID, isValidArmId, parseBrokerList } from '@armtwin/protocol';
+import { isTwinMode, type TwinMode } from '../store/TwinPredictor.ts';
 
 export interface HudSettings {
-  /** Broker WebSocket URL (`ws://…/mqtt` or `wss://…/mqtt`). */
+  /**
+   * Broker WebSocket URL (`ws://…/mqtt` or `wss://…/mqtt`), or an ordered comma-separated list
+   * of them: the first preferred, the others fall-backs (docs/protocol.md § Several brokers).
+   */
   brokerUrl: string;
   /** Which arm: `arm/{armId}/…`. */
   armId: string;
@@ -15,6 +19,12 @@ export interface HudSettings {
   password: string;
   /** The seed's interpolation factor α (t = clamp01((now − start)·α / duration)). */
   interpolationAlpha: number;
+  /**
+   * How the arm is drawn (`?twin=`): `predict` (where it is now, from its reports, their time
+   * stamps and what was commanded; says "Predicted" while ahead of the reports), `interpolate`
+   * (the seed's tween toward each report) or `newest` (each report as it came).
+   */
+  twinMode: TwinMode;
   /** `tttt` of a jog move, ms. */
   jogMoveMs: number;
   /** Shortest time between two jog moves of one servo, ms (50 → at most 20/s). */
@@ -49,6 +59,7 @@ export function defaultSettings(loc: { protocol: string; host: string }): HudSet
     username: '',
     password: '',
     interpolationAlpha: 1,
+    twinMode: 'predict',
     jogMoveMs: 100,
     jogIntervalMs: 50,
     kmsMoveMs: 1500,
@@ -67,14 +78,14 @@ const NUMBER_KEYS = {
 } as const;
 
 /**
- * Applies query parameters (broker, api, arm, user, password, role, alpha, jogms, kmsms,
+ * Applies query parameters (broker, api, arm, user, password, role, alpha, twin, jogms, kmsms,
  * keepalive) over `base`. An invalid arm id is ignored here; `armQueryProblem` reports it.
  */
 export function applyQuery(base: HudSettings, search: string): HudSettings {
   const q = new URLSearchParams(search);
   const out = { ...base };
   const broker = q.get('broker');
-  if (broker && /^wss?:\/\//.test(broker)) out.brokerUrl = broker;
+  if (broker && brokerListProblem(broker) === null) out.brokerUrl = broker;
   const api = q.get('api');
   if (api && /^(https?:\/\/|\/)\S*$/.test(api)) out.apiBase = api.replace(/\/+$/, '');
   const arm = q.get('arm');
@@ -85,6 +96,8 @@ export function applyQuery(base: HudSettings, search: string): HudSettings {
   if (password !== null) out.password = password;
   const role = q.get('role');
   if (role === 'operator' || role === 'viewer') out.roleHint = role;
+  const twin = q.get('twin');
+  if (isTwinMode(twin)) out.twinMode = twin;
   for (const [key, field] of Object.entries(NUMBER_KEYS)) {
     const v = Number(q.get(key));
     if (q.has(key) && Number.isFinite(v) && v > 0) out[field] = v;
@@ -92,15 +105,28 @@ export function applyQuery(base: HudSettings, search: string): HudSettings {
   return out;
 }
 
+/** What is wrong with a broker list (comma-separated ws:// or wss:// URLs), or null. */
+export function brokerListProblem(text: string): string | null {
+  let urls: string[];
+  try {
+    urls = parseBrokerList(text);
+  } catch (err) {
+    return (err as Error).message;
+  }
+  const bad = urls.find((u) => !/^wss?:\/\/[^\s]+$/.test(u));
+  return bad === undefined ? null : `Broker URL must start with ws:// or wss:// (“${bad}”)`;
+}
+
 /** Checks what a user typed; returns an error message or null. */
 export function validateSettings(s: HudSettings): string | null {
-  if (!/^wss?:\/\/[^\s]+$/.test(s.brokerUrl)) return 'Broker URL must start with ws:// or wss://';
+  const brokers = brokerListProblem(s.brokerUrl);
+  if (brokers) return brokers;
   if (!isValidArmId(s.armId)) return 'Arm id must be 1–32 of a–z, 0–9 and -';
   return null;
 }
 
 const STORAGE_KEY = 'armtwin.hud.settings';
-type Saved = Pick<HudSettings, 'brokerUrl' | 'armId' | 'username'>;
+type Saved = Pick<HudSettings, 'brokerUrl' | 'armId' | 'username' | 'twinMode'>;
 
 /** Defaults, then what the Connection panel saved, then the URL query. */
 export function loadSettings(): HudSettings {
@@ -118,7 +144,12 @@ export function loadSettings(): HudSettings {
 
 export function saveSettings(s: HudSettings): void {
   try {
-    const saved: Saved = { brokerUrl: s.brokerUrl, armId: s.armId, username: s.username };
+    const saved: Saved = {
+      brokerUrl: s.brokerUrl,
+      armId: s.armId,
+      username: s.username,
+      twinMode: s.twinMode,
+    };
     window.localStorage.setItem(STORAGE_KEY, JSON.stringify(saved));
   } catch {
     // private mode: not saved
@@ -130,5 +161,6 @@ function pick(s: Partial<Saved>): Partial<Saved> {
   if (typeof s.brokerUrl === 'string') out.brokerUrl = s.brokerUrl;
   if (typeof s.armId === 'string' && isValidArmId(s.armId)) out.armId = s.armId;
   if (typeof s.username === 'string') out.username = s.username;
+  if (isTwinMode(s.twinMode)) out.twinMode = s.twinMode;
   return out;
 }

@@ -17,6 +17,7 @@ import type { CameraScreens } from '../scene/CameraScreens.ts';
 import type { CalibrationSession } from '../panels/Calibration/CalibrationSession.ts';
 import type { HoldJog } from '../panels/Jog/HoldJog.ts';
 import type { GamepadJog } from '../panels/Jog/GamepadJog.ts';
+import type { RenderChoice } from '../config/renderThread.ts';
 
 /** The Plan panel's plain objects. */
 export interface PlanTools {
@@ -55,6 +56,8 @@ export interface Hud {
   jog: { hold: HoldJog; gamepad: GamepadJog };
   /** Controls another arm (the fleet list): saves it and reconnects. */
   selectArm(armId: string): void;
+  /** Where the 3D view is drawn (the page's thread or a worker), and why (Status panel). */
+  rendering: RenderChoice;
 }
 
 export const HudContext = createContext<Hud | null>(null);

@@ -6,7 +6,6 @@
  * wires them to each other. Nothing below `hud/` builds or wires another part; `main.tsx` only
  * mounts what this returns.
  */
-import mqtt from 'mqtt';
 import {
   clearInterval as clearWorkerInterval,
   setInterval as setWorkerInterval,
@@ -15,9 +14,14 @@ import { ArmStore } from '../store/ArmStore.ts';
 import { TargetPreview } from '../store/TargetPreview.ts';
 import { ArmLink, type IntervalTimers } from '../mqtt/ArmLink.ts';
 import type { ConnectOptions } from '../mqtt/connectOptions.ts';
+import { brokerConnect } from '../mqtt/brokerConnect.ts';
 import { loadSettings, type HudSettings } from '../config/settings.ts';
 import { armQueryProblem } from '../config/queryProblems.ts';
 import { Viewer } from '../scene/Viewer.ts';
+import { WorkerViewer } from '../scene/render/WorkerViewer.ts';
+import type { SceneView } from '../scene/SceneView.ts';
+import { FallbackSceneView } from '../scene/render/FallbackSceneView.ts';
+import { canRenderOffscreen, chooseRenderThread, fallbackChoice } from '../config/renderThread.ts';
 import { ReplayPlayer } from '../replay/ReplayPlayer.ts';
 import { Session } from '../auth/Session.ts';
 import { fetchWhoami } from '../auth/whoami.ts';
@@ -49,8 +53,11 @@ export interface HudPage {
   start(): void;
 }
 
-/** mqtt.js for both of the page's clients (the arm link and the fleet link). */
-const connect = (url: string, opts: ConnectOptions) => mqtt.connect(url, opts);
+/**
+ * mqtt.js for both of the page's clients (the arm link and the fleet link), over the settings'
+ * broker list (../mqtt/brokerConnect.ts).
+ */
+const connect = (url: string, opts: ConnectOptions) => brokerConnect(url, opts);
 
 /** The deadman's beat keeps time in a worker: a hidden tab is not throttled into a stop. */
 const workerIntervals: IntervalTimers = {
@@ -63,10 +70,32 @@ const polaritiesOf = (arm: ArmStore['opts']['arm']): number[] => arm.servos.map(
 /** `render(hud)` draws the panels; it is called whenever what they show changes shape. */
 export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage {
   const settings = loadSettings();
-  const store = new ArmStore({ interpolationAlpha: settings.interpolationAlpha });
+  const store = new ArmStore({
+    interpolationAlpha: settings.interpolationAlpha,
+    twinMode: settings.twinMode,
+  });
   const target = new TargetPreview();
   const replay = new ReplayPlayer();
-  const viewer = new Viewer(els.view, store, target, replay);
+  // The 3D view draws in a worker (OffscreenCanvas) when possible and not told otherwise, else
+  // here; a worker that fails before its first frame hands over to the main thread.
+  let rendering = chooseRenderThread(window.location.search, canRenderOffscreen());
+  let built = false; // the fallback may come while the viewer is built, before `hud` is
+  const mainView = () => new Viewer(els.view, store, target, replay);
+  const viewer: SceneView =
+    rendering.thread === 'worker'
+      ? new FallbackSceneView(
+          { worker: () => new WorkerViewer(els.view, store, target, replay), main: mainView },
+          (reason) => {
+            console.warn(
+              `3D view: drawing on the main thread, the render worker failed: ${reason}`,
+            );
+            rendering = fallbackChoice(reason);
+            if (!built) return;
+            hud.rendering = rendering;
+            render(hud);
+          },
+        )
+      : mainView();
   const session = new Session({
     whoami: (s) => fetchWhoami(s.apiBase, s),
     queryProblem: armQueryProblem(window.location.search),
@@ -124,6 +153,7 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
     cameraScreens,
     calibration,
     jog: { hold, gamepad },
+    rendering,
     link: firstLink,
     selectArm(armId: string) {
       const next = settingsForArm(hud.settings, armId);
@@ -134,6 +164,7 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
       hud.link.stop();
       store.resetArm();
       store.setInterpolationAlpha(next.interpolationAlpha);
+      store.setTwinMode(next.twinMode);
       const prev = hud.settings;
       hud.settings = next;
       hud.link = new ArmLink(store, next, connect, workerIntervals);
@@ -146,6 +177,8 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
       render(hud);
     },
   };
+
+  built = true;
 
   // The ghost runs along the plan being previewed, and along each re-plan of a run.
   // (the calibration wizard's ghost, while it is open, comes first)

@@ -5,7 +5,7 @@
 import type { ArmStore } from '../store/ArmStore.ts';
 import type { TargetPreview } from '../store/TargetPreview.ts';
 import type { ArmLink } from '../mqtt/ArmLink.ts';
-import type { DrawnRobot, Viewer } from '../scene/Viewer.ts';
+import type { DrawnRobot, SceneView } from '../scene/SceneView.ts';
 import { readTimeStripe, timeStripeLayout } from '@armtwin/camera/client';
 import type { ReplayPlayer } from '../replay/ReplayPlayer.ts';
 import type { Session } from '../auth/Session.ts';
@@ -13,11 +13,13 @@ import type { ActiveRobot } from '../robots/ActiveRobot.ts';
 import type { FleetLink } from '../robots/FleetLink.ts';
 import { historyProbe } from '../panels/History/probe.ts';
 import type { Hud } from './HudContext.ts';
+import { FallbackSceneView } from '../scene/render/FallbackSceneView.ts';
 
 export interface DebugHook {
   store: ArmStore;
   target: TargetPreview;
-  viewer: Viewer;
+  /** The 3D view: the main-thread Viewer, or the render worker's page-side host. */
+  readonly viewer: SceneView;
   readonly link: ArmLink;
   /** Set once the first robot model has loaded and the 3D view runs. */
   ready: boolean;
@@ -53,12 +55,15 @@ declare global {
 }
 
 /** Installs the hook; `hud` is read live (its link and settings are replaced on reconnect). */
-export function installDebugHook(hud: Hud, viewer: Viewer): DebugHook {
+export function installDebugHook(hud: Hud, viewer: SceneView): DebugHook {
   const { robots, plan } = hud;
   const hook: DebugHook = {
     store: hud.store,
     target: hud.target,
-    viewer,
+    // The view drawing now (after a worker's failure: the main-thread one that took over).
+    get viewer() {
+      return viewer instanceof FallbackSceneView ? viewer.view : viewer;
+    },
     get link() {
       return hud.link;
     },

@@ -1,10 +1,10 @@
 /**
  * Samples plain (non-React) state a few times a second: the only way store data reaches React.
  * Re-renders only when the sampled value changes (`sampleEqual`: plain objects and arrays
- * compared member by member).
+ * compared member by member); an unchanged sample costs React nothing (./changedOnly.ts).
  */
 import { useEffect, useRef, useState } from 'react';
-import { sampleEqual } from './sampleEqual.ts';
+import { changedOnly } from './changedOnly.ts';
 
 /** How often panels sample the store, ms. */
 export const SAMPLE_INTERVAL_MS = 250;
@@ -15,11 +15,15 @@ export function useSampled<T>(read: () => T, intervalMs = SAMPLE_INTERVAL_MS): T
     readRef.current = read;
   });
   const [value, setValue] = useState(read);
+  // The last value handed to React. An unchanged sample must not reach setValue at all: see
+  // ./changedOnly.ts (a bailed-out update stays queued on a panel that never re-renders).
+  const shown = useRef(value);
   useEffect(() => {
-    const id = setInterval(() => {
-      const next = readRef.current();
-      setValue((prev) => (sampleEqual(prev, next) ? prev : next));
-    }, intervalMs);
+    const offer = changedOnly(shown.current, (next: T) => {
+      shown.current = next;
+      setValue(() => next);
+    });
+    const id = setInterval(() => offer(readRef.current()), intervalMs);
     return () => clearInterval(id);
   }, [intervalMs]);
   return value;

@@ -15,12 +15,14 @@ import {
   encodePing,
   encodeStop,
   OPERATOR_BEAT_MS,
+  describeBroker,
   type ArmTopics,
 } from '@armtwin/protocol';
 import { findServo, isAngleWithinLimits, isWithinLimits, speaksAngle } from '@armtwin/ik';
 import type { ArmStore } from '../store/ArmStore.ts';
 import type { HudSettings } from '../config/settings.ts';
 import { MoveCoalescer } from './MoveCoalescer.ts';
+import { flushNow } from './flushNow.ts';
 import { GapTracker } from './GapTracker.ts';
 import { NO_PERMISSIONS, type LinkPermissions } from '../auth/roles.ts';
 import { connectOptions } from './connectOptions.ts';
@@ -83,6 +85,14 @@ export class ArmLink {
   private readonly taps: LinkTap[] = [];
   /** Who holds the arm, and this page's claims on it (docs/protocol.md § Control). */
   control: ControlClaim;
+  /**
+   * "Broker 2 of 2: ws://…" while connected with a list of several brokers, '' with one
+   * (docs/protocol.md § Several brokers). Sampled by the Status panel.
+   */
+  brokerInUse = '';
+  /** Moves to another broker of the list since `start`. */
+  brokerMoves = 0;
+  private brokerIndex = -1;
 
   constructor(
     private readonly store: ArmStore,
@@ -129,6 +139,7 @@ export class ArmLink {
       this.store.connection = 'connected';
       this.store.connectionError = '';
       this.connected = true;
+      this.onBroker(client);
       this.gap.restored(Date.now());
       if (deadman) this.holdOperator(client);
       this.events.connected?.();
@@ -139,6 +150,8 @@ export class ArmLink {
         if (err) this.store.connectionError = `subscribe failed: ${err.message}`;
       });
       this.subscribeTaps(client);
+      // Everyone's commands, for the predictive twin; a broker may refuse a role this (ACL).
+      client.subscribe([`${this.topics.control}/#`], { qos: 0 }, () => {});
     });
     // A client this link has let go of (stop/release) still emits close/offline: the store is
     // the next link's by then, so those events are ignored.
@@ -176,6 +189,24 @@ export class ArmLink {
         this.holdOperator(client);
         this.control.beat();
       }, OPERATOR_BEAT_MS);
+  }
+
+  /**
+   * Which broker the client is on. After a move to another broker, what this page knew of the
+   * holder came from the other one: it is forgotten until the new broker's retained holder
+   * says, and control is never re-claimed on the page's behalf (docs/protocol.md § Several
+   * brokers): the page holds the arm on the new broker only if the arm's controller still
+   * counts it as holder, otherwise the operator takes control again.
+   */
+  private onBroker(client: MqttLike): void {
+    const b = client.brokers?.choice;
+    if (!b) return;
+    this.brokerInUse = b.count > 1 ? describeBroker(b) : '';
+    if (this.brokerIndex >= 0 && b.index !== this.brokerIndex) {
+      this.brokerMoves++;
+      this.control.moved();
+    }
+    this.brokerIndex = b.index;
   }
 
   /** Adds a reader of this link's messages (subscribed now when connected, else at connect). */
@@ -260,6 +291,8 @@ export class ArmLink {
   private onMessage(topic: string, payload: Uint8Array): void {
     if (topic === this.topics.status) {
       this.store.ingest(payload, now());
+    } else if (topic === this.topics.control || topic.startsWith(`${this.topics.control}/`)) {
+      this.store.noteControl(payload, now());
     } else if (topic === this.holderTopic) {
       this.control.onHolder(payload);
     } else if (topic === this.auditTopic) {
@@ -287,6 +320,7 @@ export class ArmLink {
       return false;
     }
     if (isCommand) this.store.counters.published++;
+    this.store.noteControl(payload, now());
     client.publish(this.control.controlTopic, payload, { qos: 1 }, (err) => {
       if (err) this.lastPublishError = err.message;
     });
@@ -372,12 +406,17 @@ export class ArmLink {
   /** Called first thing by `emergencyStop` (a streamed plan stops at once). */
   readonly stopListeners = new Set<() => void>();
 
-  /** `#255PDST!` at QoS 1; pending jogs (and a streamed plan) are dropped first. */
+  /**
+   * `#255PDST!` at QoS 1, on the socket before this returns (./flushNow.ts); pending jogs (and a
+   * streamed plan) are dropped first. Synchronous: nothing here waits for a frame or a promise.
+   */
   emergencyStop(): boolean {
     for (const fn of this.stopListeners) fn();
     this.coalescer.cancelAll();
     this.store.commandedPwm.fill(NaN);
-    return this.publish(EMERGENCY_STOP, true, this.permissions.stop);
+    const sent = this.publish(EMERGENCY_STOP, true, this.permissions.stop);
+    if (sent) flushNow(this.client);
+    return sent;
   }
 
   private ping(): void {

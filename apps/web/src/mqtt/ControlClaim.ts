@@ -92,6 +92,17 @@ export class ControlClaim {
     }
   }
 
+  /**
+   * The page moved to another broker: the holder it knew was the other broker's word, so it is
+   * forgotten until this one's retained holder arrives. Control is not taken again on the
+   * page's behalf (nor by the log-in's automatic take, if it had not happened yet).
+   */
+  moved(): void {
+    this.holder = null;
+    this.notice = null;
+    this.autoTaken = true; // no automatic take after a move: the operator takes control again
+  }
+
   onAudit(payload: Uint8Array): void {
     const e = parseAudit(payload);
     if (!e) return;

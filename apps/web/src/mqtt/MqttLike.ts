@@ -2,6 +2,7 @@
  * The part of mqtt.js's MqttClient the page's links use, and the factory that makes one. The
  * page hands in mqtt.js (src/hud/createHud.ts); a unit test hands in a fake.
  */
+import type { BrokerChoice } from '@armtwin/protocol';
 import type { ConnectOptions } from './connectOptions.ts';
 
 export interface MqttLike {
@@ -16,6 +17,8 @@ export interface MqttLike {
     cb?: (err?: Error) => void,
   ): unknown;
   end(force?: boolean): unknown;
+  /** Which broker of the list it uses (./brokerConnect.ts); absent on a one-broker fake. */
+  readonly brokers?: { readonly choice: BrokerChoice };
 }
 
 export type MqttConnect = (url: string, opts: ConnectOptions) => MqttLike;

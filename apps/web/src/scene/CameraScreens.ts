@@ -17,7 +17,7 @@ import { placementOf, type ArmCamera, type CameraPlacement } from '../cameras/Ca
 import type { CameraDecoders } from '../cameras/CameraDecoders.ts';
 import { TranslucentTwin } from './TranslucentTwin.ts';
 import { twinPoints, type TwinPoint } from './twinPoints.ts';
-import type { Viewer } from './Viewer.ts';
+import type { SceneView } from './SceneView.ts';
 
 /** What the screens show: the hub's cameras (with their calibrations). */
 export interface CameraSource {
@@ -61,7 +61,7 @@ export class CameraScreens {
   private readonly inView = new Set<string>();
 
   constructor(
-    private readonly viewer: Viewer,
+    private readonly viewer: SceneView,
     private readonly source: CameraSource,
     private readonly decoders: CameraDecoders,
   ) {

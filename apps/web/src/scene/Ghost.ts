@@ -46,6 +46,26 @@ const hitMaterial = new THREE.MeshStandardMaterial({
   roughness: 0.4,
 });
 
+/** What the ghost reads of the store (the page's ArmStore, or the render worker's copy). */
+export interface GhostStore {
+  readonly opts: { readonly arm: ArmStore['opts']['arm'] };
+  readonly rendered: Float64Array;
+  readonly commandedPwm: Float64Array;
+}
+/** What the ghost reads of the target preview (and writes: `ghostShows`). */
+export type GhostTarget = Pick<
+  TargetPreview,
+  | 'active'
+  | 'code'
+  | 'angles'
+  | 'hitJoint'
+  | 'ghostEnabled'
+  | 'ghostShows'
+  | 'refused'
+  | 'refusedAngles'
+  | 'refusedJoint'
+>;
+
 export class Ghost {
   /** The URDF joint whose child link is painted red now ('' = none). */
   painted = '';
@@ -56,8 +76,8 @@ export class Ghost {
 
   constructor(
     readonly posed: PosedRobot,
-    private readonly store: ArmStore,
-    private readonly target: TargetPreview,
+    private readonly store: GhostStore,
+    private readonly target: GhostTarget,
   ) {
     const robot = posed.robot;
     robot.traverse((o) => {

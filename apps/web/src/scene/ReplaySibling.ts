@@ -10,7 +10,6 @@ import * as THREE from 'three';
 import type { URDFRobot } from 'urdf-loader';
 import type { MaterialFactory } from './loadRobot.ts';
 import type { PosedRobot } from './PosedRobot.ts';
-import type { ReplayPlayer } from '../replay/ReplayPlayer.ts';
 
 /**
  * Where the sibling stands relative to the live arm, in the arm's frame, metres: half a metre
@@ -33,10 +32,19 @@ export const siblingMaterial: MaterialFactory = () =>
     roughness: 0.45,
   });
 
+/** What the sibling reads of the replay (the page's ReplayPlayer, or the render worker's copy). */
+export interface SiblingSource {
+  update(now: number): boolean;
+  readonly active: boolean;
+  /** Shown only while there is one (any non-null value). */
+  readonly record: unknown;
+  readonly angles: Float64Array;
+}
+
 export class ReplaySibling {
   constructor(
     readonly posed: PosedRobot,
-    private readonly player: ReplayPlayer,
+    private readonly player: SiblingSource,
   ) {
     const robot = posed.robot;
     robot.position.set(SIBLING_OFFSET_M.x, SIBLING_OFFSET_M.y, 0);

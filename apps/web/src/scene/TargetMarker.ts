@@ -11,7 +11,7 @@ const MM = 0.001;
 export class TargetMarker {
   constructor(
     private readonly stage: Stage,
-    private readonly target: TargetPreview,
+    private readonly target: Pick<TargetPreview, 'active' | 'x' | 'y' | 'z' | 'code'>,
   ) {}
 
   /** True when the marker moved, changed colour, appeared or disappeared. */

@@ -24,21 +24,25 @@ import { PosedRobot } from './PosedRobot.ts';
 import { TargetMarker } from './TargetMarker.ts';
 import { FloorPicker } from './FloorPicker.ts';
 import { ResolutionGovernor } from './ResolutionGovernor.ts';
+import { TrackingPaint } from './TrackingPaint.ts';
 import { isSoftwareWebGL } from './webglInfo.ts';
+import type { DrawnRobot, SceneView } from './SceneView.ts';
 
 /** Idle time after which a full-resolution frame is drawn, ms. */
 const REFINE_AFTER_MS = 300;
 
-/** Which of the drawn robots: the live arm, the ghost, the replay's sibling. */
-export type DrawnRobot = 'robot' | 'ghost' | 'sibling';
+export type { DrawnRobot } from './SceneView.ts';
 
-export class Viewer {
+export class Viewer implements SceneView {
+  readonly thread = 'main' as const;
   readonly renderer: THREE.WebGLRenderer;
   readonly scene = new THREE.Scene();
   readonly camera: THREE.PerspectiveCamera;
   readonly controls: OrbitControls;
   private readonly stage: Stage;
   private live: PosedRobot | null = null;
+  /** The live arm's links painted by tracking error (store.tracking). */
+  tracking: TrackingPaint | null = null;
   private ghost: Ghost | null = null;
   /** The replay's sibling arm (History panel), when a ReplayPlayer is given. */
   private sibling: ReplaySibling | null = null;
@@ -166,6 +170,8 @@ export class Viewer {
     for (const old of [this.live?.robot, this.ghost?.robot, this.sibling?.robot])
       old?.removeFromParent();
     this.live = new PosedRobot(robot, joints);
+    this.tracking?.dispose();
+    this.tracking = new TrackingPaint(robot, joints.names);
     // Posed at once from the last sample: the store is sampled only when the arm moves, and an
     // arm at rest may not report a change for a long while (a fleet switch showed zeros).
     this.live.pose(this.store.rendered);
@@ -207,6 +213,7 @@ export class Viewer {
     const now = performance.now();
     if (this.store.sample(now) && this.live?.pose(this.store.rendered))
       this.needsRender = this.shadowsDirty = true;
+    if (this.tracking?.update(this.store.tracking)) this.needsRender = true;
     if (this.ghost?.update(now, this.ghostSource)) this.needsRender = true;
     if (this.sibling?.update(now)) this.needsRender = this.shadowsDirty = true;
     // A hook may move something that casts a shadow (waypoint spheres): redraw the map too.
@@ -251,6 +258,7 @@ export class Viewer {
       this.shadowUpdates++;
     }
     this.renderer.render(this.scene, this.camera);
+    this.store.frameShown(performance.now());
     this.renderedFrames++;
     for (const hook of this.renderHooks) hook(now);
   }

@@ -11,16 +11,28 @@ export function isSoftwareRenderer(name: string): boolean {
   return SOFTWARE.test(name);
 }
 
-/** Whether WebGL in this page is rasterized on the CPU (false when unknown or no WebGL). */
-export function isSoftwareWebGL(): boolean {
+/**
+ * Whether WebGL in this page is rasterized on the CPU (false when unknown or no WebGL).
+ * `canvas` makes the throwaway canvas (an OffscreenCanvas in the render worker).
+ */
+export function isSoftwareWebGL(
+  canvas: () => HTMLCanvasElement | OffscreenCanvas = () => document.createElement('canvas'),
+): boolean {
+  return isSoftwareRenderer(webglRenderer(canvas));
+}
+
+/** WebGL's renderer string (unmasked when allowed), '' when unknown or no WebGL. */
+export function webglRenderer(
+  canvas: () => HTMLCanvasElement | OffscreenCanvas = () => document.createElement('canvas'),
+): string {
   try {
-    const gl = document.createElement('canvas').getContext('webgl');
-    if (!gl) return false;
+    const gl = canvas().getContext('webgl') as WebGLRenderingContext | null;
+    if (!gl) return '';
     const ext = gl.getExtension('WEBGL_debug_renderer_info');
     const name = String(gl.getParameter(ext ? ext.UNMASKED_RENDERER_WEBGL : gl.RENDERER));
     gl.getExtension('WEBGL_lose_context')?.loseContext();
-    return isSoftwareRenderer(name);
+    return name;
   } catch {
-    return false;
+    return '';
   }
 }

@@ -18,7 +18,10 @@ import {
 } from '@armtwin/protocol';
 import { DEMO_ARM, type ArmProfile } from '@armtwin/ik';
 import { HealthHistory } from './HealthHistory.ts';
+import { DEFAULT_THERMAL_PARAMS, ThermalWatch, type ThermalWatchOptions } from '@armtwin/protocol';
 import { IntervalEstimator, JointTween } from './interpolation.ts';
+import { TwinPredictor, type TwinMode, type TwinPredictorOptions } from './TwinPredictor.ts';
+import { TrackingErrors } from './trackingError.ts';
 import { RateMeter } from './RateMeter.ts';
 import { PingTracker } from './PingTracker.ts';
 import {
@@ -44,6 +47,15 @@ export interface ArmStoreOptions {
    * once). Below it, reports are interpolated (a 5 Hz arm glides).
    */
   drawNewestAboveHz: number;
+  /**
+   * How the arm is drawn: `predict` (where it is at the display instant, from its reports,
+   * their `$TIM` and what was commanded: ./TwinPredictor.ts), `interpolate` (the seed's tween
+   * toward each report, drawn as it is above `drawNewestAboveHz`) or `newest` (each report as it is).
+   */
+  twinMode: TwinMode;
+  predictor: Partial<TwinPredictorOptions>;
+  /** The thermal early warning's settings (@armtwin/protocol `DEFAULT_THERMAL_WATCH_OPTIONS`). */
+  thermal: Partial<ThermalWatchOptions>;
 }
 
 export const DEFAULT_ARM_STORE_OPTIONS: ArmStoreOptions = {
@@ -52,6 +64,9 @@ export const DEFAULT_ARM_STORE_OPTIONS: ArmStoreOptions = {
   historyLength: 240,
   staleAfterMs: 1000,
   drawNewestAboveHz: 100,
+  twinMode: 'predict',
+  predictor: {},
+  thermal: {},
 };
 
 export type ConnectionState =
@@ -93,6 +108,14 @@ export class ArmStore {
   temp!: Float64Array;
   mv!: Float64Array;
   history!: HealthHistory;
+  /**
+   * Each servo's thermal model, fed every position and health report: the predicted temperature
+   * (drawn dashed beside the measured) and the early warning before 60 °C. Generic parameters
+   * until the Health panel loads a fit from the arm's history (`setParams`).
+   */
+  thermal!: ThermalWatch;
+  /** Each joint's commanded-vs-reported error, updated by `sample` (the links' paint). */
+  tracking!: TrackingErrors;
   /** Bumped by `configure`: the servo list changed. */
   armVersion = 0;
   readonly counters: StoreCounters;
@@ -115,18 +138,26 @@ export class ArmStore {
   readonly firstError: FirstErrors = {};
 
   private tweens!: JointTween[];
+  /** The predictive twin (`twinMode` 'predict'); fed every report and every command seen. */
+  readonly predictor: TwinPredictor;
+  /** The arm-time stamp of the state report being taken in. */
+  private reportStamp = NaN;
+  private readonly controlReader: Reader;
   private readonly interval = new IntervalEstimator();
   private readonly messageRate = new RateMeter();
   private readonly stateRate = new RateMeter();
   private readonly reader: Reader;
   private rowTemp!: Float64Array;
   private rowVolt!: Float64Array;
+  private rowPredicted!: Float64Array;
+  private drawn!: Float64Array;
   private now = 0;
   /** Whether the stream is fast enough to draw each report as it is (`drawNewestAboveHz`). */
   private drawNewest = false;
 
   constructor(opts: Partial<ArmStoreOptions> = {}) {
     this.opts = { ...DEFAULT_ARM_STORE_OPTIONS, ...opts };
+    this.predictor = new TwinPredictor(this.opts.arm.servos, this.opts.predictor);
     this.allocate();
     this.counters = {
       messages: 0,
@@ -140,6 +171,12 @@ export class ArmStore {
       onGroup: (g) => this.onGroup(g),
       onError: (e) => countDrop(this.counters, this.firstError, e),
     });
+    this.controlReader = createReader({
+      onFrame: (f) => this.onCommand(f),
+      onGroup: (g) => {
+        for (const f of g.frames) this.onCommand(f);
+      },
+    });
   }
 
   private allocate(): void {
@@ -152,8 +189,18 @@ export class ArmStore {
     this.mv = new Float64Array(n).fill(NaN);
     this.rowTemp = new Float64Array(n);
     this.rowVolt = new Float64Array(n);
+    this.drawn = new Float64Array(n).fill(NaN);
     this.tweens = Array.from({ length: n }, () => new JointTween());
+    this.predictor.configure(this.opts.arm.servos);
+    const setting = this.tracking?.setting ?? 'auto';
+    this.tracking = new TrackingErrors(n);
+    this.tracking.setting = setting;
     this.history = new HealthHistory(n, this.opts.historyLength);
+    this.thermal = new ThermalWatch(
+      this.opts.arm.servos.map(() => DEFAULT_THERMAL_PARAMS),
+      this.opts.thermal,
+    );
+    this.rowPredicted = new Float64Array(n);
   }
 
   /**
@@ -179,6 +226,25 @@ export class ArmStore {
     this.reader.feed(payload);
     // A `$TIM` stamps only the frames of its own payload.
     this.reader.clearStamp();
+  }
+
+  /**
+   * Commands on the arm's control topics (this page's own and, where the broker lets the page
+   * read them, everyone's), seen at `now`: the predictor's idea of where each joint is heading.
+   */
+  noteControl(payload: string | Uint8Array, now: number): void {
+    this.now = now;
+    this.controlReader.feed(payload);
+    this.controlReader.clearStamp();
+  }
+
+  private onCommand(f: Frame): void {
+    const servos = this.opts.arm.servos;
+    if (f.type === 'move' && f.id < this.servoCount)
+      this.predictor.command(f.id, angleFromPwm(f.pwm, servos[f.id]!.polarity), f.ms, this.now);
+    else if (f.type === 'angleMove' && f.id < this.servoCount)
+      this.predictor.command(f.id, f.deg, f.ms, this.now);
+    else if (f.type === 'stop') this.predictor.stop(f.id === 255 ? undefined : f.id, this.now);
   }
 
   private onGroup(g: Group): void {
@@ -253,6 +319,7 @@ export class ArmStore {
 
   private stateArrived(stamp: number | undefined): void {
     this.lastStateAt = this.now;
+    this.reportStamp = this.predictor.arrive(stamp, this.now);
     if (stamp !== undefined && !(stamp <= this.lastStateStamp)) this.lastStateStamp = stamp;
     this.stateRate.add(this.now);
     this.interval.arrive(this.now);
@@ -274,6 +341,8 @@ export class ArmStore {
 
   private retarget(id: number, deg: number): void {
     this.angle[id] = deg;
+    this.thermal.position(id, deg);
+    this.predictor.report(id, this.reportStamp, deg);
     this.tweens[id]!.retarget(
       deg,
       this.now,
@@ -291,21 +360,77 @@ export class ArmStore {
   }
 
   private pushHealthRow(stamp: number | undefined): void {
-    this.history.push((stamp ?? Date.now()) / 1000, this.rowTemp, this.rowVolt);
+    const t = stamp ?? Date.now();
+    this.rowPredicted.fill(NaN);
+    for (let i = 0; i < this.servoCount; i++) {
+      if (Number.isNaN(this.rowTemp[i]!)) continue;
+      this.thermal.health(i, t, this.rowTemp[i]!);
+      this.rowPredicted[i] = this.thermal.state(i)!.predictedC;
+    }
+    this.history.push(t / 1000, this.rowTemp, this.rowVolt, this.rowPredicted);
   }
 
-  /** Fills `rendered` with the interpolated servo angles at `now`; true if any changed. */
+  /**
+   * Fills `rendered` with the servo angles to draw at `now` (as `twinMode` says); true if any
+   * changed. In `predict` mode, `predicting` and `predictionLeadMs` then say whether the pose
+   * is ahead of every report.
+   */
   sample(now: number): boolean {
     let changed = false;
     const alpha = this.opts.interpolationAlpha;
+    const mode = this.opts.twinMode;
+    if (mode === 'predict') this.predictor.sample(now, this.drawn);
+    this.updateTracking();
     for (let i = 0; i < this.servoCount; i++) {
-      const v = this.tweens[i]!.valueAt(now, alpha);
+      const v =
+        mode === 'predict'
+          ? this.drawn[i]!
+          : mode === 'newest'
+            ? this.angle[i]!
+            : this.tweens[i]!.valueAt(now, alpha);
       if (v !== this.rendered[i] && !(Number.isNaN(v) && Number.isNaN(this.rendered[i]!))) {
         this.rendered[i] = v;
         changed = true;
       }
     }
     return changed;
+  }
+
+  /**
+   * Tracking error per joint: the reported angle against the command's course at the same
+   * instant (./trackingError.ts); without a course seen, against this HUD's commanded pulse
+   * once the joint has stopped moving.
+   */
+  private updateTracking(): void {
+    const servos = this.opts.arm.servos;
+    for (let i = 0; i < this.servoCount; i++) {
+      const j = this.predictor.joint(i);
+      if (!j) continue;
+      let commanded = j.commandedAt(j.s0);
+      const pwm = this.commandedPwm[i]!;
+      if (Number.isNaN(commanded) && Number.isFinite(pwm) && j.reportVelocity() === 0)
+        commanded = angleFromPwm(pwm, servos[i]!.polarity);
+      this.tracking.set(i, commanded, this.angle[i]!);
+    }
+  }
+
+  /** The pose drawn by the last `sample` is a prediction that no report has confirmed yet. */
+  get predicting(): boolean {
+    return this.opts.twinMode === 'predict' && this.predictor.predicting;
+  }
+
+  /** How far the predicted pose is ahead of the newest report, ms (0 when not predicting). */
+  get predictionLeadMs(): number {
+    return this.predicting ? this.predictor.leadMs : 0;
+  }
+
+  /** The frame drawn from the last `sample` is done at `now` (the predictor learns the lag). */
+  frameShown(now: number): void {
+    this.predictor.shown(now);
+  }
+
+  setTwinMode(mode: TwinMode): void {
+    this.opts.twinMode = mode;
   }
 
   /** No state report for longer than `staleAfterMs` (or none yet). */
@@ -339,6 +464,10 @@ export class ArmStore {
     this.temp.fill(NaN);
     this.mv.fill(NaN);
     for (const t of this.tweens) t.reset();
+    this.predictor.reset();
+    this.thermal.reset();
+    this.tracking.reset();
+    this.controlReader.reset();
     this.interval.reset();
     this.messageRate.reset();
     this.stateRate.reset();

@@ -9,6 +9,8 @@ export class HealthHistory {
   readonly time: RingBuffer;
   readonly temp: RingBuffer[];
   readonly volt: RingBuffer[];
+  /** The thermal model's predicted temperature per servo (@armtwin/protocol ThermalWatch), °C. */
+  readonly predicted: RingBuffer[];
   /** Bumped on every push, so a chart redraws only when there is something new. */
   version = 0;
 
@@ -19,16 +21,27 @@ export class HealthHistory {
     this.time = new RingBuffer(capacity);
     this.temp = Array.from({ length: servoCount }, () => new RingBuffer(capacity));
     this.volt = Array.from({ length: servoCount }, () => new RingBuffer(capacity));
+    this.predicted = Array.from({ length: servoCount }, () => new RingBuffer(capacity));
   }
 
-  /** One row at `timeS` (Unix seconds); `temps` °C and `volts` V by servo, NaN = not reported. */
-  push(timeS: number, temps: ArrayLike<number>, volts: ArrayLike<number>): void {
+  /**
+   * One row at `timeS` (Unix seconds); `temps` °C and `volts` V by servo, NaN = not reported;
+   * `predicted` °C by servo, NaN = none (drawn as no line).
+   */
+  push(
+    timeS: number,
+    temps: ArrayLike<number>,
+    volts: ArrayLike<number>,
+    predicted?: ArrayLike<number>,
+  ): void {
     this.time.push(timeS);
     for (let i = 0; i < this.servoCount; i++) {
       const t = temps[i] ?? NaN;
       const v = volts[i] ?? NaN;
       this.temp[i]!.push(Number.isNaN(t) ? this.temp[i]!.latest() : t);
       this.volt[i]!.push(Number.isNaN(v) ? this.volt[i]!.latest() : v);
+      const p = predicted?.[i] ?? NaN;
+      this.predicted[i]!.push(Number.isNaN(p) ? this.predicted[i]!.latest() : p);
     }
     this.version++;
   }
@@ -42,6 +55,7 @@ export class HealthHistory {
     this.time.push(Number.isNaN(last) ? timeS : Math.max(timeS, last + 0.001));
     for (const r of this.temp) r.push(NaN);
     for (const r of this.volt) r.push(NaN);
+    for (const r of this.predicted) r.push(NaN);
     this.version++;
   }
 
@@ -49,6 +63,7 @@ export class HealthHistory {
     this.time.clear();
     for (const r of this.temp) r.clear();
     for (const r of this.volt) r.clear();
+    for (const r of this.predicted) r.clear();
     this.version++;
   }
 }

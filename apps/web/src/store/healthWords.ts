@@ -2,7 +2,14 @@
  * A servo's health level (PROTOCOL.md §5, thresholds from @armtwin/protocol) and the words the
  * HUD shows and announces for it. Pure.
  */
-import { temperatureLevel, voltageLevel, worstLevel, type HealthLevel } from '@armtwin/protocol';
+import {
+  TEMP_WARNING_C,
+  temperatureLevel,
+  voltageLevel,
+  worstLevel,
+  type HealthLevel,
+  type ThermalState,
+} from '@armtwin/protocol';
 
 export interface ServoHealth {
   temperatureLevel: HealthLevel | 'unknown';
@@ -43,4 +50,24 @@ export function servoHealth(name: string, celsius: number, millivolts: number): 
     level,
     words: `${name}: ${tempText}; ${voltText}.`,
   };
+}
+
+/**
+ * The early warning of the thermal model (@armtwin/protocol ThermalWatch) in words, e.g.
+ * "Shoulder is heating 2.4 °C/s, 2.2 °C/s more than its motion explains: 60 °C in about 11 s.
+ * Look for a jam or a load." '' when there is no warning.
+ */
+export function thermalWarningWords(name: string, s: ThermalState | undefined): string {
+  if (!s?.warning) return '';
+  const fix = (x: number) => (Number.isFinite(x) ? x.toFixed(1) : '?');
+  const eta =
+    s.secondsToLimit <= 0
+      ? `already at ${TEMP_WARNING_C} °C`
+      : Number.isFinite(s.secondsToLimit)
+        ? `${TEMP_WARNING_C} °C in about ${Math.max(1, Math.round(s.secondsToLimit))} s`
+        : 'not heating now';
+  return (
+    `${name} is heating ${fix(s.measuredRate)} °C/s, ${fix(s.unexplainedRate)} °C/s more than ` +
+    `its motion explains: ${eta}. Look for a jam or a load.`
+  );
 }

@@ -1,13 +1,15 @@
 /**
  * Ghost: a translucent second arm showing the previewed target pose or the pose this HUD
  * commanded, beside the live arm. A switch hides it; the legend says what it shows now. A
- * refused target shows its offending link red; the folded Keep-out zones section lists and
- * edits the zones (../Zones/ZonesSection.tsx).
+ * refused target shows its offending link red; the live arm's links can be painted by tracking
+ * error (./TrackingLegend.tsx); the folded Keep-out zones section lists and edits the zones
+ * (../Zones/ZonesSection.tsx).
  */
 import { useState } from 'react';
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { ZonesSection } from '../Zones/ZonesSection.tsx';
+import { TrackingLegend } from './TrackingLegend.tsx';
 
 const WORDS = {
   preview: 'showing the previewed target pose',
@@ -38,6 +40,7 @@ export function GhostPanel() {
       <p className="dim" data-testid="ghost-shows">
         <span className="ghost-swatch" aria-hidden="true" /> {enabled ? WORDS[shows] : 'off'}
       </p>
+      <TrackingLegend />
       <ZonesSection />
     </section>
   );

@@ -1,12 +1,21 @@
 /**
  * The temperature and voltage strip charts, outside React: two uPlot charts (one line per
- * servo) redrawn from the store's ring buffers when a new health row has arrived.
+ * servo) redrawn from the store's ring buffers when a new health row has arrived. The
+ * temperature chart also draws each servo's predicted temperature (the thermal model,
+ * `ArmStore.thermal`) dashed in the servo's colour.
  */
 import uPlot from 'uplot';
 import { thresholdPlugin, type Threshold } from '../../charts/thresholdPlugin.ts';
 import type { ArmStore } from '../../store/ArmStore.ts';
 import type { RingBuffer } from '../../store/RingBuffer.ts';
-import { CHART_HEIGHT, CHART_POLL_MS, SERVO_COLOURS, TEMP_LINES, VOLT_LINES } from './constants.ts';
+import {
+  CHART_HEIGHT,
+  CHART_POLL_MS,
+  PREDICTED_DASH,
+  SERVO_COLOURS,
+  TEMP_LINES,
+  VOLT_LINES,
+} from './constants.ts';
 
 function makeChart(
   el: HTMLElement,
@@ -14,6 +23,7 @@ function makeChart(
   unit: string,
   range: [number, number],
   lines: readonly Threshold[],
+  dashed = false,
 ): uPlot {
   const opts: uPlot.Options = {
     width: Math.max(200, el.clientWidth),
@@ -54,9 +64,19 @@ function makeChart(
         width: 1.5,
         points: { show: false },
       })),
+      ...(dashed
+        ? names.map((label, i) => ({
+            label: `${label} predicted`,
+            stroke: SERVO_COLOURS[i % SERVO_COLOURS.length],
+            width: 1,
+            dash: PREDICTED_DASH,
+            points: { show: false },
+          }))
+        : []),
     ],
   };
-  return new uPlot(opts, [[], ...names.map(() => [])], el);
+  const lineCount = dashed ? names.length * 2 : names.length;
+  return new uPlot(opts, [[], ...Array.from({ length: lineCount }, () => [])], el);
 }
 
 /** Unix seconds → "hh:mm:ss". */
@@ -94,7 +114,7 @@ export class HealthCharts {
     voltEl: HTMLElement,
   ) {
     const names = store.opts.arm.servos.map((s) => s.name);
-    this.temp = makeChart(tempEl, names, '°', [20, 80], TEMP_LINES);
+    this.temp = makeChart(tempEl, names, '°', [20, 80], TEMP_LINES, true);
     this.volt = makeChart(voltEl, names, 'V', [6, 8], VOLT_LINES);
     this.timer = setInterval(() => this.update(), CHART_POLL_MS);
     this.resizeObserver = new ResizeObserver(() => {
@@ -108,7 +128,7 @@ export class HealthCharts {
     const h = this.store.history;
     if (h.version === this.version) return;
     this.version = h.version;
-    this.temp.setData(columns(h.time, h.temp));
+    this.temp.setData(columns(h.time, [...h.temp, ...h.predicted]));
     this.volt.setData(columns(h.time, h.volt));
   }
 

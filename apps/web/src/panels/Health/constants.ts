@@ -22,3 +22,6 @@ export const VOLT_LINES = [{ value: VOLTAGE_MIN_V, colour: '#ef4444' }];
 export const CHART_HEIGHT = 92;
 /** How often the charts look for new rows, ms (health arrives at 2 Hz). */
 export const CHART_POLL_MS = 200;
+
+/** Dash pattern of a predicted temperature line (px on, px off). */
+export const PREDICTED_DASH = [4, 3];

@@ -13,6 +13,7 @@ import type { HistoryApi } from './historyApi.ts';
 import type { TimeRange } from './range.ts';
 import type { PoseAnswer } from '@armtwin/api';
 import { ViewError } from './ViewHeader.tsx';
+import { MakePlan } from './MakePlan.tsx';
 
 const SCRUB_SAMPLE_MS = 100;
 
@@ -131,6 +132,7 @@ export function ReplayControls(props: {
           {props.joints.map((j, i) => `${j.name} ${s.angles[i]}`).join(' · ')}
         </p>
       )}
+      <MakePlan player={player} loaded={s.loaded} />
     </div>
   );
 }

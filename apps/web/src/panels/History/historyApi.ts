@@ -6,7 +6,8 @@
  */
 import type { Loaded } from './loaded.ts';
 
-export type Endpoint = 'series' | 'alarms' | 'tracking' | 'pose' | 'audit' | 'export';
+export type Endpoint =
+  'series' | 'alarms' | 'tracking' | 'pose' | 'audit' | 'export' | 'thermal-model';
 export type Fetch = (url: string, init?: RequestInit) => Promise<Response>;
 
 export interface HistoryApiOptions {

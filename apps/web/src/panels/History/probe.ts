@@ -3,6 +3,8 @@
  * (`window.__armtwin.history`): per chart, the series labels and their point counts.
  * Written when a chart is drawn; read-only by convention.
  */
+import type { TeachError } from '@armtwin/motion';
+
 export interface ChartProbe {
   labels: string[];
   /** Non-null points per series. */
@@ -11,4 +13,13 @@ export interface ChartProbe {
   max: number[];
 }
 
-export const historyProbe: { charts: Record<string, ChartProbe> } = { charts: {} };
+/** The last "Make plan from this range": samples read, waypoints made, error (MakePlan.tsx). */
+export interface TeachProbe {
+  samples: number;
+  waypoints: number;
+  error: TeachError;
+}
+
+export const historyProbe: { charts: Record<string, ChartProbe>; teach?: TeachProbe | null } = {
+  charts: {},
+};

@@ -4,13 +4,16 @@
  * or type the numbers), joint-space or Cartesian path. "Preview" plans from where the arm is
  * (@armtwin/motion, in the page) and the ghost runs along the plan; "Execute" streams it to the
  * arm with pose checking (PlanRunner): paused / re-planned / done / failed are shown. The
- * emergency stop ends it at once.
+ * emergency stop ends it at once. Waypoints taught from history (History → Replay → "Make plan
+ * from this range") keep their recorded pose and timing: each is reached in the recorded time,
+ * at constant speed (`linear`), and held as long as the arm stood there.
  */
 import { useState } from 'react';
 import {
   CODE_BELOW_FLOOR,
   motionCodeMessage,
   planRequest,
+  planSpec,
   tipPose,
   type MotionMode,
   type MotionRequest,
@@ -21,6 +24,7 @@ import '../../robots/robots.css';
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { MAX_WAYPOINTS } from './Waypoints.ts';
+import { isTaught, planTargets } from './taught.ts';
 
 /** Speed of HUD plans: a fraction of each servo's limit, and the tip's speed (mm/s). */
 const PLAN_SPEED = 0.3;
@@ -31,13 +35,13 @@ type Planned = { plan: Plan; spec: MotionSpec };
 export function PlanPanel() {
   const { robots, plan: tools, store, link, target } = useHud();
   const { waypoints, preview, runner } = tools;
-  const [mode, setMode] = useState<MotionMode>('cartesian');
   const [note, setNote] = useState<{ text: string; bad: boolean } | null>(null);
 
   const snap = useSampled(() => ({
     version: waypoints.version,
     list: waypoints.list.map((w) => `${w.x},${w.y},${w.z}`),
     placing: waypoints.placing,
+    mode: waypoints.mode,
     run: runner.state,
     message: runner.message,
     progress: Math.round(runner.progress * 100),
@@ -53,6 +57,9 @@ export function PlanPanel() {
     const pwm = Array.from(store.pwm);
     return pwm.every(Number.isFinite) ? pwm : null;
   };
+
+  const mode: MotionMode = snap.mode;
+  const setMode = (m: MotionMode) => waypoints.setMode(m);
 
   const plan = (): Planned | null => {
     const motion = robots.active.motion;
@@ -72,7 +79,18 @@ export function PlanPanel() {
       speed: PLAN_SPEED,
       linearSpeed: PLAN_LINEAR_SPEED,
     };
-    const out = planRequest(motion, request, from);
+    const taught = isTaught(waypoints.list);
+    const out = taught
+      ? planSpec(
+          motion,
+          {
+            mode,
+            targets: planTargets(waypoints.list),
+            options: { speed: PLAN_SPEED, linearSpeed: PLAN_LINEAR_SPEED, profile: 'linear' },
+          },
+          from,
+        )
+      : planRequest(motion, request, from);
     if (out.status !== 'planned') {
       preview.clear();
       const where =
@@ -94,7 +112,7 @@ export function PlanPanel() {
       performance.now(),
     );
     setNote({
-      text: `Planned: ${mode === 'joint' ? 'each axis (joint space)' : 'Cartesian path'}, ${(out.plan.durationMs / 1000).toFixed(1)} s, ${out.plan.samples.length} samples — the ghost previews it.`,
+      text: `Planned: ${mode === 'joint' ? 'each axis (joint space)' : 'Cartesian path'}${taught && mode === 'joint' ? ' at the recorded pace' : ''}, ${(out.plan.durationMs / 1000).toFixed(1)} s, ${out.plan.samples.length} samples — the ghost previews it.`,
       bad: false,
     });
     return p;
@@ -153,7 +171,7 @@ export function PlanPanel() {
       </div>
       <ol className="waypoints">
         {waypoints.list.map((w, i) => (
-          <li key={i} className="waypoint">
+          <li key={i} className={w.durationMs !== undefined ? 'waypoint taught' : 'waypoint'}>
             <span className="waypoint-n">{i + 1}</span>
             {(['x', 'y', 'z'] as const).map((k) => (
               <input
@@ -165,6 +183,12 @@ export function PlanPanel() {
                 onChange={(e) => waypoints.move(i, { [k]: Number(e.currentTarget.value) })}
               />
             ))}
+            {w.durationMs !== undefined && (
+              <span className="waypoint-time dim" title="Taught: time to reach it, then held">
+                {(w.durationMs / 1000).toFixed(1)} s
+                {w.holdMs ? ` +${(w.holdMs / 1000).toFixed(1)}` : ''}
+              </span>
+            )}
             <button
               type="button"
               className="small"

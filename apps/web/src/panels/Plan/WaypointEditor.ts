@@ -7,7 +7,7 @@
  * frame loop (`update`): the meshes change only when the waypoints' version does.
  */
 import * as THREE from 'three';
-import type { Viewer } from '../../scene/Viewer.ts';
+import type { SceneView } from '../../scene/SceneView.ts';
 import type { Waypoints } from './Waypoints.ts';
 
 const MM = 0.001;
@@ -52,7 +52,7 @@ export class WaypointEditor {
   private shift = false;
 
   constructor(
-    private readonly viewer: Viewer,
+    private readonly viewer: SceneView,
     private readonly waypoints: Waypoints,
   ) {
     this.group.name = 'waypoints';

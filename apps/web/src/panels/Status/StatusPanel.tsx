@@ -2,17 +2,25 @@
  * Status: broker connection, arm online/offline (retained `arm/{id}/online`), message rate,
  * live `$PNG` round trip, what each reader dropped (the arm's status stream; the fleet's
  * reports of the other arms, with its rejected profiles and feedback), history storage, and a
- * stale-data warning when no state report has come for more than 1 s.
+ * stale-data warning when no state report has come for more than 1 s, and whether the arm is
+ * drawn ahead of its reports (the predictive twin: "Predicted", with the lead in ms).
  */
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { useStorageStatus } from './useStorageStatus.ts';
-import { CONNECTION_WORDS, armWords, cameraRejects, fleetRejects, formatRate } from './words.ts';
+import {
+  CONNECTION_WORDS,
+  armWords,
+  cameraRejects,
+  fleetRejects,
+  formatRate,
+  twinWords,
+} from './words.ts';
 import { gapWords } from '../../mqtt/GapTracker.ts';
 import { droppedWords } from '../../store/readerErrors.ts';
 
 export function StatusPanel() {
-  const { store, settings, link, robots, cameras } = useHud();
+  const { store, settings, link, robots, cameras, rendering } = useHud();
   const storage = useStorageStatus();
   const s = useSampled(() => {
     const now = performance.now();
@@ -21,6 +29,7 @@ export function StatusPanel() {
     return {
       connection: store.connection,
       error: store.connectionError,
+      brokerInUse: link.brokerInUse,
       online: store.armOnline,
       onlineText: store.armOnlineText,
       gap: gapWords(link.gap.view(Date.now())),
@@ -41,6 +50,9 @@ export function StatusPanel() {
       cameraLastRejection: cameras.lastRejection,
       published: store.counters.published,
       controllerError: store.lastControllerError,
+      twinMode: store.opts.twinMode,
+      predicting: store.predicting,
+      leadMs: Math.round(store.predictionLeadMs),
     };
   });
 
@@ -54,6 +66,12 @@ export function StatusPanel() {
         <dd data-testid="broker-state" className={s.connection === 'connected' ? 'ok' : 'bad'}>
           {CONNECTION_WORDS[s.connection]}
           {s.error && s.connection !== 'connected' ? ` (${s.error})` : ''}
+          {s.brokerInUse && s.connection === 'connected' && (
+            <span className="dim" data-testid="broker-in-use">
+              {' '}
+              · {s.brokerInUse}
+            </span>
+          )}
         </dd>
         <dt>Arm</dt>
         <dd
@@ -111,6 +129,17 @@ export function StatusPanel() {
             ? 'No data from the arm yet: data is stale.'
             : `Data is stale: no status for ${s.staleFor.toFixed(1)} s. Jogging is disabled.`
           : 'Data is live.'}
+      </p>
+      <p
+        className={`note twin ${s.predicting ? 'predicted' : 'dim'}`}
+        data-testid="twin-prediction"
+        data-predicting={s.predicting ? 'true' : 'false'}
+      >
+        {twinWords(s.twinMode, s.predicting, s.leadMs)}
+      </p>
+      <p className="note dim" data-testid="render-thread" data-thread={rendering.thread}>
+        {rendering.thread === 'worker' ? 'Rendering: worker' : 'Rendering: main thread'}
+        {rendering.note ? ` (${rendering.note})` : ''}
       </p>
     </section>
   );

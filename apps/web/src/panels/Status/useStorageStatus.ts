@@ -3,6 +3,7 @@
  * behind `npm start`) and read `storage`. Unreachable, not JSON, or false → "off".
  */
 import { useEffect, useState } from 'react';
+import { changedOnly } from '../../hud/changedOnly.ts';
 
 export type StorageStatus = 'checking' | 'on' | 'off';
 
@@ -23,10 +24,13 @@ export function useStorageStatus(): StorageStatus {
   const [status, setStatus] = useState<StorageStatus>('checking');
   useEffect(() => {
     let alive = true;
+    // Only a change reaches React: an unchanged setState still queues an update on a component
+    // that does not re-render (see src/hud/changedOnly.ts), every 30 s for as long as the page is open.
+    const offer = changedOnly<StorageStatus>('checking', setStatus, (a, b) => a === b);
     const check = () => {
       fetchStorageStatus()
-        .then((s) => alive && setStatus(s))
-        .catch(() => alive && setStatus('off'));
+        .then((s) => alive && offer(s))
+        .catch(() => alive && offer('off'));
     };
     check();
     const id = setInterval(check, RECHECK_MS);

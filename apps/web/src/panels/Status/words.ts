@@ -32,3 +32,10 @@ export function cameraRejects(total: number, byReason: Record<string, number>): 
     .map(([k, n]) => `${k} ${n}`);
   return `${total} rejected (${parts.join(', ')})`;
 }
+
+/** What the 3D arm shows: a prediction (and how far ahead of the reports), or the reports. */
+export function twinWords(mode: string, predicting: boolean, leadMs: number): string {
+  if (predicting) return `Predicted: drawn ${leadMs} ms ahead of the arm's last report.`;
+  if (mode === 'interpolate') return 'Interpolated between the arm’s reports.';
+  return 'Drawn as the arm reports.';
+}

@@ -1,0 +1,47 @@
+/**
+ * What the page's other parts use of the 3D view, whichever draws it: the Viewer on the main
+ * thread (./Viewer.ts) or the render worker through its page-side host
+ * (./render/WorkerViewer.ts). The scene graph, camera, orbit controls and canvas here are the
+ * page's: picking and dragging (FloorPicker, the Plan panel's WaypointEditor) raycast them.
+ */
+import type * as THREE from 'three';
+import type { URDFRobot } from 'urdf-loader';
+import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import type { ProfileKeepOut } from '@armtwin/ik';
+import type { JointMap } from '../robots/robotSpec.ts';
+import type { GhostSource } from '../robots/sceneHooks.ts';
+import type { MeshFailure } from './loadRobot.ts';
+
+/** Which of the drawn robots: the live arm, the ghost, the replay's sibling. */
+export type DrawnRobot = 'robot' | 'ghost' | 'sibling';
+
+/** Where the 3D view is drawn: 'main' (the page's thread) or 'worker' (OffscreenCanvas). */
+export type RenderThread = 'main' | 'worker';
+
+export interface SceneView {
+  readonly thread: RenderThread;
+  readonly scene: THREE.Scene;
+  readonly camera: THREE.PerspectiveCamera;
+  readonly controls: OrbitControls;
+  /** The arm's z-up frame (metres). */
+  readonly world: THREE.Group;
+  readonly canvas: HTMLCanvasElement;
+  readonly liveRobot: URDFRobot | null;
+  readonly zones: { readonly names: string[] };
+  readonly ghostPainted: string;
+  readonly meshFailures: readonly MeshFailure[];
+  readonly pixelRatio: number;
+  readonly software: boolean;
+  readonly renderedFrames: number;
+  ghostSource: GhostSource | null;
+  /** Called every frame; a hook returning true asks for a render. */
+  readonly frameHooks: Set<(now: number) => boolean>;
+  /** Called after each rendered frame with its `performance.now()` (bench probe, tests). */
+  readonly renderHooks: Set<(now: number) => void>;
+  jointValues(which?: DrawnRobot): number[];
+  showZones(keepOut: ProfileKeepOut | undefined): void;
+  load(urdfUrl: string, joints: JointMap): Promise<void>;
+  start(): void;
+  invalidate(): void;
+  dispose(): void;
+}

@@ -1,0 +1,431 @@
+/**
+ * The 3D view drawn by the render worker (./renderWorker.ts), as the page sees it: the same
+ * SceneView the main-thread Viewer offers. The page keeps what must answer at once or read its
+ * own state — the orbit camera (OrbitControls on the real canvas element, which still gets the
+ * pointer and wheel events after `transferControlToOffscreen`), floor picking, the Plan panel's
+ * waypoint raycasts (against this page-side scene), the store and the replay — and, on its own
+ * light requestAnimationFrame loop, sends the worker only what changed (`FrameInput`): the drawn
+ * angles, commanded pulses, target, plan preview, sibling pose and camera. WebGL and the meshes
+ * live only in the worker. What the worker drew comes back with each frame (joint values, the
+ * ghost's state) for the debug hook, the Ghost panel and the bench's probe.
+ */
+import * as THREE from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import type { ProfileKeepOut } from '@armtwin/ik';
+import type { ArmStore } from '../../store/ArmStore.ts';
+import type { TargetPreview } from '../../store/TargetPreview.ts';
+import type { ReplayPlayer } from '../../replay/ReplayPlayer.ts';
+import type { JointMap } from '../../robots/robotSpec.ts';
+import type { GhostSource } from '../../robots/sceneHooks.ts';
+import { createStage, type Stage } from '../stage.ts';
+import { FloorPicker } from '../FloorPicker.ts';
+import { MeshFailureNote } from '../MeshFailureNote.ts';
+import type { MeshFailure } from '../loadRobot.ts';
+import type { DrawnRobot, SceneView } from '../SceneView.ts';
+import type { CameraState, FrameInput, FromWorker, TargetState, ToWorker } from './messages.ts';
+import { sameValues, targetDiffers } from './frameDiff.ts';
+
+/** Where the render worker comes from (a test or another bundler may hand in its own). */
+export type MakeRenderWorker = () => Worker;
+
+/** The worker, bundled by Vite from ./renderWorker.ts. */
+export const makeRenderWorker: MakeRenderWorker = () =>
+  new Worker(new URL('./renderWorker.ts', import.meta.url), { type: 'module', name: 'render' });
+
+export class WorkerViewer implements SceneView {
+  readonly thread = 'worker' as const;
+  readonly scene = new THREE.Scene();
+  readonly camera = new THREE.PerspectiveCamera(40, 1, 0.01, 20);
+  readonly controls: OrbitControls;
+  readonly canvas: HTMLCanvasElement;
+  readonly frameHooks = new Set<(now: number) => boolean>();
+  readonly renderHooks = new Set<(now: number) => void>();
+  /** Stands in for the WebGL renderer (the bench's probe wraps `render`): called per drawn frame. */
+  readonly renderer = { render: (_scene: THREE.Scene, _camera: THREE.Camera): void => {} };
+  ghostSource: GhostSource | null = null;
+  meshFailures: readonly MeshFailure[] = [];
+  renderedFrames = 0;
+  pixelRatio = 1;
+  software = false;
+  /** WebGL's renderer string in the worker ('' until it answered). */
+  webglRenderer = '';
+  ghostPainted = '';
+  /** The last error the worker reported ('' = none). */
+  lastError = '';
+  /** What the worker's tracking paint shows (as the main-thread Viewer's `tracking`). */
+  tracking: { levels: readonly string[] } | null = null;
+  /** Called with the reason when the worker fails (./FallbackSceneView.ts falls back). */
+  onFailure: ((reason: string) => void) | null = null;
+  private zoneNames: string[] = [];
+  private drawn: Record<DrawnRobot, number[]> = { robot: [], ghost: [], sibling: [] };
+  private readonly stage: Stage;
+  private readonly picker: FloorPicker;
+  private readonly failureNote: MeshFailureNote;
+  private readonly worker: Worker;
+  private readonly loads = new Map<number, { resolve(): void; reject(e: Error): void }>();
+  private loadId = 0;
+  private frame = 0;
+  private running = false;
+  private cameraDirty = true;
+  private invalidated = false;
+  private lastArm: unknown = null;
+  private lastCommanded = new Float64Array(0);
+  private lastTarget: TargetState | null = null;
+  private readonly planBuf = new Float64Array(64);
+  private lastPlan: Float64Array | null = null;
+  private siblingShown = false;
+  private lastTracking = '';
+  /** The page's resizes so far: a frame drawn at an older size (cleared since) is not counted. */
+  private sizeSeq = 0;
+  private readonly resizeObserver: ResizeObserver;
+  /** The world's own children (the stage's): anything else was added by another part. */
+  private readonly ownChildren: Set<THREE.Object3D>;
+  /** The extras' JSON as last sent (sent again only when it changed). */
+  private lastExtras = '';
+  /** The stage's own scene children (floor, grid, lights), in the worker's order too. */
+  private readonly ownScene: THREE.Object3D[];
+  /** The extras' textured meshes (uuid → texture), and the picture last sent for each. */
+  private readonly textured = new Map<string, THREE.Texture>();
+  private readonly sentPictures = new Map<string, string>();
+
+  constructor(
+    private readonly container: HTMLElement,
+    private readonly store: ArmStore,
+    private readonly target: TargetPreview,
+    private readonly replay: ReplayPlayer | null = null,
+    makeWorker: MakeRenderWorker = makeRenderWorker,
+  ) {
+    const canvas = document.createElement('canvas');
+    canvas.setAttribute('aria-label', '3D view of the arm');
+    canvas.setAttribute('role', 'img');
+    canvas.dataset.render = 'worker';
+    canvas.style.display = 'block';
+    canvas.style.width = '100%';
+    canvas.style.height = '100%';
+    this.canvas = canvas;
+    this.camera.position.set(0.86, 0.6, 1.0);
+    this.controls = new OrbitControls(this.camera, canvas);
+    this.controls.target.set(0, 0.21, 0);
+    this.controls.enableDamping = false;
+    this.controls.maxDistance = 4;
+    this.controls.addEventListener('change', () => (this.cameraDirty = true));
+    this.controls.update();
+    this.stage = createStage(this.scene);
+    this.ownChildren = new Set(this.stage.world.children);
+    this.ownScene = [...this.scene.children];
+    this.picker = new FloorPicker(canvas, this.camera, this.stage, target);
+    this.failureNote = new MeshFailureNote(container);
+    this.worker = makeWorker();
+    this.worker.onmessage = (e: MessageEvent<FromWorker>) => this.onMessage(e.data);
+    this.worker.onerror = (e) => this.fail(`render worker: ${e.message || 'failed to start'}`);
+    this.resizeObserver = new ResizeObserver(() => this.resize());
+    const offscreen = canvas.transferControlToOffscreen();
+    const { width, height } = this.size();
+    this.send(
+      { type: 'init', canvas: offscreen, width, height, dpr: window.devicePixelRatio || 1 },
+      [offscreen],
+    );
+  }
+
+  get world(): THREE.Group {
+    return this.stage.world;
+  }
+  /** The page holds no copy of the robot's meshes: they live in the worker. */
+  get liveRobot(): null {
+    return null;
+  }
+  get zones(): { readonly names: string[] } {
+    return { names: this.zoneNames };
+  }
+
+  jointValues(which: DrawnRobot = 'robot'): number[] {
+    return this.drawn[which].slice();
+  }
+
+  showZones(keepOut: ProfileKeepOut | undefined): void {
+    this.send({ type: 'zones', keepOut });
+  }
+
+  load(urdfUrl: string, joints: JointMap): Promise<void> {
+    const id = ++this.loadId;
+    const url = new URL(urdfUrl, document.baseURI).href;
+    // The store may have been sized for this robot just before: its arm goes first.
+    this.sendFrame(performance.now(), true);
+    return new Promise<void>((resolve, reject) => {
+      this.loads.set(id, { resolve, reject });
+      this.send({ type: 'load', id, urdfUrl: url, joints, sibling: this.replay !== null });
+    });
+  }
+
+  start(): void {
+    this.container.appendChild(this.canvas);
+    this.resizeObserver.observe(this.container);
+    window.addEventListener('resize', this.resize);
+    this.resize();
+    this.picker.attach();
+    this.running = true;
+    this.frame = requestAnimationFrame(this.tick);
+  }
+
+  invalidate(): void {
+    this.invalidated = true;
+  }
+
+  dispose(): void {
+    this.running = false;
+    cancelAnimationFrame(this.frame);
+    this.resizeObserver.disconnect();
+    window.removeEventListener('resize', this.resize);
+    this.picker.detach();
+    this.controls.dispose();
+    this.worker.terminate();
+    this.canvas.remove();
+  }
+
+  private send(m: ToWorker, transfer: Transferable[] = []): void {
+    this.worker.postMessage(m, transfer);
+  }
+
+  private size(): { width: number; height: number } {
+    return {
+      width: this.container.clientWidth || window.innerWidth,
+      height: this.container.clientHeight || window.innerHeight,
+    };
+  }
+
+  private readonly resize = (): void => {
+    const { width, height } = this.size();
+    this.camera.aspect = width / Math.max(1, height);
+    this.camera.updateProjectionMatrix();
+    this.cameraDirty = true;
+    this.sizeSeq++;
+    this.send({
+      type: 'resize',
+      width,
+      height,
+      dpr: window.devicePixelRatio || 1,
+      seq: this.sizeSeq,
+    });
+  };
+
+  /** `t`: the frame's time (rAF's timestamp), the instant the arm is sampled for. */
+  private readonly tick = (t: number): void => {
+    if (!this.running) return;
+    this.frame = requestAnimationFrame(this.tick);
+    this.sendFrame(t, false);
+  };
+
+  /** Samples the page's state for `now` and sends the worker what changed (all with `full`). */
+  private sendFrame(now: number, full: boolean): void {
+    const m: FrameInput = { type: 'frame' };
+    let any = false;
+    const s = this.store;
+    if (this.running && s.sample(now)) {
+      m.rendered = Float64Array.from(s.rendered);
+      any = true;
+    } else if (full) {
+      m.rendered = Float64Array.from(s.rendered);
+      any = true;
+    }
+    if (full || s.opts.arm !== this.lastArm) {
+      this.lastArm = s.opts.arm;
+      m.arm = s.opts.arm;
+      any = true;
+    }
+    if (full || !sameValues(s.commandedPwm, this.lastCommanded)) {
+      this.lastCommanded = Float64Array.from(s.commandedPwm);
+      m.commandedPwm = this.lastCommanded;
+      any = true;
+    }
+    if (full || targetDiffers(this.target, this.lastTarget)) {
+      this.lastTarget = snapshotTarget(this.target);
+      m.target = this.lastTarget;
+      any = true;
+    }
+    const plan = this.ghostSource?.sample(now, this.planBuf) ? this.planBuf : null;
+    if (plan ? !this.lastPlan || !sameValues(plan, this.lastPlan) : this.lastPlan !== null) {
+      this.lastPlan = plan ? Float64Array.from(plan) : null;
+      m.plan = this.lastPlan;
+      any = true;
+    }
+    if (this.replay) {
+      const changed = this.replay.update(now);
+      const shown = this.replay.active && this.replay.record !== null;
+      if (shown !== this.siblingShown || (shown && changed)) {
+        this.siblingShown = shown;
+        m.sibling = shown ? Float64Array.from(this.replay.angles) : null;
+        any = true;
+      }
+    }
+    const t = s.tracking;
+    const trackingKey = t ? `${t.active ? 1 : 0}:${t.version}` : '';
+    if (t && (full || trackingKey !== this.lastTracking)) {
+      this.lastTracking = trackingKey;
+      m.tracking = {
+        active: t.active,
+        version: t.version,
+        colours: Int32Array.from(t.colours),
+        levels: t.levels.slice(),
+      };
+      any = true;
+    }
+    for (const hook of this.frameHooks) if (hook(now)) this.invalidated = true;
+    const invalidated = this.invalidated;
+    if (invalidated) {
+      this.invalidated = false;
+      m.invalidate = true;
+      any = true;
+      this.syncExtras();
+    }
+    // A hook may have moved the camera itself (a camera's view): sent with any invalidation.
+    if (this.cameraDirty || full || invalidated) {
+      this.cameraDirty = false;
+      m.camera = cameraState(this.camera);
+      any = true;
+    }
+    this.sendPictures();
+    // Picking and waypoint raycasts read world matrices, which no render updates on this side.
+    this.scene.updateMatrixWorld();
+    this.camera.updateMatrixWorld();
+    if (any) this.send(m);
+  }
+
+  /**
+   * Sends the worker what other parts added to the world (the waypoint spheres and path, the
+   * cameras' screens) or to the scene (a camera's picture while viewing through), and which of
+   * the stage's own objects they hid, when that changed. Textures go separately
+   * (`sendPictures`): the JSON carries none.
+   */
+  private syncExtras(): void {
+    this.textured.clear();
+    const toJson = (o: THREE.Object3D): unknown => withoutMaps(o, this.textured);
+    const objects = this.stage.world.children.filter((o) => !this.ownChildren.has(o)).map(toJson);
+    const sceneObjects = this.scene.children
+      .filter((o) => o !== this.stage.world && !this.ownScene.includes(o))
+      .map(toJson);
+    const hidden = this.ownScene.flatMap((o, i) => (o.visible ? [] : [i]));
+    const json = JSON.stringify([objects, sceneObjects, hidden]);
+    if (json === this.lastExtras) return;
+    this.lastExtras = json;
+    this.send({ type: 'extras', objects, sceneObjects, hidden });
+    this.sentPictures.clear(); // the meshes are new there: their pictures go again
+  }
+
+  /** Sends each textured extra's picture when it changed (a camera's new frame). */
+  private sendPictures(): void {
+    for (const [uuid, texture] of this.textured) {
+      const image = texture.image as CanvasImageSource | null;
+      const key = `${texture.uuid}:${texture.version}`;
+      if (!image || this.sentPictures.get(uuid) === key) continue;
+      this.sentPictures.set(uuid, key);
+      createImageBitmap(image as ImageBitmapSource, { imageOrientation: 'flipY' }).then(
+        (bitmap) => this.send({ type: 'texture', uuid, bitmap }, [bitmap]),
+        () => this.sentPictures.delete(uuid), // an empty canvas: tried again next frame
+      );
+    }
+  }
+
+  private onMessage(m: FromWorker): void {
+    switch (m.type) {
+      case 'ready':
+        this.software = m.software;
+        this.webglRenderer = m.renderer;
+        break;
+      case 'loaded': {
+        this.meshFailures = m.failures;
+        this.failureNote.show(m.failures);
+        const f = m.framed;
+        this.controls.target.fromArray(f.target);
+        this.camera.position.fromArray(f.position);
+        this.camera.far = f.far;
+        this.camera.updateProjectionMatrix();
+        this.controls.maxDistance = f.maxDistance;
+        this.controls.update();
+        this.cameraDirty = true;
+        this.loads.get(m.id)?.resolve();
+        this.loads.delete(m.id);
+        break;
+      }
+      case 'loadFailed':
+        this.loads.get(m.id)?.reject(new Error(m.message));
+        this.loads.delete(m.id);
+        break;
+      case 'zones':
+        this.zoneNames = m.names;
+        break;
+      case 'rendered': {
+        // A frame drawn before the latest resize was wiped by it: not yet a frame on screen.
+        if (m.sizeSeq === this.sizeSeq) this.renderedFrames = m.frames;
+        this.pixelRatio = m.pixelRatio;
+        this.drawn = { robot: m.robot, ghost: m.ghost, sibling: m.sibling };
+        this.ghostPainted = m.ghostPainted;
+        this.tracking = m.trackingLevels ? { levels: m.trackingLevels } : null;
+        this.target.ghostShows = m.ghostShows;
+        this.renderer.render(this.scene, this.camera);
+        const now = m.at - performance.timeOrigin;
+        // The predictor learns how long a sample takes to reach the screen (here: the worker).
+        this.store.frameShown(now);
+        for (const hook of this.renderHooks) hook(now);
+        break;
+      }
+      case 'error':
+        this.fail(m.message);
+        break;
+    }
+  }
+
+  private fail(message: string): void {
+    this.lastError = message;
+    console.error(message);
+    for (const [, l] of this.loads) l.reject(new Error(message));
+    this.loads.clear();
+    this.onFailure?.(message);
+  }
+}
+
+/**
+ * `o.toJSON()` without texture maps (a camera's picture would go as a data URL each time):
+ * each mesh with a map is noted in `textured` (mesh uuid → texture) and keeps its map.
+ */
+function withoutMaps(o: THREE.Object3D, textured: Map<string, THREE.Texture>): unknown {
+  const taken: [THREE.MeshBasicMaterial, THREE.Texture][] = [];
+  o.traverse((c) => {
+    const m = (c as THREE.Mesh).material as THREE.MeshBasicMaterial | undefined;
+    if (m && !Array.isArray(m) && m.map) {
+      textured.set(c.uuid, m.map);
+      taken.push([m, m.map]);
+      m.map = null;
+    }
+  });
+  try {
+    return o.toJSON();
+  } finally {
+    for (const [m, map] of taken) m.map = map;
+  }
+}
+
+function cameraState(c: THREE.PerspectiveCamera): CameraState {
+  return {
+    position: [c.position.x, c.position.y, c.position.z],
+    quaternion: [c.quaternion.x, c.quaternion.y, c.quaternion.z, c.quaternion.w],
+    fov: c.fov,
+    near: c.near,
+    far: c.far,
+  };
+}
+
+function snapshotTarget(t: TargetPreview): TargetState {
+  return {
+    active: t.active,
+    x: t.x,
+    y: t.y,
+    z: t.z,
+    code: t.code,
+    angles: Float64Array.from(t.angles),
+    hitJoint: t.hitJoint,
+    ghostEnabled: t.ghostEnabled,
+    refused: t.refused,
+    refusedAngles: Float64Array.from(t.refusedAngles),
+    refusedJoint: t.refusedJoint,
+  };
+}

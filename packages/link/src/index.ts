@@ -1,0 +1,2 @@
+export * from './connectBrokers.ts';
+export * from './probe.ts';
