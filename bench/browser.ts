@@ -16,7 +16,7 @@ import path from 'node:path';
 import { angleFromPwm } from '@armtwin/protocol';
 import { DEMO_ARM } from '@armtwin/ik';
 import { connectMqtt, startSim } from './lib/stack.ts';
-import { sleep, until } from './lib/proc.ts';
+import { sleep } from './lib/proc.ts';
 import { serveStatic } from './lib/static.ts';
 import { blankPageFrames, installProbe, type ProbeResult } from './lib/page-probe.ts';
 import { round, summarize } from './lib/stats.ts';
@@ -25,7 +25,7 @@ import { fmt, type BenchContext, type Row, type Section, type SectionOutput } fr
 import { CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
 import { startTrajectory, type Trajectory } from './lib/trajectory.ts';
 import { startStopProbe } from './lib/estop-probe.ts';
-import { hudPrecheck, hudReady, openHudBrowser } from './lib/hud-browser.ts';
+import { hudPrecheck, openHudBrowser, openLiveHud } from './lib/hud-browser.ts';
 
 const ARM = 'bench-hud';
 const SERVOS = 6;
@@ -151,22 +151,7 @@ export const browserSection: Section = {
       // The HUD.
       const url = `${web.url}?broker=${encodeURIComponent(ctx.broker.wsUrl)}&arm=${ARM}`;
       ctx.log(`browser: HUD at ${url}`);
-      await page.goto(url);
-      await hudReady(page);
-      const live = await until(
-        () =>
-          page.evaluate(() => {
-            const s = (
-              window as unknown as {
-                __armtwin: { store: { connection: string; counters: { messages: number } } };
-              }
-            ).__armtwin.store;
-            return s.connection === 'connected' && s.counters.messages > 100;
-          }),
-        30_000,
-        250,
-      );
-      if (!live) throw new Error('HUD never received the state stream');
+      await openLiveHud(page, url, 100);
       if (!(await page.evaluate(installProbe, Math.round(windowS * 240))))
         throw new Error('window.__armtwin has no store/viewer.renderer to probe');
       await sleep(2000); // settle (resolution governor, JIT)

@@ -24,7 +24,7 @@ import { round } from './lib/stats.ts';
 import { barChartSvg } from './lib/svg.ts';
 import { fmt, type BenchContext, type Row, type Section, type SectionOutput } from './lib/types.ts';
 import { startTrajectory, type Trajectory } from './lib/trajectory.ts';
-import { hudPrecheck, hudReady, openHudBrowser } from './lib/hud-browser.ts';
+import { hudPrecheck, openHudBrowser, openLiveHud } from './lib/hud-browser.ts';
 import { CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
 
 const ARM = 'bench-soak';
@@ -111,22 +111,7 @@ export const soakSection: Section = {
       }
       const url = `${web.url}?broker=${encodeURIComponent(ctx.broker.wsUrl)}&arm=${ARM}`;
       ctx.log(`soak: HUD at ${url}`);
-      await page.goto(url);
-      await hudReady(page);
-      const live = await until(
-        () =>
-          page.evaluate(() => {
-            const s = (
-              window as unknown as {
-                __armtwin: { store: { connection: string; counters: { messages: number } } };
-              }
-            ).__armtwin.store;
-            return s.connection === 'connected' && s.counters.messages > 100;
-          }),
-        30_000,
-        250,
-      );
-      if (!live) throw new Error('HUD never received the state stream');
+      await openLiveHud(page, url, 100);
       // Let the middleware store a few seconds, then open History (it loads the last 5 min).
       await sleep(3000);
       await page.locator('details.history > summary').click();

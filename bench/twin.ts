@@ -9,13 +9,13 @@
  */
 import path from 'node:path';
 import { connectMqtt, startSim } from './lib/stack.ts';
-import { sleep, until } from './lib/proc.ts';
+import { sleep } from './lib/proc.ts';
 import { serveStatic } from './lib/static.ts';
 import { installProbe, type ProbeResult } from './lib/page-probe.ts';
 import { summarize } from './lib/stats.ts';
 import { fmt, type BenchContext, type Row, type Section, type SectionOutput } from './lib/types.ts';
 import { startTrajectory, type Trajectory } from './lib/trajectory.ts';
-import { hudPrecheck, hudReady, openHudBrowser } from './lib/hud-browser.ts';
+import { hudPrecheck, openHudBrowser, openLiveHud } from './lib/hud-browser.ts';
 import { StreamRecorder } from './lib/stream-recorder.ts';
 
 const SERVOS = 6;
@@ -82,22 +82,7 @@ export const twinSection: Section = {
           for (const mode of MODES) {
             const url = `${web.url}?broker=${encodeURIComponent(ctx.broker.wsUrl)}&arm=${arm}&twin=${mode}`;
             ctx.log(`twin: ${rate} Hz, ${mode}, ${windowS} s`);
-            await page.goto(url);
-            await hudReady(page);
-            const live = await until(
-              () =>
-                page.evaluate(() => {
-                  const s = (
-                    window as unknown as {
-                      __armtwin: { store: { connection: string; counters: { messages: number } } };
-                    }
-                  ).__armtwin.store;
-                  return s.connection === 'connected' && s.counters.messages > 50;
-                }),
-              30_000,
-              250,
-            );
-            if (!live) throw new Error('HUD never received the state stream');
+            await openLiveHud(page, url, 50);
             if (!(await page.evaluate(installProbe, Math.round(windowS * 240))))
               throw new Error('window.__armtwin has no store/viewer.renderer to probe');
             await sleep(2000);

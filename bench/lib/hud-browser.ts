@@ -7,6 +7,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import type { Browser, CDPSession, Page } from 'playwright-core';
 import { CHROMIUM_ARGS, CHROMIUM_PATH } from '../../tests/helpers/chromium.ts';
+import { until } from './proc.ts';
 import { REPO } from './stack.ts';
 
 /** The built HUD the sections serve. */
@@ -59,4 +60,24 @@ export function hudReady(page: Page): Promise<unknown> {
     null,
     { timeout: 60_000 },
   );
+}
+
+/** Opens the HUD at `url` and waits until it is connected and has taken in `minMessages` state messages. */
+export async function openLiveHud(page: Page, url: string, minMessages: number): Promise<void> {
+  await page.goto(url);
+  await hudReady(page);
+  const live = await until(
+    () =>
+      page.evaluate((min) => {
+        const s = (
+          window as unknown as {
+            __armtwin: { store: { connection: string; counters: { messages: number } } };
+          }
+        ).__armtwin.store;
+        return s.connection === 'connected' && s.counters.messages > min;
+      }, minMessages),
+    30_000,
+    250,
+  );
+  if (!live) throw new Error('HUD never received the state stream');
 }
