@@ -84,18 +84,21 @@ interface Sample {
   dt: number;
 }
 
+/** A servo's state before its first report. */
+const freshThermalState = (): ThermalState => ({
+  measuredC: NaN,
+  predictedC: NaN,
+  measuredRate: NaN,
+  modelRate: NaN,
+  unexplainedRate: NaN,
+  secondsToLimit: Infinity,
+  speedDegS: 0,
+  warning: false,
+  warnedAt: NaN,
+});
+
 class ServoWatch {
-  readonly state: ThermalState = {
-    measuredC: NaN,
-    predictedC: NaN,
-    measuredRate: NaN,
-    modelRate: NaN,
-    unexplainedRate: NaN,
-    secondsToLimit: Infinity,
-    speedDegS: 0,
-    warning: false,
-    warnedAt: NaN,
-  };
+  readonly state: ThermalState = freshThermalState();
   private samples: Sample[] = [];
   private lastAngle = NaN;
   private path = 0;
@@ -207,17 +210,7 @@ class ServoWatch {
     this.lastAngle = NaN;
     this.path = 0;
     this.overSince = this.calmSince = NaN;
-    Object.assign(this.state, {
-      measuredC: NaN,
-      predictedC: NaN,
-      measuredRate: NaN,
-      modelRate: NaN,
-      unexplainedRate: NaN,
-      secondsToLimit: Infinity,
-      speedDegS: 0,
-      warning: false,
-      warnedAt: NaN,
-    });
+    Object.assign(this.state, freshThermalState());
   }
 }
 
