@@ -13,96 +13,33 @@
  */
 import fs from 'node:fs';
 import path from 'node:path';
-import { angleFromPwm } from '@armtwin/protocol';
-import { DEMO_ARM } from '@armtwin/ik';
-import { connectMqtt, startSim } from './lib/stack.ts';
 import { sleep } from './lib/proc.ts';
 import { serveStatic } from './lib/static.ts';
-import { blankPageFrames, installProbe, type ProbeResult } from './lib/page-probe.ts';
+import { blankPageFrames, type ProbeResult } from './lib/page-probe.ts';
 import { round, summarize } from './lib/stats.ts';
 import { barChartSvg } from './lib/svg.ts';
 import { fmt, type BenchContext, type Row, type Section, type SectionOutput } from './lib/types.ts';
-import { CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
-import { startTrajectory, type Trajectory } from './lib/trajectory.ts';
-import { startStopProbe } from './lib/estop-probe.ts';
-import { hudPrecheck, openHudBrowser, openLiveHud } from './lib/hud-browser.ts';
+import { SCRIPTED_TRAJECTORY, groupMove, startTrajectory } from './lib/trajectory.ts';
+import { breakdownSummary, startStopProbe, STOP_FRAME } from './lib/estop-probe.ts';
+import { openBareStopPage } from './lib/bare-stop-page.ts';
+import { hudPrecheck, openHudBrowser } from './lib/hud-browser.ts';
+import { openProbedHud, startProbe, stopProbe } from './lib/probed-hud.ts';
+import { startRecordedArm } from './lib/recorded-arm.ts';
+import type { StreamRecorder } from './lib/stream-recorder.ts';
+import { frameErrors } from './lib/fidelity.ts';
+import { cdpMetrics, webglRendererName } from './lib/browser-metrics.ts';
 
 const ARM = 'bench-hud';
 const SERVOS = 6;
-/** The scripted trajectory: poses (µs, servos 000–005) visited in turn, each move 1000 ms. */
-const POSES = [
-  [1500, 1500, 1500, 1500, 1500, 1500],
-  [1900, 1300, 1200, 1700, 1650, 1800],
-  [1100, 1700, 1800, 1300, 1350, 1600],
-  [1500, 1200, 1400, 1900, 1500, 1500],
-];
-const MOVE_MS = 1000;
-const TRAJECTORY: Trajectory = { poses: POSES, moveMs: MOVE_MS, stepMs: 1500 };
+/** The scripted trajectory (./lib/trajectory.ts), shared with the twin section. */
+const TRAJECTORY = SCRIPTED_TRAJECTORY;
 
-/** The simulator's status stream as received by this process: stamps, pulses, arrival times. */
-class Recorder {
-  readonly stamp: number[] = [];
-  readonly pwm: number[] = [];
-  readonly arrivalMinusStamp: number[] = [];
-  private readonly re = /\$TIM:(\d+)!\{((?:#\d{3}P\d{4}!)+)\}/g;
-  on = false;
-
-  feed(payload: Buffer): void {
-    if (!this.on || this.stamp.length > 500_000) return;
-    const at = performance.timeOrigin + performance.now();
-    const text = payload.toString('latin1');
-    for (const m of text.matchAll(this.re)) {
-      const t = Number(m[1]);
-      const ps = [...m[2]!.matchAll(/#(\d{3})P(\d{4})!/g)];
-      if (ps.length !== SERVOS) continue;
-      this.stamp.push(t);
-      for (const p of ps) this.pwm.push(Number(p[2]));
-      this.arrivalMinusStamp.push(at - t);
-    }
-  }
-
-  /** Servo i's angle at epoch ms t, linear between samples; NaN outside the record. */
-  angleAt(i: number, t: number): number {
-    const s = this.stamp;
-    if (!(t >= s[0]! && t <= s[s.length - 1]!)) return NaN;
-    let lo = 0;
-    let hi = s.length - 1;
-    while (hi - lo > 1) {
-      const mid = (lo + hi) >> 1;
-      if (s[mid]! <= t) lo = mid;
-      else hi = mid;
-    }
-    const a = this.pwm[lo * SERVOS + i]!;
-    const b = this.pwm[hi * SERVOS + i]!;
-    const f = s[hi] === s[lo] ? 0 : (t - s[lo]!) / (s[hi]! - s[lo]!);
-    return angleFromPwm(a + (b - a) * f, DEMO_ARM.servos[i]!.polarity);
-  }
-}
-
-function analyse(p: ProbeResult, rec: Recorder) {
-  const n = p.servoCount;
-  const err: number[] = [];
-  const holdErr: number[] = [];
-  const latency: number[] = [];
-  let prevStamp = NaN;
-  for (let k = 0; k < p.frames; k++) {
-    const w = p.wall[k]!;
-    const s = p.stamp[k]!;
-    if (s > prevStamp || (prevStamp !== prevStamp && s === s)) latency.push(w - s);
-    prevStamp = s;
-    for (let i = 0; i < Math.min(n, SERVOS); i++) {
-      const truth = rec.angleAt(i, w);
-      const shown = p.angles[k * n + i]!;
-      if (!Number.isFinite(truth) || !Number.isFinite(shown)) continue;
-      err.push(Math.abs(shown - truth));
-      const held = rec.angleAt(i, s);
-      if (Number.isFinite(held)) holdErr.push(Math.abs(held - truth));
-    }
-  }
+function analyse(p: ProbeResult, rec: StreamRecorder) {
+  const e = frameErrors(p, rec, SERVOS);
   return {
-    err: summarize(err),
-    holdErr: summarize(holdErr),
-    latency: summarize(latency),
+    err: summarize(e.drawn),
+    holdErr: summarize(e.newest),
+    latency: summarize(e.latency),
     transport: summarize(rec.arrivalMinusStamp),
   };
 }
@@ -117,27 +54,18 @@ export const browserSection: Section = {
     const windowS = ctx.quick ? 15 : 45;
     const blankS = ctx.quick ? 4 : 8;
     const web = await serveStatic(ctx.hudDist);
-    const sim = await startSim(ctx.broker.url, ARM, 250, path.join(ctx.logDir, 'browser-sim.log'));
-    const client = await connectMqtt(ctx.broker.url, `bench-hud-${process.pid}`);
-    const rec = new Recorder();
-    client.on('message', (_t, payload) => rec.feed(payload));
-    await client.subscribeAsync(`arm/${ARM}/status`, { qos: 0 });
-    const { browser, page, cdp, pageErrors } = await openHudBrowser();
+    const recorded = await startRecordedArm(ctx, {
+      arm: ARM,
+      rateHz: 250,
+      servos: SERVOS,
+      logName: 'browser-sim.log',
+      clientId: `bench-hud-${process.pid}`,
+    });
+    const { client, rec } = recorded;
+    const { browser, page, cdp, pageErrors } = await openHudBrowser(ctx.chromiumArgs);
     let stopTrajectory = () => {};
     try {
-      const taskS = async () => {
-        const { metrics } = (await cdp.send('Performance.getMetrics')) as {
-          metrics: { name: string; value: number }[];
-        };
-        const get = (k: string) => metrics.find((m) => m.name === k)?.value ?? NaN;
-        return {
-          task: get('TaskDuration'),
-          script: get('ScriptDuration'),
-          layout: get('LayoutDuration'),
-          style: get('RecalcStyleDuration'),
-          at: performance.now(),
-        };
-      };
+      const taskS = () => cdpMetrics(cdp);
 
       // Baseline: a blank page in the same browser.
       ctx.log(`browser: blank page ${blankS} s`);
@@ -151,9 +79,7 @@ export const browserSection: Section = {
       // The HUD.
       const url = `${web.url}?broker=${encodeURIComponent(ctx.broker.wsUrl)}&arm=${ARM}`;
       ctx.log(`browser: HUD at ${url}`);
-      await openLiveHud(page, url, 100);
-      if (!(await page.evaluate(installProbe, Math.round(windowS * 240))))
-        throw new Error('window.__armtwin has no store/viewer.renderer to probe');
+      await openProbedHud(page, url, 100, Math.round(windowS * 240));
       await sleep(2000); // settle (resolution governor, JIT)
 
       // The scripted trajectory and the measurement window.
@@ -161,15 +87,11 @@ export const browserSection: Section = {
       rec.on = true;
       await sleep(200);
       const m0 = await taskS();
-      await page.evaluate(() =>
-        (window as unknown as { __benchProbe: { start(): void } }).__benchProbe.start(),
-      );
+      await startProbe(page);
       stopTrajectory = startTrajectory(client, ARM, TRAJECTORY);
       await sleep(windowS * 1000);
       stopTrajectory();
-      const probe = await page.evaluate(() =>
-        (window as unknown as { __benchProbe: { stop(): ProbeResult } }).__benchProbe.stop(),
-      );
+      const probe = await stopProbe(page);
       const m1 = await taskS();
       await sleep(300); // the recorder must cover the last frame's instant
       rec.on = false;
@@ -183,20 +105,33 @@ export const browserSection: Section = {
       const estopN = ctx.quick ? 40 : 60;
       let pose = 0;
       const rearm = async () => {
-        const p = POSES[++pose % POSES.length]!;
-        await client.publishAsync(
-          `arm/${ARM}/control`,
-          `{${p.map((v, i) => `#00${i}P${v}T${MOVE_MS}!`).join('')}}`,
-          { qos: 1 },
-        );
+        const p = TRAJECTORY.poses[++pose % TRAJECTORY.poses.length]!;
+        await client.publishAsync(`arm/${ARM}/control`, groupMove(p, TRAJECTORY.moveMs), {
+          qos: 1,
+        });
       };
       ctx.log(`browser: emergency stop, ${estopN} clicks, ${estopN} Escape presses`);
-      const estop = {
-        click: summarize(await stops.measure('click', estopN, rearm)),
-        escape: summarize(await stops.measure('escape', estopN, rearm)),
-        node: summarize(await stops.measure('node', estopN, rearm)),
-      };
+      const click = summarize(await stops.measure('click', estopN, rearm));
+      const clickParts = breakdownSummary(stops.breakdown());
+      const escape = summarize(await stops.measure('escape', estopN, rearm));
+      const escapeParts = breakdownSummary(stops.breakdown());
+      const estop = { click, escape, node: summarize(await stops.measure('node', estopN, rearm)) };
       await stops.close();
+      // The floor: the same inputs on a bare page (one button, one WebSocket) while the HUD runs.
+      ctx.log(`browser: the same on a bare page`);
+      const barePage = await openBareStopPage(
+        browser,
+        ctx.broker.wsUrl,
+        `arm/${ARM}/control`,
+        STOP_FRAME,
+      );
+      const bareStops = await startStopProbe(ctx.broker.url, ARM, barePage, client);
+      const bare = {
+        click: summarize(await bareStops.measure('click', estopN, rearm)),
+        escape: summarize(await bareStops.measure('escape', estopN, rearm)),
+      };
+      await bareStops.close();
+      await barePage.context().close();
       stopTrajectory();
       const estopLost = {
         click: estopN - estop.click.n,
@@ -210,15 +145,7 @@ export const browserSection: Section = {
       const blankFps = blank.raf / (blank.windowMs / 1000);
       // "2 frames" of the display: the blank page's rAF interval (vsync), not the HUD's own.
       const frameMs = 1000 / blankFps;
-      const webgl = await page.evaluate(() => {
-        const gl = document.createElement('canvas').getContext('webgl');
-        const ext = gl?.getExtension('WEBGL_debug_renderer_info');
-        const name = gl
-          ? String(gl.getParameter(ext ? ext.UNMASKED_RENDERER_WEBGL : gl.RENDERER))
-          : 'no WebGL';
-        gl?.getExtension('WEBGL_lose_context')?.loseContext();
-        return name;
-      });
+      const webgl = await webglRendererName(page);
       const longMax = Math.max(0, ...probe.longTasks.map((t) => t.duration));
       const rows: Row[] = [
         {
@@ -253,14 +180,14 @@ export const browserSection: Section = {
         {
           figure: 'Emergency stop: click → `#255PDST!` at a subscriber, ms (p50 / p99)',
           value: `${fmt(estop.click.p50, 1)} / ${fmt(estop.click.p99, 1)} (n = ${estop.click.n}${estopLost.click ? `, ${estopLost.click} never arrived` : ''})`,
-          baseline: `Node publisher → subscriber ${fmt(estop.node.p50, 1)} / ${fmt(estop.node.p99, 1)}; issue 17 before: 13.6 / 21.1`,
+          baseline: `bare page ${fmt(bare.click.p50, 1)} / ${fmt(bare.click.p99, 1)}; Node publisher → subscriber ${fmt(estop.node.p50, 1)} / ${fmt(estop.node.p99, 1)}; issue 17 before: 13.6 / 21.1`,
           target: 'p99 ≤ 10 ms',
           met: estop.click.p99 <= 10 && estopLost.click === 0,
         },
         {
           figure: 'Emergency stop: Escape key → `#255PDST!` at a subscriber, ms (p50 / p99)',
           value: `${fmt(estop.escape.p50, 1)} / ${fmt(estop.escape.p99, 1)} (n = ${estop.escape.n}${estopLost.escape ? `, ${estopLost.escape} never arrived` : ''})`,
-          baseline: `Node publisher → subscriber ${fmt(estop.node.p50, 1)} / ${fmt(estop.node.p99, 1)}; issue 17 before: 19.1 / 29.0`,
+          baseline: `bare page ${fmt(bare.escape.p50, 1)} / ${fmt(bare.escape.p99, 1)}; Node publisher → subscriber ${fmt(estop.node.p50, 1)} / ${fmt(estop.node.p99, 1)}; issue 17 before: 19.1 / 29.0`,
           target: 'p99 ≤ 10 ms',
           met: estop.escape.p99 <= 10 && estopLost.escape === 0,
         },
@@ -310,12 +237,12 @@ export const browserSection: Section = {
           windowS,
           blankS,
           viewport: '1280x800',
-          chromiumArgs: CHROMIUM_ARGS,
+          chromiumArgs: ctx.chromiumArgs,
           trajectory: TRAJECTORY,
           estop: {
             samples: estopN,
             method:
-              'Playwright mouse / keyboard through CDP: t0, then the press (mouse button, released at once; Escape key); Node subscriber on arm/{id}/control; arm re-armed by a move before each sample, 200–500 ms random pause',
+              'Playwright mouse / keyboard through CDP: t0, then the press (mouse button, released at once; Escape key); Node subscriber on arm/{id}/control; arm re-armed by a move before each sample, 200–500 ms random pause; in-page trace (event timeStamp, first listener, WebSocket.send) splits each sample (data.estopMs.parts); baseline: the same inputs on a bare page (bench/lib/bare-stop-page.ts) in the same browser while the HUD runs',
             panels: 'Health charts, History open (no storage in this section)',
           },
         },
@@ -353,14 +280,18 @@ export const browserSection: Section = {
               (window as unknown as { __armtwin?: { viewer?: { thread?: string } } }).__armtwin
                 ?.viewer?.thread ?? 'main',
           ),
-          estopMs: { ...estop, lost: estopLost },
+          estopMs: {
+            ...estop,
+            lost: estopLost,
+            parts: { click: clickParts, escape: escapeParts },
+            bare,
+          },
         },
       };
     } finally {
       stopTrajectory();
       await browser.close().catch(() => {});
-      await client.endAsync().catch(() => {});
-      await sim.stop();
+      await recorded.close();
       await web.close();
     }
   },

@@ -45,9 +45,9 @@ import {
 } from './lib/camera-report.ts';
 import { summarize } from './lib/stats.ts';
 import type { BenchContext, Section, SectionOutput } from './lib/types.ts';
-import { CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
 import { startTrajectory, type Trajectory } from './lib/trajectory.ts';
 import { HUD_DIST, hudPrecheck, hudReady, openHudBrowser } from './lib/hud-browser.ts';
+import { cdpMetrics, webglRendererName } from './lib/browser-metrics.ts';
 
 const ARM = 'bench-cam';
 const DIST = HUD_DIST;
@@ -62,20 +62,6 @@ const POSES = [
 ];
 const MOVE_MS = 1000;
 const TRAJECTORY: Trajectory = { poses: POSES, moveMs: MOVE_MS, stepMs: 1500 };
-
-interface Metrics {
-  task: number;
-  script: number;
-  at: number;
-}
-
-async function cdpMetrics(cdp: CDPSession): Promise<Metrics> {
-  const { metrics } = (await cdp.send('Performance.getMetrics')) as {
-    metrics: { name: string; value: number }[];
-  };
-  const get = (k: string) => metrics.find((m) => m.name === k)?.value ?? NaN;
-  return { task: get('TaskDuration'), script: get('ScriptDuration'), at: performance.now() };
-}
 
 /** One measurement window with `count` cameras of `kind` (0: the 3D view alone). */
 async function runWindow(
@@ -201,7 +187,7 @@ export const cameraSection: Section = {
     const web = await serveStatic(DIST);
     const sim = await startSim(ctx.broker.url, ARM, 50, path.join(ctx.logDir, 'camera-sim.log'));
     const client = await connectMqtt(ctx.broker.url, `bench-cam-${process.pid}`);
-    const { browser, page, cdp, pageErrors } = await openHudBrowser();
+    const { browser, page, cdp, pageErrors } = await openHudBrowser(ctx.chromiumArgs);
     let stopTrajectory = () => {};
     try {
       await page.goto(`${web.url}?broker=${encodeURIComponent(ctx.broker.wsUrl)}&arm=${ARM}`);
@@ -234,13 +220,7 @@ export const cameraSection: Section = {
           `Camera glass to glass (stripe → page frame), ${WIDTH}×${HEIGHT} @ ${FPS} fps, one camera, ${windowS} s per series`,
         ),
       );
-      const webgl = await page.evaluate(() => {
-        const gl = document.createElement('canvas').getContext('webgl');
-        const ext = gl?.getExtension('WEBGL_debug_renderer_info');
-        return gl
-          ? String(gl.getParameter(ext ? ext.UNMASKED_RENDERER_WEBGL : gl.RENDERER))
-          : 'no WebGL';
-      });
+      const webgl = await webglRendererName(page);
       return {
         rows: cameraRows(w),
         plots: [{ file, title: 'Camera glass to glass' }],
@@ -249,7 +229,7 @@ export const cameraSection: Section = {
           fps: FPS,
           windowS,
           viewport: '1280x800',
-          chromiumArgs: CHROMIUM_ARGS,
+          chromiumArgs: ctx.chromiumArgs,
           simRateHz: 50,
           trajectory: TRAJECTORY,
           server: 'one `armtwin camera --source testsrc --kinds <kind> --no-announce` per stream',

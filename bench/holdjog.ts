@@ -157,7 +157,7 @@ export const holdJogSection: Section = {
     const w = new Watch();
     client.on('message', (topic, payload) => w.feed(topic, payload.toString('latin1')));
     await client.subscribeAsync([`arm/${ARM}/status`, `arm/${ARM}/control`], { qos: 0 });
-    const { browser, page, pageErrors } = await openHudBrowser();
+    const { browser, page, pageErrors } = await openHudBrowser(ctx.chromiumArgs);
     try {
       await page.context().addInitScript({ content: GAMEPAD_INIT });
       await page.goto(

@@ -34,6 +34,7 @@ import { holdJogSection } from './holdjog.ts';
 import { handoverSection } from './handover.ts';
 import { soakSection } from './soak.ts';
 import { twinSection } from './twin.ts';
+import { CHROMIUM_ARGS, GPU_CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
 
 const SECTIONS: Section[] = [
   rttSection,
@@ -75,7 +76,8 @@ const USAGE = `usage: npm run bench [-- --quick] [-- --only ${SECTIONS.map((s) =
   --keep-logs  keep child-process logs (printed at the end)
   --no-md      do not rewrite BENCHMARKS.md (the JSON and SVGs are still written)
   --soak-minutes N  length of the soak (default 30); the soak runs only when named: --only soak
-  --hud-dist DIR    serve this built HUD instead of apps/web/dist (e.g. a copy of an older build)`;
+  --hud-dist DIR    serve this built HUD instead of apps/web/dist (e.g. a copy of an older build)
+  --gpu             page sections with hardware WebGL (Chromium on ANGLE/Vulkan) instead of SwiftShader`;
 
 function parseArgs(argv: string[]) {
   const o = {
@@ -85,12 +87,14 @@ function parseArgs(argv: string[]) {
     md: true,
     soakMinutes: 30,
     hudDist: HUD_DIST,
+    gpu: false,
   };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i]!;
     if (a === '--quick') o.quick = true;
     else if (a === '--keep-logs') o.keepLogs = true;
     else if (a === '--no-md') o.md = false;
+    else if (a === '--gpu') o.gpu = true;
     else if (a === '--soak-minutes' || a.startsWith('--soak-minutes=')) {
       const v = Number(a.includes('=') ? a.slice(15) : argv[++i]);
       if (!Number.isInteger(v) || v < 3)
@@ -150,6 +154,7 @@ async function main(): Promise<number> {
       log,
       hudDist: args.hudDist,
       soakMinutes: args.soakMinutes,
+      chromiumArgs: args.gpu ? GPU_CHROMIUM_ARGS : CHROMIUM_ARGS,
     };
     for (const s of sections) {
       const t0 = performance.now();

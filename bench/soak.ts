@@ -25,7 +25,6 @@ import { barChartSvg } from './lib/svg.ts';
 import { fmt, type BenchContext, type Row, type Section, type SectionOutput } from './lib/types.ts';
 import { startTrajectory, type Trajectory } from './lib/trajectory.ts';
 import { hudPrecheck, openHudBrowser, openLiveHud } from './lib/hud-browser.ts';
-import { CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
 
 const ARM = 'bench-soak';
 const FFMPEG = '/usr/bin/ffmpeg';
@@ -83,7 +82,7 @@ export const soakSection: Section = {
     const client = await connectMqtt(ctx.broker.url, `bench-soak-${process.pid}`);
     let camera: CameraServer | undefined;
     let stopTrajectory = () => {};
-    const { browser, page, cdp, pageErrors } = await openHudBrowser();
+    const { browser, page, cdp, pageErrors } = await openHudBrowser(ctx.chromiumArgs);
     try {
       stopTrajectory = startTrajectory(client, ARM, TRAJECTORY);
       if (fs.existsSync(FFMPEG) && !ctx.quick) {
@@ -256,7 +255,7 @@ export const soakSection: Section = {
           camera: camera ? 'mjpeg 640×480 15 fps testsrc, posed' : 'none',
           hudDist: path.relative(process.cwd(), dist) || dist,
           viewport: '1280x800',
-          chromiumArgs: CHROMIUM_ARGS,
+          chromiumArgs: ctx.chromiumArgs,
           trajectory: TRAJECTORY,
         },
         data: {

@@ -7,49 +7,59 @@
  * (./lib/page-probe.ts) records each rendered frame's wall time and drawn angles, this process
  * records the simulator's stream (its true trajectory) and publishes the scripted moves.
  */
+import fs from 'node:fs';
 import path from 'node:path';
-import { connectMqtt, startSim } from './lib/stack.ts';
 import { sleep } from './lib/proc.ts';
 import { serveStatic } from './lib/static.ts';
-import { installProbe, type ProbeResult } from './lib/page-probe.ts';
-import { summarize } from './lib/stats.ts';
+import type { ProbeResult } from './lib/page-probe.ts';
+import { round, summarize } from './lib/stats.ts';
 import { fmt, type BenchContext, type Row, type Section, type SectionOutput } from './lib/types.ts';
-import { startTrajectory, type Trajectory } from './lib/trajectory.ts';
-import { hudPrecheck, openHudBrowser, openLiveHud } from './lib/hud-browser.ts';
-import { StreamRecorder } from './lib/stream-recorder.ts';
+import { SCRIPTED_TRAJECTORY, groupMove, startTrajectory } from './lib/trajectory.ts';
+import { hudPrecheck, openHudBrowser } from './lib/hud-browser.ts';
+import { openProbedHud, startProbe, stopProbe } from './lib/probed-hud.ts';
+import { startRecordedArm } from './lib/recorded-arm.ts';
+import type { StreamRecorder } from './lib/stream-recorder.ts';
+import { frameErrors } from './lib/fidelity.ts';
 
 const SERVOS = 6;
-/** The browser section's scripted trajectory (bench/browser.ts). */
-const TRAJECTORY: Trajectory = {
-  poses: [
-    [1500, 1500, 1500, 1500, 1500, 1500],
-    [1900, 1300, 1200, 1700, 1650, 1800],
-    [1100, 1700, 1800, 1300, 1350, 1600],
-    [1500, 1200, 1400, 1900, 1500, 1500],
-  ],
-  moveMs: 1000,
-  stepMs: 1500,
-};
+/** The browser section's scripted trajectory (./lib/trajectory.ts). */
+const TRAJECTORY = SCRIPTED_TRAJECTORY;
 const RATES = [50, 250] as const;
 const MODES = ['predict', 'interpolate'] as const;
 
 function fidelity(p: ProbeResult, rec: StreamRecorder) {
+  const e = frameErrors(p, rec, SERVOS);
+  return { fidelityDeg: summarize(e.drawn), drawNewestDeg: summarize(e.newest) };
+}
+
+/**
+ * The frames with the largest error, each with where it fell: ms since the scripted move began
+ * (as this process heard it), the servo, drawn and true angles, and the newest report's age.
+ */
+function worstFrames(p: ProbeResult, rec: StreamRecorder, moves: number[], count: number) {
   const n = p.servoCount;
-  const err: number[] = [];
-  const newest: number[] = [];
+  const all: { err: number; k: number; i: number; truth: number; shown: number }[] = [];
   for (let k = 0; k < p.frames; k++) {
-    const w = p.wall[k]!;
-    const s = p.stamp[k]!;
     for (let i = 0; i < Math.min(n, SERVOS); i++) {
-      const truth = rec.angleAt(i, w);
+      const truth = rec.angleAt(i, p.wall[k]!);
       const shown = p.angles[k * n + i]!;
-      if (!Number.isFinite(truth) || !Number.isFinite(shown)) continue;
-      err.push(Math.abs(shown - truth));
-      const held = rec.angleAt(i, s);
-      if (Number.isFinite(held)) newest.push(Math.abs(held - truth));
+      if (Number.isFinite(truth) && Number.isFinite(shown))
+        all.push({ err: Math.abs(shown - truth), k, i, truth, shown });
     }
   }
-  return { fidelityDeg: summarize(err), drawNewestDeg: summarize(newest) };
+  all.sort((a, b) => b.err - a.err);
+  return all.slice(0, count).map(({ err, k, i, truth, shown }) => {
+    const w = p.wall[k]!;
+    const move = moves.filter((m) => m <= w).pop();
+    return {
+      servo: i,
+      errDeg: round(err, 3),
+      shownDeg: round(shown, 2),
+      trueDeg: round(truth, 2),
+      msIntoMove: move === undefined ? null : round(w - move, 1),
+      reportAgeMs: round(w - p.stamp[k]!, 1),
+    };
+  });
 }
 
 export const twinSection: Section = {
@@ -61,47 +71,51 @@ export const twinSection: Section = {
   async run(ctx: BenchContext): Promise<SectionOutput> {
     const windowS = ctx.quick ? 12 : 30;
     const web = await serveStatic(ctx.hudDist);
-    const { browser, page, pageErrors } = await openHudBrowser();
+    const { browser, page, pageErrors } = await openHudBrowser(ctx.chromiumArgs);
     const data: Record<string, unknown> = {};
     const rows: Row[] = [];
     try {
       for (const rate of RATES) {
         const arm = `bench-twin-${rate}`;
-        const sim = await startSim(
-          ctx.broker.url,
+        /** When each scripted move reached this process (epoch ms): where a frame is in its move. */
+        const moves: number[] = [];
+        const recorded = await startRecordedArm(ctx, {
           arm,
-          rate,
-          path.join(ctx.logDir, `twin-sim-${rate}.log`),
-        );
-        const client = await connectMqtt(ctx.broker.url, `bench-twin-${process.pid}-${rate}`);
-        const rec = new StreamRecorder(SERVOS);
-        client.on('message', (_t, payload) => rec.feed(payload));
-        await client.subscribeAsync(`arm/${arm}/status`, { qos: 0 });
+          rateHz: rate,
+          servos: SERVOS,
+          logName: `twin-sim-${rate}.log`,
+          clientId: `bench-twin-${process.pid}-${rate}`,
+          onControl: (r) => {
+            if (r.on) moves.push(performance.timeOrigin + performance.now());
+          },
+        });
+        const { client, rec } = recorded;
         let stop = () => {};
         try {
           for (const mode of MODES) {
             const url = `${web.url}?broker=${encodeURIComponent(ctx.broker.wsUrl)}&arm=${arm}&twin=${mode}`;
             ctx.log(`twin: ${rate} Hz, ${mode}, ${windowS} s`);
-            await openLiveHud(page, url, 50);
-            if (!(await page.evaluate(installProbe, Math.round(windowS * 240))))
-              throw new Error('window.__armtwin has no store/viewer.renderer to probe');
+            await openProbedHud(page, url, 50, Math.round(windowS * 240));
             await sleep(2000);
             rec.clear();
+            moves.length = 0;
             rec.on = true;
             await sleep(200);
-            await page.evaluate(() =>
-              (window as unknown as { __benchProbe: { start(): void } }).__benchProbe.start(),
-            );
+            await startProbe(page);
             stop = startTrajectory(client, arm, TRAJECTORY);
             await sleep(windowS * 1000);
             stop();
-            const probe = await page.evaluate(() =>
-              (window as unknown as { __benchProbe: { stop(): ProbeResult } }).__benchProbe.stop(),
-            );
+            const probe = await stopProbe(page);
             await sleep(300);
             rec.on = false;
             const f = fidelity(probe, rec);
-            data[`${mode}${rate}Hz`] = { ...f, frames: probe.frames };
+            const worst = worstFrames(probe, rec, moves, 5);
+            data[`${mode}${rate}Hz`] = { ...f, frames: probe.frames, worst };
+            // The raw record, for a closer look (kept with --keep-logs).
+            fs.writeFileSync(
+              path.join(ctx.logDir, `twin-${mode}${rate}Hz.json`),
+              JSON.stringify({ probe, stamp: rec.stamp, pwm: rec.pwm, moves }),
+            );
             rows.push({
               figure: `Twin fidelity at ${rate} Hz, ${mode === 'predict' ? 'predicted (default)' : 'seed’s interpolation'}: |sim − drawn| ° (mean / max)`,
               value: `${fmt(f.fidelityDeg.mean, 3)} / ${fmt(f.fidelityDeg.max, 2)} (${probe.frames} frames)`,
@@ -120,15 +134,14 @@ export const twinSection: Section = {
             // Back to rest before the next mode.
             await client.publishAsync(
               `arm/${arm}/control`,
-              `{${TRAJECTORY.poses[0]!.map((v, i) => `#00${i}P${v}T1000!`).join('')}}`,
+              groupMove(TRAJECTORY.poses[0]!, TRAJECTORY.moveMs),
               { qos: 1 },
             );
             await sleep(1200);
           }
         } finally {
           stop();
-          await client.endAsync().catch(() => {});
-          await sim.stop();
+          await recorded.close();
         }
       }
       return {

@@ -13,15 +13,88 @@ import type { MqttClient } from 'mqtt';
 import type { Page } from 'playwright-core';
 import { connectMqtt } from './stack.ts';
 import { sleep } from './proc.ts';
+import { summarize } from './stats.ts';
 
 export const STOP_FRAME = '#255PDST!';
 
 export type StopInput = 'click' | 'escape' | 'node';
 
+/**
+ * Where one page stop's time went, ms, from the bench's clock and the page's (both epoch ms:
+ * `performance.timeOrigin + performance.now()`, offset measured by `page.evaluate` round trips):
+ * `dispatch` t0 → the input event's `timeStamp` (Playwright → CDP → the browser made the event);
+ * `page` timeStamp → the stop's `WebSocket.send` (the event waiting for the page's main thread,
+ * and the handler); of that, `queue` timeStamp → the first listener on `window` (NaN when the
+ * HUD's own listener comes first, as for keydown); `wire` send → the subscriber (the browser's
+ * socket, the broker, the Node subscriber). NaN where the page saw nothing.
+ */
+export interface StopBreakdown {
+  total: number;
+  dispatch: number;
+  page: number;
+  queue: number;
+  wire: number;
+}
+
 export interface StopProbe {
   /** `n` samples of input → `#255PDST!` at the subscriber, ms (NaN for a stop that never came). */
   measure(input: StopInput, n: number, rearm: () => Promise<void>): Promise<number[]>;
+  /** The breakdown of the last `measure`'s page samples (empty for `node`). */
+  breakdown(): StopBreakdown[];
   close(): Promise<void>;
+}
+
+interface StopTrace {
+  /** The first pointerdown / keydown: its timeStamp and the listener's entry, page ms. */
+  event: { ts: number; at: number } | null;
+  /** When a WebSocket frame holding the stop was sent, page ms. */
+  sent: number;
+}
+type TracedWindow = Window & { __stopTrace?: StopTrace };
+
+/** Runs in the page: notes the first input event and the stop's `WebSocket.send`. */
+function installStopTrace(stop: string): void {
+  const w = window as TracedWindow;
+  if (w.__stopTrace) return;
+  const trace: StopTrace = { event: null, sent: NaN };
+  w.__stopTrace = trace;
+  const note = (e: Event): void => {
+    if (!trace.event) trace.event = { ts: e.timeStamp, at: performance.now() };
+  };
+  window.addEventListener('pointerdown', note, { capture: true });
+  window.addEventListener('keydown', note, { capture: true });
+  const send = WebSocket.prototype.send;
+  const code = Array.from(stop, (c) => c.charCodeAt(0));
+  const holds = (b: Uint8Array): boolean => {
+    outer: for (let i = 0; i + code.length <= b.length; i++) {
+      for (let j = 0; j < code.length; j++) if (b[i + j] !== code[j]) continue outer;
+      return true;
+    }
+    return false;
+  };
+  WebSocket.prototype.send = function (data) {
+    const at = performance.now();
+    const bytes =
+      data instanceof ArrayBuffer
+        ? new Uint8Array(data)
+        : ArrayBuffer.isView(data)
+          ? new Uint8Array(data.buffer, data.byteOffset, data.byteLength)
+          : null;
+    if (Number.isNaN(trace.sent) && bytes && bytes.length < 256 && holds(bytes)) trace.sent = at;
+    return send.call(this, data);
+  };
+}
+
+/** page epoch ms − bench epoch ms, the best of a few round trips. */
+async function pageClockOffset(page: Page): Promise<number> {
+  let best = { rtt: Infinity, off: 0 };
+  for (let i = 0; i < 10; i++) {
+    const a = performance.timeOrigin + performance.now();
+    const p = await page.evaluate(() => performance.timeOrigin + performance.now());
+    const b = performance.timeOrigin + performance.now();
+    if (b - a < best.rtt) best = { rtt: b - a, off: p - (a + b) / 2 };
+  }
+  return best.off;
 }
 
 export async function startStopProbe(
@@ -44,9 +117,15 @@ export async function startStopProbe(
   await sub.subscribeAsync(topic, { qos: 0 });
 
   const button = page.getByRole('button', { name: 'Emergency stop' });
+  await page.evaluate(installStopTrace, STOP_FRAME);
+  const origin = await page.evaluate(() => performance.timeOrigin);
+  let parts: StopBreakdown[] = [];
   return {
+    breakdown: () => parts,
     async measure(input, n, rearm) {
       const out: number[] = [];
+      parts = [];
+      const offset = await pageClockOffset(page);
       for (let i = 0; i < n; i++) {
         await rearm();
         await sleep(200 + Math.random() * 300);
@@ -54,6 +133,10 @@ export async function startStopProbe(
         const arrived = new Promise<number>((resolve) => {
           waiting = resolve;
           timer = setTimeout(() => resolve(NaN), 3000);
+        });
+        await page.evaluate(() => {
+          const t = (window as TracedWindow).__stopTrace;
+          if (t) Object.assign(t, { event: null, sent: NaN });
         });
         let t0: number;
         if (input === 'click') {
@@ -75,11 +158,38 @@ export async function startStopProbe(
         clearTimeout(timer);
         waiting = null;
         out.push(t1 - t0);
+        if (input !== 'node') {
+          const t = await page.evaluate(() => (window as TracedWindow).__stopTrace ?? null);
+          // Page ms → bench ms: page epoch minus the clocks' offset, minus the bench's origin.
+          const bench = (pageMs: number) => origin + pageMs - offset - performance.timeOrigin;
+          const ev = t?.event;
+          parts.push({
+            total: t1 - t0,
+            dispatch: ev ? bench(ev.ts) - t0 : NaN,
+            page: ev && t ? t.sent - ev.ts : NaN,
+            queue: ev && t && ev.at <= t.sent ? ev.at - ev.ts : NaN,
+            wire: t ? t1 - bench(t.sent) : NaN,
+          });
+        }
       }
       return out;
     },
     async close() {
       await sub.endAsync().catch(() => {});
     },
+  };
+}
+
+/** Each part's summary, and the slowest samples whole (where a slow stop's time went). */
+export function breakdownSummary(parts: StopBreakdown[], slowest = 5) {
+  const keys = ['total', 'dispatch', 'page', 'queue', 'wire'] as const;
+  const r = (v: number) => Math.round(v * 100) / 100;
+  return {
+    ...Object.fromEntries(keys.map((k) => [k, summarize(parts.map((p) => p[k]))])),
+    slowest: [...parts]
+      .filter((p) => Number.isFinite(p.total))
+      .sort((a, b) => b.total - a.total)
+      .slice(0, slowest)
+      .map((p) => Object.fromEntries(keys.map((k) => [k, r(p[k])]))),
   };
 }

@@ -29,12 +29,12 @@ export interface HudBrowser {
   pageErrors: string[];
 }
 
-export async function openHudBrowser(): Promise<HudBrowser> {
+export async function openHudBrowser(args: readonly string[] = CHROMIUM_ARGS): Promise<HudBrowser> {
   const { chromium } = await import('playwright-core');
   const browser = await chromium.launch({
     executablePath: CHROMIUM_PATH,
     headless: true,
-    args: CHROMIUM_ARGS,
+    args: [...args],
     timeout: 60_000,
   });
   try {

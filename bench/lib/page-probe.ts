@@ -29,6 +29,8 @@ export interface ProbeResult {
   /** Time spent inside renderer.render (WebGL submission, incl. waits on the GPU process). */
   renderMsTotal: number;
   renderMsMax: number;
+  /** Whose frames were recorded: the page's renderer, or the render worker's reports. */
+  drawnBy: 'main' | 'worker';
 }
 
 interface Hook {
@@ -43,6 +45,11 @@ interface Hook {
     renderedFrames: number;
     pixelRatio: number;
     renderHooks?: Set<(now: number) => void>;
+    thread?: 'main' | 'worker';
+    jointValues?(which?: 'robot'): number[];
+  };
+  robots?: {
+    active?: { spec?: { joints?: { scale: ArrayLike<number>; bias: ArrayLike<number> } } };
   };
 }
 interface Probe {
@@ -91,11 +98,18 @@ export function installProbe(maxFrames: number): boolean {
       }
     };
   }
-  const record = () => {
+  // A frame drawn by the render worker: its hook runs when the page hears of it (later, and the
+  // page may have sampled a newer pose since), with the worker's draw time and the joint values
+  // it drew; those are the frame's instant and angles (URDF value = scale·angle + bias).
+  const map = hook.robots?.active?.spec?.joints;
+  const fromWorker = viewer.thread === 'worker' && !!map && !!viewer.jointValues;
+  const record = (now?: number) => {
     if (!on || k >= maxFrames) return;
-    wall[k] = epoch();
+    wall[k] = fromWorker && now !== undefined ? performance.timeOrigin + now : epoch();
     stamp[k] = hooked ? store.lastStateStamp! : newest;
-    for (let i = 0; i < n; i++) angles[k * n + i] = store.rendered[i]!;
+    const drawn = fromWorker ? viewer.jointValues!('robot') : null;
+    for (let i = 0; i < n; i++)
+      angles[k * n + i] = drawn ? (drawn[i]! - map!.bias[i]!) / map!.scale[i]! : store.rendered[i]!;
     k++;
   };
   if (hooked) viewer.renderHooks!.add(record);
@@ -156,6 +170,7 @@ export function installProbe(maxFrames: number): boolean {
         servoCount: n,
         renderMsTotal: renderMs,
         renderMsMax: renderMax,
+        drawnBy: fromWorker ? 'worker' : 'main',
       };
     },
   };

@@ -15,6 +15,8 @@ export interface BenchContext {
   hudDist: string;
   /** Length of the soak section (`--soak-minutes`, default 30). */
   soakMinutes: number;
+  /** Chromium's flags for the page sections: software WebGL, or the GPU's with `--gpu`. */
+  chromiumArgs: readonly string[];
 }
 
 /** One line of the table: a figure, its baseline measured in the same run, and the target. */

@@ -6,33 +6,22 @@
  * asks; alice refuses, then grants; the arm follows bob's jog and not alice's page any more;
  * bob's page goes away and alice takes control again.
  */
-import fs from 'node:fs';
-import os from 'node:os';
-import path from 'node:path';
 import type { Browser, Page } from '@playwright/test';
 import { expect, shot, test, type HudWindow } from './fixtures.ts';
 import { ensureHudBuilt } from './support/build-hud.ts';
-import { startUp, ArmWatcher, demoPassword, type UpProcess } from './support/up.ts';
+import { startUpWithControlUsers, ArmWatcher, demoPassword, type UpProcess } from './support/up.ts';
 import { until } from './support/sim.ts';
-import { writeControlUsers } from '../integration/control-cases.ts';
 
 let up: UpProcess;
-let dir = '';
 
 // eslint-disable-next-line no-empty-pattern
 test.beforeAll(async ({}, testInfo) => {
   test.setTimeout(120_000);
   ensureHudBuilt();
-  dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-e2e-control-'));
-  up = await startUp(
-    path.join(testInfo.project.outputDir, `armtwin-up-control-${process.pid}.log`),
-    [],
-    writeControlUsers(dir, demoPassword),
-  );
+  up = await startUpWithControlUsers('control', testInfo.project.outputDir);
 });
 test.afterAll(async () => {
   await up?.stop();
-  if (dir) fs.rmSync(dir, { recursive: true, force: true });
 });
 
 async function pageAs(browser: Browser, user: string): Promise<Page> {

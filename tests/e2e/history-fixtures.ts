@@ -4,7 +4,7 @@
  * middleware as a child process (`node --import tsx apps/middleware/src/main.ts`, writing
  * every 200 ms), and the built HUD served with `/api/*` proxied to the middleware, as
  * `npm start` serves it (same origin, so the HUD's default API base `/api` works, no CORS).
- * Files that import this `test` get their own worker; ./hud.spec.ts keeps the plain stack.
+ * Files that import this `test` get their own worker; ./hud-*.spec.ts keep the plain stack.
  */
 import fs from 'node:fs';
 import os from 'node:os';

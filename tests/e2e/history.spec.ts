@@ -99,13 +99,14 @@ test('history: the panel shows what the simulator has just produced', async ({
   await openHistory(page);
   await expect.poll(() => chart(page, 'temp'), { timeout: 15_000 }).not.toBeNull();
   const temp = (await chart(page, 'temp'))!;
-  expect(temp.labels).toEqual(NAMES);
-  expect(Math.min(...temp.points)).toBeGreaterThan(0);
+  // The measured series first; the thermal model's predictions (dashed) follow.
+  expect(temp.labels.slice(0, NAMES.length)).toEqual(NAMES);
+  expect(Math.min(...temp.points.slice(0, NAMES.length))).toBeGreaterThan(0);
   expect(temp.max[2]).toBeGreaterThanOrEqual(60); // the overheating elbow
   expect(temp.max[0]).toBeLessThan(60);
   const volt = (await chart(page, 'volt'))!;
-  expect(volt.labels).toEqual(NAMES);
-  expect(Math.min(...volt.points)).toBeGreaterThan(0);
+  expect(volt.labels.slice(0, NAMES.length)).toEqual(NAMES);
+  expect(Math.min(...volt.points.slice(0, NAMES.length))).toBeGreaterThan(0);
 
   await page.getByLabel('Joint').selectOption('002');
   await expect
@@ -127,7 +128,9 @@ test('history: the panel shows what the simulator has just produced', async ({
   ]);
   expect(download.suggestedFilename()).toMatch(new RegExp(`^armtwin-${arm.id}-temp-.*\\.csv$`));
   const csv = fs.readFileSync(await download.path(), 'utf8').split('\r\n');
-  expect(csv[0]).toBe(`time_ms,time_utc,${NAMES.join(',')}`);
+  // The chart's columns: measured, then the thermal model's prediction of each servo.
+  const predictedNames = NAMES.map((n) => `predicted ${n}`);
+  expect(csv[0]).toBe(`time_ms,time_utc,${[...NAMES, ...predictedNames].join(',')}`);
   expect(csv.length).toBeGreaterThan(3);
 
   // The loaded range as MCAP, read back with Foxglove's own Python library: every servo's
@@ -189,8 +192,9 @@ test('history: servos stored by an earlier profile under this arm id are named, 
     .toContain('007');
   await openHistory(page);
   await expect.poll(() => chart(page, 'temp'), { timeout: 15_000 }).not.toBeNull();
-  expect((await chart(page, 'temp'))!.labels).toEqual(NAMES);
-  expect((await chart(page, 'volt'))!.labels).toEqual(NAMES);
+  const predicted = NAMES.map((n) => `predicted ${n}`);
+  expect((await chart(page, 'temp'))!.labels).toEqual([...NAMES, ...predicted]);
+  expect((await chart(page, 'volt'))!.labels).toEqual([...NAMES, ...predicted]);
   await expect(page.getByTestId('history-others')).toHaveText(
     `Not shown: servos 006, 007, recorded under ${arm.id} but not in its current profile (armtwin5).`,
   );
@@ -243,7 +247,7 @@ test('history: an API failure is shown as text, not a blank panel', async ({ hud
   );
   await openHistory(page);
   await expect(page.getByRole('alert').filter({ hasText: 'History is not available' })).toHaveCount(
-    3, // temperature, voltage, angle
+    4, // temperature, voltage, power (the thermal model), angle
   );
   await page.getByRole('tab', { name: 'Tracking, alarms & control' }).click();
   await expect(page.getByRole('alert').filter({ hasText: 'history needs storage' })).toHaveCount(3);

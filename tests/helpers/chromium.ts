@@ -13,3 +13,18 @@ export const CHROMIUM_ARGS = [
   '--disable-sync',
   '--no-first-run',
 ];
+
+/**
+ * The same with hardware WebGL, for the benchmark's page sections on a machine with a GPU
+ * (`npm run bench -- --gpu`): ANGLE on Vulkan gave an NVIDIA renderer in headless Chromium on an
+ * H100 machine (BENCHMARKS.md § On a GPU); `--use-angle=gl-egl` also did, plain `--use-gl=egl`
+ * did not.
+ */
+export const GPU_CHROMIUM_ARGS = [
+  ...CHROMIUM_ARGS.filter((a) => a !== '--disable-gpu'),
+  '--use-angle=vulkan',
+  '--enable-features=Vulkan,VulkanFromANGLE,DefaultANGLEVulkan',
+  '--disable-vulkan-surface',
+  '--ignore-gpu-blocklist',
+  '--enable-gpu',
+];

@@ -39,6 +39,7 @@ export const SUBSCRIBE_CASES: [User, string, string, boolean][] = [
   ['viewer', 'arm/+/control/+', 'arm/arm1/control/operator', false],
   ['viewer', 'arm/+/holder', 'arm/arm1/holder', true],
   ['viewer', 'arm/+/audit', 'arm/arm1/audit', true],
+  ['viewer', 'arm/+/alert', 'arm/arm1/alert', true],
   ['viewer', 'arm/+/claim/+', 'arm/arm1/claim/operator', false],
   ['viewer', 'arm/arm1/sim', 'arm/arm1/sim', false],
   ['viewer', 'arm/#', 'arm/arm1/control/operator', false],
@@ -110,6 +111,10 @@ export const PUBLISH_CASES: [User, string, boolean][] = [
   ['arm2', 'arm/arm2/status', true],
   ['middleware', 'arm/arm1/status', false],
   ['middleware', 'arm/arm1/control', false],
+  // The thermal watch's early warnings: the middleware's alone.
+  ['middleware', 'arm/arm1/alert', true],
+  ['operator', 'arm/arm1/alert', false],
+  ['arm1', 'arm/arm1/alert', false],
 ];
 
 /** Who reads each topic in the publish cases. */
@@ -153,6 +158,8 @@ function writerFor(topic: string): User {
   const kind = rest.join('/');
   // A per-user topic is its user's to write (docs/protocol.md § Control).
   if (/^(control|claim|override|request)\//.test(kind)) return rest[1] as User;
+  // The thermal model's early warnings are the middleware's (docs/protocol.md § A thermal model).
+  if (kind === 'alert') return 'middleware';
   // A camera's calibration is an operator's to write; the rest of the arm's topics its device's.
   return ['control', 'operator', 'request', 'sim'].includes(kind) || kind.endsWith('/calibration')
     ? 'operator'

@@ -5,6 +5,12 @@
  * history; the same `ThermalWatch` the HUD runs, fed the arm's own status stream with those
  * parameters, raises no warning over the whole ordinary run, and warns of an injected stall at
  * least 10 s before the servo reports 60 °C.
+ * The sim's heat runs `SCALE` times faster than the clock (`--thermal-time-scale`, with the
+ * health rate raised as much), so the servos warm and cool in seconds, not minutes; the motion,
+ * MQTT, the middleware and InfluxDB run in real time. The middleware fits on wall time (τ comes
+ * out `SCALE` times shorter); the watch is then fed the reports on the sim's thermal time (their
+ * times stretched by `SCALE`, the fitted τ and gain likewise), where its windows and the 10 s
+ * lead mean what they mean on a real arm.
  * (Five minutes of ordinary work and the overheat fault run in sim time in
  * packages/sim/test/sim-thermal.test.ts.)
  */
@@ -18,6 +24,7 @@ import {
   ThermalWatch,
   US_PER_DEG,
   type Frame,
+  type ThermalParams,
 } from '@armtwin/protocol';
 import { DEFAULT_SIM_MODEL_OPTIONS } from '../../packages/sim/src/options.ts';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
@@ -25,6 +32,8 @@ import { useMiddlewares } from '../helpers/use-middlewares.ts';
 import { armtwin, type Child } from './sim-helpers.ts';
 
 const ARM = 'thermal1';
+/** Heat runs this many times faster than the clock in the sim. */
+const SCALE = 4;
 const broker = useMosquitto();
 const influx = useInflux();
 const mws = useMiddlewares('mw-thermal', () => ({ mqttUrl: broker().url, influx: influx() }));
@@ -88,6 +97,18 @@ async function work(c: MqttClient, seconds: { sweep: number; random: number; res
   await sleep(seconds.rest * 1000);
 }
 
+/** Reports on the sim's thermal time: times stretched by SCALE from `t0`. */
+const onThermalTime = (reports: readonly Report[], t0: number): Report[] =>
+  reports.map((r) => ({ t: t0 + (r.t - t0) * SCALE, frames: r.frames }));
+
+/** Parameters fitted on wall time, on the sim's thermal time (motion looks SCALE× slower). */
+const onThermalParams = (p: ThermalParams): ThermalParams => ({
+  ...p,
+  tauS: p.tauS * SCALE,
+  gainCPerDegS: p.gainCPerDegS * SCALE,
+  sagVPerDegS: p.sagVPerDegS * SCALE,
+});
+
 /** Feeds reports to a watch: returns its events and when each servo first reported ≥ 60 °C. */
 function replay(watch: ThermalWatch, reports: readonly Report[], ids: readonly number[]) {
   const events: { t: number; id: number; event: string }[] = [];
@@ -130,13 +151,26 @@ describe('thermal model from the arm history (sim → Mosquitto → middleware �
         } else if (topic === `arm/${ARM}/online`) online = String(payload) === '1';
       });
       await client.subscribeAsync([`arm/${ARM}/status`, `arm/${ARM}/online`], { qos: 1 });
-      sim = armtwin(['sim', '--mqtt', broker().url, '--arm', ARM, '--rate', '50']);
+      sim = armtwin([
+        'sim',
+        '--mqtt',
+        broker().url,
+        '--arm',
+        ARM,
+        '--rate',
+        '50',
+        '--thermal-time-scale',
+        String(SCALE),
+        '--health-rate',
+        String(2 * SCALE),
+      ]);
       for (let i = 0; i < 150 && !online; i++) await sleep(100);
       expect(online).toBe(true);
 
       // Ordinary work, then the model is fitted from what the middleware stored.
       const start = Date.now();
-      await work(client, { sweep: 25, random: 25, rest: 25 });
+      // (On thermal time: 40 s of sweeps, 40 s of random moves, 40 s of rest.)
+      await work(client, { sweep: 10, random: 10, rest: 10 });
       const fitStop = Date.now();
       await sleep(1500); // the middleware's last flush
       const url = `http://127.0.0.1:${mw.port}/api/history/thermal-model?arm=${ARM}&start=${start}&stop=${fitStop}`;
@@ -147,7 +181,7 @@ describe('thermal model from the arm history (sim → Mosquitto → middleware �
       const o = DEFAULT_SIM_MODEL_OPTIONS;
       for (const s of answer.servos.slice(1, 3)) {
         const i = Number(s.id);
-        const tau = o.thermalTauMs / 1000;
+        const tau = o.thermalTauMs / 1000 / SCALE;
         const rest = o.ambientC + o.degPerAmp * o.holdAmps[i]!;
         const gain = (o.degPerAmp * o.moveAmps) / o.arm.servos[i]!.maxSpeedDegPerS;
         console.log(
@@ -162,7 +196,7 @@ describe('thermal model from the arm history (sim → Mosquitto → middleware �
       }
 
       // More ordinary work (different moves), then a stall of the shoulder that pushes.
-      await work(client, { sweep: 10, random: 15, rest: 25 });
+      await work(client, { sweep: 4, random: 6, rest: 6 });
       const normalEnd = reports.length;
       await client.publishAsync(`arm/${ARM}/sim`, JSON.stringify({ fault: 'stall', id: 1 }), {
         qos: 1,
@@ -178,17 +212,19 @@ describe('thermal model from the arm history (sim → Mosquitto → middleware �
       expect(hot()).toBe(true);
 
       // The watch the HUD runs, with the fitted parameters, over everything the arm reported.
-      const watch = new ThermalWatch(answer.servos.map((s) => s.params));
-      const normal = replay(watch, reports.slice(0, normalEnd), ids);
+      const watch = new ThermalWatch(answer.servos.map((s) => onThermalParams(s.params)));
+      const stretched = onThermalTime(reports, reports[0]!.t);
+      const normal = replay(watch, stretched.slice(0, normalEnd), ids);
       expect(normal.events).toEqual([]);
-      const stalled = replay(watch, reports.slice(normalEnd), ids);
+      const stalled = replay(watch, stretched.slice(normalEnd), ids);
       const raised = stalled.events.find((e) => e.id === 1 && e.event === 'raised');
       expect(raised).toBeDefined();
       const crossed = stalled.crossed.get(1)!;
       const lead = crossed - raised!.t;
       console.log(
-        `stall (InfluxDB-fitted model, live stream): warned ${lead / 1000} s before servo 001 reported 60 °C; ` +
-          `${normal.events.length} warnings in ${((reports[normalEnd - 1]!.t - reports[0]!.t) / 1000).toFixed(0)} s of ordinary work`,
+        `stall (InfluxDB-fitted model, live stream, thermal time ×${SCALE}): warned ${lead / 1000} s ` +
+          `(${lead / SCALE / 1000} s wall) before servo 001 reported 60 °C; ${normal.events.length} warnings in ` +
+          `${((stretched[normalEnd - 1]!.t - stretched[0]!.t) / 1000).toFixed(0)} s of ordinary work`,
       );
       expect(lead).toBeGreaterThanOrEqual(10_000);
       expect(stalled.events.filter((e) => e.id !== 1)).toEqual([]);

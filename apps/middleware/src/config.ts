@@ -4,7 +4,6 @@
  */
 import { z } from 'zod';
 import {
-  DEFAULT_BROKER_LIST_OPTIONS,
   MAX_PAYLOAD_BYTES,
   MQTT_KEEPALIVE_S,
   MQTT_RECONNECT_MS,
@@ -30,8 +29,6 @@ export interface MiddlewareConfig {
   mqttKeepaliveS: number;
   /** MQTT_RECONNECT_MS: reconnect period, ms. */
   mqttReconnectMs: number;
-  /** MQTT_PROBE_MS: while on a fall-back broker, how often the first is probed, ms. */
-  mqttProbeMs: number;
   /** MQTT_SHARE_GROUP: '' = plain subscription; else `$share/<group>/arm/+/…`. */
   mqttShareGroup: string;
   /** INFLUX_URL: '' = run without storage. */
@@ -84,6 +81,15 @@ export interface MiddlewareConfig {
   usersFile: string;
   /** MAX_PAYLOAD_BYTES: a bigger MQTT message is refused whole (counted as `oversize`). */
   maxPayloadBytes: number;
+  /**
+   * THERMAL_WATCH: run the thermal model's watch over every arm's status stream and publish and
+   * store its early warnings (`arm/{id}/alert`, docs/protocol.md § A thermal model of each
+   * servo). Needs storage (the models are fitted from it); off with a share group (each instance
+   * would see only part of a stream).
+   */
+  thermalWatch: boolean;
+  /** THERMAL_REFIT_MS: how often each arm's thermal models are refitted from its history, ms. */
+  thermalRefitMs: number;
   /** LOG_LEVEL: pino level. */
   logLevel: 'fatal' | 'error' | 'warn' | 'info' | 'debug' | 'trace' | 'silent';
 }
@@ -96,7 +102,6 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   mqttQos: 1,
   mqttKeepaliveS: MQTT_KEEPALIVE_S,
   mqttReconnectMs: MQTT_RECONNECT_MS,
-  mqttProbeMs: DEFAULT_BROKER_LIST_OPTIONS.probeMs,
   mqttShareGroup: '',
   influxUrl: '',
   influxToken: '',
@@ -118,6 +123,8 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   apiToken: '',
   usersFile: '',
   maxPayloadBytes: MAX_PAYLOAD_BYTES,
+  thermalWatch: true,
+  thermalRefitMs: 5 * 60_000,
   logLevel: 'info',
 };
 
@@ -130,7 +137,6 @@ export const CONFIG_ENV: Record<keyof MiddlewareConfig, string> = {
   mqttQos: 'MQTT_QOS',
   mqttKeepaliveS: 'MQTT_KEEPALIVE_S',
   mqttReconnectMs: 'MQTT_RECONNECT_MS',
-  mqttProbeMs: 'MQTT_PROBE_MS',
   mqttShareGroup: 'MQTT_SHARE_GROUP',
   influxUrl: 'INFLUX_URL',
   influxToken: 'INFLUX_TOKEN',
@@ -152,6 +158,8 @@ export const CONFIG_ENV: Record<keyof MiddlewareConfig, string> = {
   apiToken: 'API_TOKEN',
   usersFile: 'ARMTWIN_USERS',
   maxPayloadBytes: 'MAX_PAYLOAD_BYTES',
+  thermalWatch: 'THERMAL_WATCH',
+  thermalRefitMs: 'THERMAL_REFIT_MS',
   logLevel: 'LOG_LEVEL',
 };
 
@@ -182,7 +190,6 @@ const SCHEMA = z.object({
   mqttQos: z.enum(['0', '1']).transform((q) => Number(q) as 0 | 1),
   mqttKeepaliveS: int(0, 65535),
   mqttReconnectMs: int(10, 3_600_000),
-  mqttProbeMs: int(100, 3_600_000),
   mqttShareGroup: z.string().regex(/^[^/+#]*$/, 'must not contain "/", "+" or "#"'),
   influxUrl: z.union([z.literal(''), url(/^https?:$/)]),
   influxToken: z.string(),
@@ -206,6 +213,8 @@ const SCHEMA = z.object({
   apiToken: z.string().regex(/^[\x21-\x7e]*$/, 'printable ASCII, no spaces'),
   usersFile: z.string(),
   maxPayloadBytes: int(64, 268_435_455),
+  thermalWatch: z.enum(['true', 'false', '1', '0']).transform((b) => b === 'true' || b === '1'),
+  thermalRefitMs: int(1000, 86_400_000),
   logLevel: z.enum(['fatal', 'error', 'warn', 'info', 'debug', 'trace', 'silent']),
 });
 

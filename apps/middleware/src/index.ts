@@ -3,7 +3,6 @@
  * endpoints. The orchestrator (`npm start`) and the tests call this; `main.ts` is the CLI.
  */
 import http from 'node:http';
-import type { BrokerClient } from '@armtwin/link';
 import { describeBroker, redactBrokerUrl } from '@armtwin/protocol';
 import { LoginThrottle, loadUsers } from '@armtwin/auth';
 import { ConfigError, influxSource, type MiddlewareConfig } from './config.ts';
@@ -17,6 +16,7 @@ import { Metrics } from './metrics.ts';
 import { startMqtt, type ConnectFn } from './mqtt.ts';
 import { SYSTEM_CLOCK, type Clock } from './shipper.ts';
 import { Storage } from './storage.ts';
+import { startThermalAlerts } from './thermal-alerts-run.ts';
 
 export {
   loadConfig,
@@ -110,7 +110,25 @@ export async function startMiddleware(
   }
   metrics.storageEnabled = storage !== null;
 
-  const client: BrokerClient = startMqtt(
+  // The thermal model's early warnings (docs/protocol.md § A thermal model of each servo); it
+  // fits from the history, so it needs storage.
+  const heat =
+    storage && config.influxUrl && config.thermalWatch && !config.mqttShareGroup
+      ? startThermalAlerts(
+          { refitMs: config.thermalRefitMs },
+          {
+            reader: historyReader(influxSource(config, 30_000), config.influxQueryLanguage),
+            store: (lines) => storage?.add(lines),
+            clock: ingest.clock,
+            publish: (topic, payload) => client.publish(topic, payload, { qos: 1 }),
+            now,
+            log,
+            once,
+          },
+        )
+      : null;
+
+  const client = startMqtt(
     {
       url: config.mqttUrl,
       username: config.mqttUsername,
@@ -119,13 +137,13 @@ export async function startMiddleware(
       qos: config.mqttQos,
       keepaliveS: config.mqttKeepaliveS,
       reconnectMs: config.mqttReconnectMs,
-      probeMs: config.mqttProbeMs,
       shareGroup: config.mqttShareGroup,
     },
     {
       onMessage: (topic, payload) => {
         const lines = ingest.handle(topic, payload, now());
         storage?.add(lines);
+        heat?.handle(topic, payload);
       },
       onConnect: () => {
         metrics.mqttConnected = true;
@@ -257,6 +275,7 @@ export async function startMiddleware(
       if (stopped) return;
       stopped = true;
       if (pingTimer) clearInterval(pingTimer);
+      heat?.stop();
       await new Promise<void>((resolve) => {
         const t = setTimeout(resolve, 2000);
         client.end(storage?.gate() != null, {}, () => (clearTimeout(t), resolve()));

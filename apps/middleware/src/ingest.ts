@@ -40,6 +40,7 @@ import {
   positionLine,
   servoSeries,
   SeriesClock,
+  type Micros,
 } from './points.ts';
 
 /** `arm/{id}/audit`: the controller's control events, stored as measurement `audit`. */
@@ -193,33 +194,35 @@ export class Ingest {
       return;
     }
     const ms = f.time ?? this.arrival;
+    // A stamped report received twice is one report (SeriesClock); unstamped ones are not.
+    const stamped = f.time !== undefined;
     const arm = this.arm;
     switch (f.type) {
       case 'position': {
         const s = servoSeries(arm, f.id);
-        this.out.push(positionLine(s, f, this.clock.next(s, ms * 1000)));
+        this.point(s, ms, stamped, (t) => positionLine(s, f, t));
         return;
       }
       case 'angle': {
         const s = servoSeries(arm, f.id);
-        this.out.push(angleLine(s, f, this.clock.next(s, ms * 1000)));
+        this.point(s, ms, stamped, (t) => angleLine(s, f, t));
         return;
       }
       case 'health': {
         const s = servoSeries(arm, f.id);
-        this.out.push(healthLine(s, f, this.clock.next(s, ms * 1000)));
+        this.point(s, ms, stamped, (t) => healthLine(s, f, t));
         return;
       }
       case 'move': {
         if (!executed) return void this.metrics.count(this.metrics.rejected, 'group-not-executed');
         const s = this.byAuthor(commandSeries(arm, f.id));
-        this.out.push(commandLine(s, f, this.clock.next(s, ms * 1000)));
+        this.point(s, ms, stamped, (t) => commandLine(s, f, t));
         return;
       }
       case 'angleMove': {
         if (!executed) return void this.metrics.count(this.metrics.rejected, 'group-not-executed');
         const s = this.byAuthor(commandSeries(arm, f.id));
-        this.out.push(angleCommandLine(s, f, this.clock.next(s, ms * 1000)));
+        this.point(s, ms, stamped, (t) => angleCommandLine(s, f, t));
         return;
       }
       case 'kms': {
@@ -231,7 +234,7 @@ export class Ingest {
         const req = this.pendingKms.get(arm);
         this.pendingKms.delete(arm);
         const s = ikSeries(arm);
-        this.out.push(ikLine(s, f.code, req, this.clock.next(s, ms * 1000)));
+        this.point(s, ms, stamped, (t) => ikLine(s, f.code, req, t));
         return;
       }
       case 'ping':
@@ -244,6 +247,16 @@ export class Ingest {
       default:
         return unhandled(f);
     }
+  }
+
+  /**
+   * One point of `series`, its line built by `line`, at the report's time `ms` as the series'
+   * clock places it. For a `stamped` report (its own `$TIM`) the line's text tells the clock the
+   * same report received again (points.ts SeriesClock).
+   */
+  private point(series: string, ms: number, stamped: boolean, line: (t: Micros) => string): void {
+    const fields = stamped ? line(0) : '';
+    this.out.push(line(this.clock.next(series, ms * 1000, fields)));
   }
 
   /** Writes an unanswered request alone (no code). */

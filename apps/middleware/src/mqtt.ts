@@ -10,28 +10,27 @@
  * acknowledged only once it is durable. While the spool is full `done` waits: intake pauses
  * and the broker keeps the messages queued in the session.
  *
- * Several brokers (`url` a comma-separated list, docs/protocol.md § Several brokers): the one
- * client follows the list (`@armtwin/link`), and its persistent session is registered on every
- * fall-back at start, and on the first by every probe while away from it: a probe connects with
- * this client id, `clean: false`, subscribes and leaves without acknowledging anything, so each
- * broker keeps for the middleware what is published there while it is elsewhere. It goes back to
- * the first one probe later than the publishers do, so they are back before it leaves.
+ * Several brokers (`url` a comma-separated list, docs/protocol.md § Several brokers): the
+ * middleware does not move from broker to broker as the publishers do; it keeps a connection,
+ * with the same persistent session and subscriptions, to EVERY broker of its list, each with its
+ * own reconnect, and takes in what arrives on any of them. So whichever broker a publisher is on,
+ * the middleware is subscribed there already, whatever the order in which parts move, and what
+ * a broker queued for it while that connection was down comes when it is back. "The broker in
+ * use" (logs, metrics, /healthz, what the middleware publishes) is the first of the list that is
+ * connected; a change of it is logged as a move.
  */
-import { connect, type IClientOptions, type MqttClient } from 'mqtt';
-import { connectBrokers, probeBroker, type BrokerClient } from '@armtwin/link';
+import { connect, type IClientOptions, type IClientPublishOptions, type MqttClient } from 'mqtt';
 import {
   allArmsTopic,
-  DEFAULT_BROKER_LIST_OPTIONS,
   linkOptions,
   parseBrokerList,
+  type BrokerChoice,
   type BrokerMove,
 } from '@armtwin/protocol';
 
 export interface MqttOptions {
   /** One broker URL, or an ordered comma-separated list. */
   url: string;
-  /** While on a fall-back, how often the first broker is probed, ms. */
-  probeMs: number;
   username: string;
   password: string;
   clientId: string;
@@ -66,14 +65,21 @@ export interface MqttHandlers {
 
 export type ConnectFn = (url: string, opts: IClientOptions) => MqttClient;
 
-/** The middleware goes back to the first broker one probe after the publishers do. */
-export const MIDDLEWARE_RETURN_AFTER_PROBES = DEFAULT_BROKER_LIST_OPTIONS.returnAfterProbes + 1;
+/** The middleware's MQTT client(s): one per broker of its list. */
+export interface MqttEdge {
+  /** The broker in use: the first of the list connected (the last one used while none is). */
+  readonly brokers: { readonly choice: BrokerChoice };
+  /** Publishes through the broker in use (queued by its client while it is down). */
+  publish(topic: string, payload: string | Buffer, opts: IClientPublishOptions): void;
+  /** Ends every connection; `cb` once all have ended. */
+  end(force: boolean, opts: object, cb: () => void): void;
+}
 
 export function startMqtt(
   o: MqttOptions,
   h: MqttHandlers,
   connectFn: ConnectFn = connect,
-): BrokerClient {
+): MqttEdge {
   const urls = parseBrokerList(o.url);
   const topics = subscriptionTopics(o.shareGroup);
   const options: IClientOptions = {
@@ -83,49 +89,70 @@ export function startMqtt(
     protocolVersion: 4,
     ...(o.username ? { username: o.username, password: o.password } : {}),
   };
-  // A probe holds this client's session there: subscribed, nothing acknowledged, so what is
-  // queued stays queued for the real connection.
-  // A queued message arriving also says the session is there (and, as it is never
-  // acknowledged, mqtt.js reads nothing after it: not even the SUBACK).
-  const register = (probe: MqttClient) =>
-    new Promise<void>((resolve, reject) => {
-      probe.handleMessage = () => resolve();
-      probe.subscribe(topics, { qos: o.qos }, (err) => (err ? reject(err) : resolve()));
-    });
-  const client = connectBrokers(urls, options, {
-    connect: connectFn,
-    probeMs: o.probeMs,
-    returnAfterProbes: MIDDLEWARE_RETURN_AFTER_PROBES,
-    probeOptions: { clientId: o.clientId, clean: false },
-    onProbeConnected: register,
-    onMove: (move) => h.onMove(move),
+  const choice = (index: number): BrokerChoice => ({
+    index,
+    count: urls.length,
+    url: urls[index]!,
   });
-  for (const url of urls.slice(1))
-    void probeBroker(connectFn, url, options, options.connectTimeout ?? o.probeMs, register).then(
-      (ok) => {
-        if (!ok)
-          h.onError(new Error(`fall-back broker ${url}: session not registered (unreachable)`));
-      },
-    );
-  client.handleMessage = (_packet, done) => {
-    const wait = h.gate();
-    if (wait)
-      void wait.then(
-        () => done(),
-        () => done(),
-      );
-    else done();
-  };
-  client.on('message', (topic, payload) => h.onMessage(topic, payload));
-  client.on('connect', () => {
-    // PUBACKs are small: don't let Nagle's algorithm hold them back (~40 ms otherwise).
-    (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true);
+  const up = urls.map(() => false);
+  let current = -1; // the broker in use, -1 while none is connected
+  let used = -1; // the one in use last
+  // The broker in use is the first connected; say when it changes (a move) or comes or goes.
+  const update = (reason: BrokerMove['reason']) => {
+    const next = up.indexOf(true);
+    if (next === current) return;
+    current = next;
+    if (next < 0) return h.onClose();
+    if (next !== used)
+      h.onMove({
+        from: used < 0 ? null : choice(used),
+        to: choice(next),
+        reason: used < 0 ? 'start' : reason,
+      });
+    used = next;
     h.onConnect();
-    client.subscribe(topics, { qos: o.qos }, (err) => {
-      if (err) h.onError(err);
+  };
+  const clients = urls.map((url, i) => {
+    const client = connectFn(url, options);
+    client.handleMessage = (_packet, done) => {
+      const wait = h.gate();
+      if (wait)
+        void wait.then(
+          () => done(),
+          () => done(),
+        );
+      else done();
+    };
+    client.on('message', (topic, payload) => h.onMessage(topic, payload));
+    client.on('connect', () => {
+      // PUBACKs are small: don't let Nagle's algorithm hold them back (~40 ms otherwise).
+      (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true);
+      client.subscribe(topics, { qos: o.qos }, (err) => {
+        if (err) h.onError(err);
+      });
+      up[i] = true;
+      update('first-back');
     });
+    client.on('close', () => {
+      up[i] = false;
+      update('lost');
+    });
+    client.on('error', (err) =>
+      h.onError(urls.length > 1 ? new Error(`broker ${i + 1}: ${err.message}`) : err),
+    );
+    return client;
   });
-  client.on('close', () => h.onClose());
-  client.on('error', (err) => h.onError(err));
-  return client;
+  return {
+    brokers: {
+      get choice() {
+        return choice(current >= 0 ? current : Math.max(used, 0));
+      },
+    },
+    publish: (topic, payload, opts) =>
+      void clients[current >= 0 ? current : Math.max(used, 0)]!.publish(topic, payload, opts),
+    end(force, opts, cb) {
+      let left = clients.length;
+      for (const c of clients) c.end(force, opts, () => --left === 0 && cb());
+    },
+  };
 }

@@ -90,25 +90,44 @@ export function auditLine(series: string, by: string, detail: string, t: Micros)
 }
 
 /**
- * Keeps every series' timestamps strictly increasing, so InfluxDB never overwrites a point:
- * a time ≤ the series' last time becomes last + 1 µs. A 1 kHz stream whose `$TIM` stamps
- * collide (two payloads in one ms, or a stamp repeated) keeps every point; the bump is at
- * most a few µs and never crosses into the next real stamp unless > 1000 points per ms.
- * Memory: one number per series (arm × servo × measurement).
+ * Stamps within 1 ms of a series' last time are collisions, bumped; an older one is a late
+ * arrival, kept at its own time (SeriesClock).
+ */
+export const COLLISION_WINDOW_US: Micros = 1000;
+
+/**
+ * A point's time in its series, so that InfluxDB never overwrites one report with another:
+ * - a time ≤ the series' last time, and within COLLISION_WINDOW_US of it, becomes last + 1 µs.
+ *   A 1 kHz stream whose `$TIM` stamps collide (two payloads in one ms, or a stamp repeated)
+ *   keeps every point; the bump is at most a few µs and never crosses into the next real stamp
+ *   unless > 1000 points per ms.
+ * - the same report again (same stamp, same `fields`: a QoS 1 message delivered twice, e.g.
+ *   re-sent across a broker move) gets the time of the first: it overwrites it with itself.
+ * - a time older than that (a report that arrives late, behind newer ones: a redelivery after a
+ *   broker move, or one queued on another broker) keeps its own time: a redelivered report
+ *   overwrites its first copy with itself, a late one lands where it belongs. (Bumped to the
+ *   series' end, it would be a second copy, at the wrong time.)
+ * Memory: one entry per series (arm × servo × measurement).
  */
 export class SeriesClock {
-  private readonly last = new Map<string, Micros>();
+  private readonly last = new Map<string, { stamp: Micros; at: Micros; fields: string }>();
   /** Times moved forward because they collided. */
   bumped = 0;
 
-  next(series: string, t: Micros): Micros {
+  /** The time for a point of `series` stamped `t`; `fields` (its values) says a repeat. */
+  next(series: string, t: Micros, fields = ''): Micros {
     const prev = this.last.get(series);
-    if (prev !== undefined && t <= prev) {
-      t = prev + 1;
-      this.bumped++;
+    let at = t;
+    if (prev !== undefined) {
+      if (fields !== '' && t === prev.stamp && fields === prev.fields) return prev.at;
+      if (t < prev.at - COLLISION_WINDOW_US) return t; // late: its own time
+      if (t <= prev.at) {
+        at = prev.at + 1;
+        this.bumped++;
+      }
     }
-    this.last.set(series, t);
-    return t;
+    this.last.set(series, { stamp: t, at, fields });
+    return at;
   }
 
   get size(): number {

@@ -98,6 +98,24 @@ describe('/history/thermal-model', () => {
     expect(s.params.volt0V).toBeCloseTo(TRUE.volt0V, 6);
     expect(s.rmseC).toBeLessThan(1);
     expect(JSON.parse(JSON.stringify(answer))).toEqual(answer); // no NaN in the JSON
+
+    // The model's temperature from the motion alone, beside the measured one (History charts).
+    expect(answer.times).toHaveLength(SECONDS);
+    expect(answer.times[0]).toBe(T0 + 500);
+    const { temp, volt } = s.predicted;
+    expect(temp).toHaveLength(SECONDS);
+    const measured = truth().temp;
+    let worst = 0;
+    answer.times.forEach((t, k) => {
+      const m = measured.find((x) => x.t >= t);
+      if (m && temp[k] !== null) worst = Math.max(worst, Math.abs(temp[k]! - m.v));
+    });
+    expect(worst).toBeLessThan(2); // within the reports' 1 °C rounding and the fit's error
+    expect(temp.filter((x) => x === null).length).toBeLessThan(3);
+    expect(volt.every((v) => v === null || Math.abs(v - TRUE.volt0V) < 0.05)).toBe(true);
+    // A supply that never sags: the motion drew no power, measured or predicted.
+    expect(answer.power.measuredW.every((w) => w === null || w < 0.05)).toBe(true);
+    expect(answer.power.supplyOhms).toBe(DEFAULT_HISTORY_OPTIONS.thermalSupplyOhms);
   });
 
   test('a longer range gets a coarser grid, within the cell bound', () => {

@@ -143,3 +143,52 @@ describe('startMiddleware', () => {
     fs.rmSync(dir, { recursive: true });
   });
 });
+
+describe('several brokers (docs/protocol.md § Several brokers)', () => {
+  test('connected to every broker at once: takes in from each; the broker in use is the first connected', async () => {
+    const clients = new Map<string, FakeClient>();
+    const mw = await startMiddleware(
+      loadConfig({ PORT: '0', MQTT_URL: 'mqtt://lan:1883,mqtt://remote:1883' }),
+      {
+        logger: silent,
+        connect: (url, opts) => {
+          const c = new FakeClient();
+          c.options = opts;
+          clients.set(url, c);
+          return c as unknown as MqttClient;
+        },
+        listen: false,
+      },
+    );
+    const lan = clients.get('mqtt://lan:1883')!;
+    const remote = clients.get('mqtt://remote:1883')!;
+    expect(remote.options).toEqual(lan.options); // the same persistent session on each
+    lan.emit('connect');
+    remote.emit('connect');
+    // Subscribed on both, the same session; what a publisher sends on the fall-back is stored.
+    expect(lan.subscribed).toEqual(remote.subscribed);
+    expect(lan.subscribed).toContain('arm/+/status');
+    await remote.deliver('arm/arm1/status', '#000P1500!');
+    await lan.deliver('arm/arm1/status', '#000P1510!');
+    expect(mw.metrics.frames.position).toBe(2);
+    expect(mw.health().mqtt).toMatchObject({
+      connected: true,
+      broker: 'Broker 1 of 2: mqtt://lan:1883',
+    });
+    // The first lost: the second, already connected, is the one in use (a move); then back.
+    lan.emit('close');
+    expect(mw.health().mqtt).toMatchObject({
+      connected: true,
+      broker: 'Broker 2 of 2: mqtt://remote:1883',
+    });
+    expect(mw.metrics.mqttBrokerMoves).toBe(1);
+    lan.emit('connect');
+    expect(mw.health().mqtt.broker).toBe('Broker 1 of 2: mqtt://lan:1883');
+    expect(mw.metrics.mqttBrokerMoves).toBe(2);
+    // None left: not connected.
+    lan.emit('close');
+    remote.emit('close');
+    expect(mw.health().mqtt.connected).toBe(false);
+    await mw.stop();
+  });
+});

@@ -139,4 +139,40 @@ describe('unique timestamps per series', () => {
     expect(new Set(times).size).toBe(4);
     expect(metrics.timestampsBumped).toBe(2);
   });
+
+  // docs/protocol.md § Several brokers: a QoS 1 report may come twice across a broker move.
+  const state = (ms: number, pwm: number) => `$TIM:${ms}!{#000P${pwm}!#001P${pwm}!}`;
+  const times = (lines: string[]) => lines.map((l) => Number(l.split(' ')[2]));
+
+  test('the same stamped report received again overwrites its first copy, not a new point', () => {
+    const { ingest, metrics } = setup();
+    const first = ingest.handle('arm/arm1/status', state(T, 1500), 1);
+    const again = ingest.handle('arm/arm1/status', state(T, 1500), 2);
+    expect(again).toEqual(first);
+    expect(metrics.timestampsBumped).toBe(0);
+  });
+
+  test('a report redelivered late, behind newer ones, keeps its own time (no extra point)', () => {
+    const { ingest } = setup();
+    const old = ingest.handle('arm/arm1/status', state(T, 1500), 1);
+    ingest.handle('arm/arm1/status', state(T + 20, 1510), 2);
+    ingest.handle('arm/arm1/status', state(T + 40, 1520), 3);
+    expect(ingest.handle('arm/arm1/status', state(T, 1500), 4)).toEqual(old);
+    // one that never came before lands where it belongs, and the stream goes on after it
+    expect(times(ingest.handle('arm/arm1/status', state(T + 10, 1505), 5))).toEqual([
+      (T + 10) * 1000,
+      (T + 10) * 1000,
+    ]);
+    expect(times(ingest.handle('arm/arm1/status', state(T + 60, 1530), 6))).toEqual([
+      (T + 60) * 1000,
+      (T + 60) * 1000,
+    ]);
+  });
+
+  test('unstamped reports are never taken for repeats: the same values in one ms stay two points', () => {
+    const { ingest } = setup();
+    const a = ingest.handle('arm/arm1/status', '{#000P1500!}', T);
+    const b = ingest.handle('arm/arm1/status', '{#000P1500!}', T);
+    expect(times([...a, ...b])).toEqual([T * 1000, T * 1000 + 1]);
+  });
 });

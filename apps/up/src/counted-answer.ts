@@ -19,7 +19,7 @@ export function countedAnswer(
 ) {
   return (res: http.ServerResponse, status: number, body: unknown, kind: string): void => {
     counters[kind] = (counters[kind] ?? 0) + 1;
-    if (status !== 200) onFirst(`${label}:${kind}`, `${label} ${kind}: ${JSON.stringify(body)}`);
+    if (status >= 400) onFirst(`${label}:${kind}`, `${label} ${kind}: ${JSON.stringify(body)}`);
     res
       .writeHead(status, { 'content-type': 'application/json', 'cache-control': 'no-store' })
       .end(JSON.stringify(body));

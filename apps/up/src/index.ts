@@ -3,6 +3,7 @@
  * simulated arms (@armtwin/sim), the middleware (@armtwin/middleware) and the HUD's files on one
  * HTTP port. `runUp` is what the command calls; `startUp` takes loaded users and TLS.
  */
+export * from './model-copies.ts';
 export * from './parts.ts';
 export * from './run-up.ts';
 export * from './static-files.ts';

@@ -16,15 +16,9 @@ import fs from 'node:fs';
 import http from 'node:http';
 import https from 'node:https';
 import path from 'node:path';
-import {
-  basicCredentials,
-  whoamiAnswer,
-  type LoginResult,
-  type LoginThrottle,
-  type Users,
-} from '@armtwin/auth';
+import { whoamiAnswer, type LoginThrottle, type Users } from '@armtwin/auth';
 import { startBroker, type Broker, type BrokerTls } from '@armtwin/broker';
-import { linkOptions } from '@armtwin/protocol';
+import { isModelArmId, linkOptions, MODEL_ARM_SUFFIX } from '@armtwin/protocol';
 import {
   DEFAULT_PROFILE,
   loadSimProfile,
@@ -35,11 +29,14 @@ import {
   type MqttSim,
 } from '@armtwin/sim';
 import { createCameraPart } from './camera-part.ts';
-import { calibrationRoute, isCalibrationRequest, type Authorize } from './calibration-route.ts';
+import { anyLogIn, basicUser, operatorOnly } from './authorize.ts';
+import { calibrationRoute, isCalibrationRequest } from './calibration-route.ts';
 import { isKeepOutRequest, keepOutRoute } from './keep-out-route.ts';
 import { importRoute, isImportRequest } from './import-route.ts';
 import { ensureWebBuild, startMiddlewarePart, WEB_DIST, type StartedMiddleware } from './parts.ts';
 import { isModelRequest, modelFiles } from './model-files.ts';
+import type { ModelCopies } from './model-copies.ts';
+import { createModelPart } from './model-part.ts';
 import { staticFiles } from './static-files.ts';
 import { DEFAULT_HUD_HEADERS_OPTIONS, securityHeaders } from './security-headers.ts';
 
@@ -85,6 +82,11 @@ export interface UpOptions {
    * camera servers), added to its Content-Security-Policy (./security-headers.ts).
    */
   cspSources?: string[];
+  /**
+   * A model copy (`/api/arms/{id}/model`, ./model-copies.ts) stops after this long with nothing
+   * received on its topics, ms (unset: `DEFAULT_MODEL_COPIES_OPTIONS`, 10 minutes).
+   */
+  modelIdleMs?: number;
   /** Progress lines for the operator. */
   say: (msg: string) => void;
   onFirst: (kind: string, message: string) => void;
@@ -97,6 +99,8 @@ export interface Up {
   sim: MqttSim;
   /** Every simulated arm, in `arms` order. */
   sims: MqttSim[];
+  /** The arms' model copies, started on demand (docs/protocol.md § Modes). */
+  copies: ModelCopies;
   /** Resolves when the middleware (if any) is up or has failed to start. */
   middlewareReady: Promise<StartedMiddleware | null>;
   stop(): Promise<void>;
@@ -110,6 +114,11 @@ const MIDDLEWARE_MISSING = JSON.stringify({
 
 export async function startUp(o: UpOptions): Promise<Up> {
   const armSpecs = o.arms?.length ? o.arms : [{ id: o.armId, profile: DEFAULT_PROFILE }];
+  for (const a of armSpecs)
+    if (isModelArmId(a.id))
+      throw new Error(
+        `arm id "${a.id}": ids ending in ${MODEL_ARM_SUFFIX} are reserved for model copies (docs/protocol.md § Modes)`,
+      );
   const modelDirs = o.modelsDir ? [o.modelsDir, MODELS_DIR] : [MODELS_DIR];
   // a bad profile fails here, before anything starts
   const profiles = armSpecs.map((a) => loadSimProfile(a.profile, profileDir(modelDirs, a.profile)));
@@ -143,6 +152,22 @@ export async function startUp(o: UpOptions): Promise<Up> {
     authorize: operatorOnly(broker.logins),
     onFirst: o.onFirst,
   });
+  const model = createModelPart({
+    broker,
+    simulated: new Map(
+      armSpecs.map((a) => [
+        a.id,
+        { profile: a.profile, modelsDir: profileDir(modelDirs, a.profile) },
+      ]),
+    ),
+    modelDirs,
+    rate: o.rate,
+    ...(o.modelIdleMs ? { idleMs: o.modelIdleMs } : {}),
+    mayDrive: operatorOnly(broker.logins),
+    mayRead: anyLogIn(broker.logins),
+    onFirst: o.onFirst,
+    say: o.say,
+  });
   const robotImport = importRoute({
     modelsDir: modelDirs[0]!,
     authorize: operatorOnly(broker.logins),
@@ -153,6 +178,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
     if (isCalibrationRequest(req)) return calibration.handle(req, res);
     if (isKeepOutRequest(req)) return keepOut.handle(req, res);
     if (isImportRequest(req)) return robotImport.handle(req, res);
+    if (model.handles(req)) return model.handle(req, res);
     if (broker.logins) await basicToBearer(req, broker.logins, apiToken);
     if (mw?.middleware.handler(req, res)) return;
     res.writeHead(mw ? 404 : 503, {
@@ -276,6 +302,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
   const stop = () =>
     (stopping ??= (async () => {
       await camera?.stop();
+      await model.stop();
       await Promise.all(sims.map((s) => s.stop()));
       const started = await middlewareReady;
       if (started) {
@@ -292,7 +319,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
       await closed;
     })());
 
-  return { url, broker, sim, sims, middlewareReady, stop };
+  return { url, broker, sim, sims, copies: model.copies, middlewareReady, stop };
 }
 
 /**
@@ -307,25 +334,6 @@ async function basicToBearer(
   if (!/^Basic /i.test(req.headers.authorization ?? '')) return;
   if ((await basicUser(req, logins)).ok) req.headers.authorization = `Bearer ${token}`;
   else delete req.headers.authorization;
-}
-
-/** The log-in named by an HTTP Basic header, through the throttle the broker uses. */
-async function basicUser(req: http.IncomingMessage, logins: LoginThrottle): Promise<LoginResult> {
-  const creds = basicCredentials(req.headers.authorization);
-  if (!creds) return { ok: false, lockedMs: 0 };
-  return logins.login(req.socket.remoteAddress ?? 'unknown', creds.name, creds.password);
-}
-
-/** Writing a robot's files is an operator's right (anyone in the anonymous local demo). */
-function operatorOnly(logins: LoginThrottle | null): Authorize {
-  return async (req) => {
-    if (!logins) return { ok: true };
-    const who = await basicUser(req, logins);
-    if (!who.ok) return { ok: false, status: 401, error: 'log in as an operator' };
-    if (who.principal.role !== 'operator' && who.principal.role !== 'admin')
-      return { ok: false, status: 403, error: `${who.principal.role}s may not change a robot` };
-    return { ok: true };
-  };
 }
 
 /** `GET /api/whoami`, for the HUD (`whoamiAnswer`): the anonymous demo is an operator. */

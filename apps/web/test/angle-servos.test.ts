@@ -14,7 +14,7 @@ import { ArmStore } from '../src/store/ArmStore.ts';
 import { ArmLink } from '../src/mqtt/ArmLink.ts';
 import { robotSpec } from '../src/robots/robotSpec.ts';
 import { defaultSettings } from '../src/config/settings.ts';
-import type { MqttLike } from '../src/mqtt/MqttLike.ts';
+import { FakeMqttClient } from './support/FakeMqttClient.ts';
 
 const MODELS = path.resolve(fileURLToPath(import.meta.url), '../../../../public/models');
 const DEG = Math.PI / 180;
@@ -90,25 +90,10 @@ describe('ArmStore with angle reports', () => {
   });
 });
 
-class FakeClient implements MqttLike {
-  handlers = new Map<string, ((...args: never[]) => void)[]>();
-  published: string[] = [];
-  on(event: string, cb: (...args: never[]) => void) {
-    this.handlers.set(event, [...(this.handlers.get(event) ?? []), cb]);
-    return this;
-  }
-  emit(event: string) {
-    for (const cb of this.handlers.get(event) ?? []) (cb as () => void)();
-  }
-  subscribe() {
-    return this;
-  }
-  publish(_topic: string, payload: string) {
-    this.published.push(payload);
-    return this;
-  }
-  end() {
-    return this;
+/** The payloads published, on any topic. */
+class FakeClient extends FakeMqttClient {
+  get payloads(): string[] {
+    return this.published.map((p) => p.payload);
   }
 }
 
@@ -126,7 +111,7 @@ describe('jogging a servo that speaks angles', () => {
     );
     link.start();
     client.emit('connect');
-    const commands = () => client.published.filter((p) => !p.startsWith('$PNG'));
+    const commands = () => client.payloads.filter((p) => !p.startsWith('$PNG'));
     const roll = SPEC.sliders[4]!;
     link.jog(4, roll.pwmFromValue(350));
     vi.advanceTimersByTime(60);

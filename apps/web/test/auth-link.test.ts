@@ -8,34 +8,10 @@ import { OPERATOR_BEAT_MS } from '@armtwin/protocol';
 import { ArmStore } from '../src/store/ArmStore.ts';
 import { ArmLink } from '../src/mqtt/ArmLink.ts';
 import type { ConnectOptions } from '../src/mqtt/connectOptions.ts';
-import type { MqttLike } from '../src/mqtt/MqttLike.ts';
+import { FakeMqttClient as FakeClient } from './support/FakeMqttClient.ts';
 import { defaultSettings, type HudSettings } from '../src/config/settings.ts';
 import { Session } from '../src/auth/Session.ts';
 import type { Whoami } from '../src/auth/whoami.ts';
-
-class FakeClient implements MqttLike {
-  handlers = new Map<string, ((...args: never[]) => void)[]>();
-  published: { topic: string; payload: string; qos: number; retain: boolean }[] = [];
-  ended: boolean | null = null;
-  on(event: string, cb: (...args: never[]) => void) {
-    this.handlers.set(event, [...(this.handlers.get(event) ?? []), cb]);
-    return this;
-  }
-  emit(event: string, ...args: unknown[]) {
-    for (const cb of this.handlers.get(event) ?? []) (cb as (...a: unknown[]) => void)(...args);
-  }
-  subscribe() {
-    return this;
-  }
-  publish(topic: string, payload: string, opts: { qos: 0 | 1; retain?: boolean }) {
-    this.published.push({ topic, payload, qos: opts.qos, retain: opts.retain ?? false });
-    return this;
-  }
-  end(force?: boolean) {
-    this.ended = force ?? false;
-    return this;
-  }
-}
 
 function setup(who: Whoami, over: Partial<HudSettings> = {}) {
   const store = new ArmStore();

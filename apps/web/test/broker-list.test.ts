@@ -7,7 +7,7 @@ import { describe, expect, it } from 'vitest';
 import type { BrokerChoice } from '@armtwin/protocol';
 import { ArmStore } from '../src/store/ArmStore.ts';
 import { ArmLink } from '../src/mqtt/ArmLink.ts';
-import type { MqttLike } from '../src/mqtt/MqttLike.ts';
+import { FakeMqttClient } from './support/FakeMqttClient.ts';
 import {
   applyQuery,
   brokerListProblem,
@@ -35,28 +35,9 @@ describe('broker list in the settings', () => {
   });
 });
 
-/** A client on a list of brokers: `on` records handlers; `brokers.choice` is settable. */
-class ListClient implements MqttLike {
-  handlers = new Map<string, ((...args: never[]) => void)[]>();
-  published: { topic: string; payload: string }[] = [];
+/** A client on a list of brokers: `brokers.choice` is settable. */
+class ListClient extends FakeMqttClient {
   brokers: { choice: BrokerChoice } = { choice: { index: 0, count: 2, url: 'ws://a:1' } };
-  on(event: string, cb: (...args: never[]) => void) {
-    this.handlers.set(event, [...(this.handlers.get(event) ?? []), cb]);
-    return this;
-  }
-  emit(event: string, ...args: unknown[]) {
-    for (const cb of this.handlers.get(event) ?? []) (cb as (...a: unknown[]) => void)(...args);
-  }
-  subscribe() {
-    return this;
-  }
-  publish(topic: string, payload: string) {
-    this.published.push({ topic, payload });
-    return this;
-  }
-  end() {
-    return this;
-  }
 }
 
 describe('ArmLink on a list of brokers', () => {

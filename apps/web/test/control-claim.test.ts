@@ -1,31 +1,9 @@
 import { afterEach, beforeEach, describe, expect, it, vi } from 'vitest';
 import { ArmStore } from '../src/store/ArmStore.ts';
 import { ArmLink, UNCHECKED_PERMISSIONS } from '../src/mqtt/ArmLink.ts';
-import type { MqttLike } from '../src/mqtt/MqttLike.ts';
+import { FakeMqttClient as FakeClient } from './support/FakeMqttClient.ts';
 import { defaultSettings } from '../src/config/settings.ts';
 import type { ControlIdentity } from '../src/mqtt/ControlClaim.ts';
-
-class FakeClient implements MqttLike {
-  handlers = new Map<string, ((...args: never[]) => void)[]>();
-  published: { topic: string; payload: string }[] = [];
-  on(event: string, cb: (...args: never[]) => void) {
-    this.handlers.set(event, [...(this.handlers.get(event) ?? []), cb]);
-    return this;
-  }
-  emit(event: string, ...args: unknown[]) {
-    for (const cb of this.handlers.get(event) ?? []) (cb as (...a: unknown[]) => void)(...args);
-  }
-  subscribe() {
-    return this;
-  }
-  publish(topic: string, payload: string) {
-    this.published.push({ topic, payload });
-    return this;
-  }
-  end() {
-    return this;
-  }
-}
 
 const enc = (s: string) => new TextEncoder().encode(s);
 
@@ -40,7 +18,10 @@ function setup(who: ControlIdentity) {
   client.emit('connect');
   const holder = (json: object) =>
     client.emit('message', 'arm/arm1/holder', enc(JSON.stringify(json)));
-  const sent = () => client.published.filter((p) => !p.payload.startsWith('$PNG'));
+  const sent = () =>
+    client.published
+      .filter((p) => !p.payload.startsWith('$PNG'))
+      .map(({ topic, payload }) => ({ topic, payload }));
   return { client, link, holder, sent };
 }
 

@@ -17,6 +17,7 @@ function overview(ids: string[]): OverviewViews {
       data: { ...echo, field: 'temp', every: '1s', everyMs: 1000, series: ids.map(series) },
     },
     volt: { ok: false, error: 'HTTP 503' },
+    thermal: { ok: false, error: 'HTTP 503' },
     tracking: {
       ok: true,
       data: {

@@ -2,7 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { encodeGroup, encodePosition } from '@armtwin/protocol';
 import { ArmStore } from '../src/store/ArmStore.ts';
 import { ArmLink } from '../src/mqtt/ArmLink.ts';
-import type { MqttLike } from '../src/mqtt/MqttLike.ts';
+import { FakeMqttClient } from './support/FakeMqttClient.ts';
 import { defaultSettings } from '../src/config/settings.ts';
 import { robotSpec } from '../src/robots/robotSpec.ts';
 import { DEFAULT_PROFILE } from '../src/robots/defaultProfile.ts';
@@ -16,25 +16,12 @@ import {
   DEFAULT_HOLD_KEYS,
 } from '../src/panels/Jog/holdJogMath.ts';
 
-class FakeClient implements MqttLike {
-  handlers = new Map<string, ((...args: never[]) => void)[]>();
-  published: string[] = [];
-  on(event: string, cb: (...args: never[]) => void) {
-    this.handlers.set(event, [...(this.handlers.get(event) ?? []), cb]);
-    return this;
-  }
-  emit(event: string, ...args: unknown[]) {
-    for (const cb of this.handlers.get(event) ?? []) (cb as (...a: unknown[]) => void)(...args);
-  }
-  subscribe() {
-    return this;
-  }
-  publish(_topic: string, payload: string) {
-    if (!payload.startsWith('$PNG') && _topic.endsWith('/control')) this.published.push(payload);
-    return this;
-  }
-  end() {
-    return this;
+/** The control payloads published (no pings). */
+class FakeClient extends FakeMqttClient {
+  get controls(): string[] {
+    return this.published
+      .filter((p) => !p.payload.startsWith('$PNG') && p.topic.endsWith('/control'))
+      .map((p) => p.payload);
   }
 }
 
@@ -90,14 +77,14 @@ describe('HoldJog', () => {
     hold.speed = 20;
     hold.press('key:KeyW', 1, 1);
     // 20 °/s × 250 ms = 5° ahead of home, in 250 ms
-    expect(client.published).toHaveLength(1);
-    expect(client.published[0]).toMatch(/^#001P\d{4}T0250!$/);
-    const first = Number(client.published[0]!.slice(5, 9));
+    expect(client.controls).toHaveLength(1);
+    expect(client.controls[0]).toMatch(/^#001P\d{4}T0250!$/);
+    const first = Number(client.controls[0]!.slice(5, 9));
     expect(first).toBeGreaterThan(1500);
     tick();
-    expect(client.published).toHaveLength(2);
+    expect(client.controls).toHaveLength(2);
     hold.release('key:KeyW');
-    expect(client.published.at(-1)).toBe('#001PDST!');
+    expect(client.controls.at(-1)).toBe('#001PDST!');
     expect(ticking()).toBe(false);
   });
 
@@ -106,11 +93,11 @@ describe('HoldJog', () => {
     hold.press('a', 0, 1);
     hold.press('b', 2, -1);
     tick();
-    expect(client.published.at(-1)).toMatch(/^\{#000P\d{4}T0250!#002P\d{4}T0250!\}$/);
+    expect(client.controls.at(-1)).toMatch(/^\{#000P\d{4}T0250!#002P\d{4}T0250!\}$/);
     hold.release('a');
-    expect(client.published.at(-1)).toBe('#000PDST!');
+    expect(client.controls.at(-1)).toBe('#000PDST!');
     tick();
-    expect(client.published.at(-1)).toMatch(/^#002P\d{4}T0250!$/);
+    expect(client.controls.at(-1)).toMatch(/^#002P\d{4}T0250!$/);
   });
 
   it('lets go of everything on the emergency stop without sending stops of its own', () => {
@@ -118,7 +105,7 @@ describe('HoldJog', () => {
     link.stopListeners.add(() => hold.releaseAll(false));
     hold.press('pad:axis0', 0, 0.5);
     link.emergencyStop();
-    expect(client.published.at(-1)).toBe('#255PDST!');
+    expect(client.controls.at(-1)).toBe('#255PDST!');
     expect(hold.held()).toEqual([]);
     expect(ticking()).toBe(false);
   });
@@ -128,7 +115,7 @@ describe('HoldJog', () => {
     hold.press('k', 1, 1);
     store.connection = 'reconnecting';
     tick();
-    expect(client.published.at(-1)).toBe('#001PDST!');
+    expect(client.controls.at(-1)).toBe('#001PDST!');
     expect(hold.refusal).toMatch(/Stopped/);
     expect(hold.held()).toEqual([]);
   });
@@ -137,7 +124,7 @@ describe('HoldJog', () => {
     const { client, hold, store } = setup();
     store.connection = 'reconnecting';
     hold.press('k', 1, 1);
-    expect(client.published).toEqual([]);
+    expect(client.controls).toEqual([]);
   });
 
   it('moves the tip up along z through the IK, pitch kept, and stops every servo it moved', () => {
@@ -149,7 +136,7 @@ describe('HoldJog', () => {
     report(bent);
     hold.setSpeed(60);
     hold.press('t', 'z', 1);
-    const sent = client.published.at(-1)!;
+    const sent = client.controls.at(-1)!;
     expect(sent).toMatch(/^\{(#00[0-3]P\d{4}T0250!)+\}$/);
     const to = [...bent];
     for (const m of sent.matchAll(/#00(\d)P(\d{4})T/g)) to[Number(m[1])] = Number(m[2]);
@@ -159,7 +146,7 @@ describe('HoldJog', () => {
     expect(Math.abs(b.x - a.x)).toBeLessThan(2);
     expect(Math.abs(b.pitch - a.pitch)).toBeLessThan(1);
     hold.release('t');
-    expect(client.published.at(-1)).toMatch(/^(#00[0-3]PDST!)+$/);
+    expect(client.controls.at(-1)).toMatch(/^(#00[0-3]PDST!)+$/);
     expect(hold.held()).toEqual([]);
   });
 
@@ -168,7 +155,7 @@ describe('HoldJog', () => {
     hold.press('t', 'z', 1);
     expect(hold.refusal).toMatch(/^Stopped: /);
     expect(hold.held()).toEqual([]);
-    expect(client.published.filter((p) => !p.includes('PDST'))).toEqual([]);
+    expect(client.controls.filter((p) => !p.includes('PDST'))).toEqual([]);
   });
 
   it('stops rather than turn a joint fast near a singularity', () => {
@@ -179,6 +166,6 @@ describe('HoldJog', () => {
     hold.setSpeed(60);
     hold.press('t', 'z', 1);
     expect(hold.refusal).toMatch(/^Stopped: moving the tip would turn Elbow \d+° at once/);
-    expect(client.published.filter((p) => !p.includes('PDST'))).toEqual([]);
+    expect(client.controls.filter((p) => !p.includes('PDST'))).toEqual([]);
   });
 });

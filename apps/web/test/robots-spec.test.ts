@@ -10,8 +10,8 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { beforeAll, describe, expect, it } from 'vitest';
 import * as THREE from 'three';
-import { Window } from 'happy-dom';
-import URDFLoader from 'urdf-loader';
+import type { URDFRobot } from 'urdf-loader';
+import { parseUrdf } from './support/parseUrdf.ts';
 import { DEMO_ARM, chainFromUrdf, parseProfile, type Profile } from '@armtwin/ik';
 import { createMotionRobot, tipPose } from '@armtwin/motion';
 import { angleFromPwm, pwmFromAngle } from '@armtwin/protocol';
@@ -118,17 +118,9 @@ describe('track6', () => {
   });
 
   describe('through urdf-loader: the drawn tcp is where the planner puts the tip', () => {
-    let robot: ReturnType<URDFLoader['parse']>;
+    let robot: URDFRobot;
     beforeAll(() => {
-      const win = new Window();
-      Object.assign(globalThis, {
-        DOMParser: win.DOMParser,
-        Document: win.Document,
-        Element: win.Element,
-      });
-      const loader = new URDFLoader();
-      loader.parseVisual = false;
-      robot = loader.parse(read('track6', 'track6.urdf'));
+      robot = parseUrdf(read('track6', 'track6.urdf'));
     });
 
     it('for 200 random pulse vectors within the limits, within 0.01 mm', () => {

@@ -39,6 +39,7 @@ function fit(id: string, fitted = true): ThermalServoFit {
     rmseC: 0.3,
     voltRmseV: 0.01,
     reason: fitted ? '' : '3 complete intervals, fewer than 20',
+    predicted: { temp: [], volt: [] },
   };
 }
 
@@ -97,6 +98,8 @@ describe('applyThermalFit', () => {
       start: T0,
       stop: T0 + 3_600_000,
       stepMs: 1000,
+      times: [],
+      power: { supplyOhms: 0.3, measuredW: [], predictedW: [] },
       servos: [fit('001'), fit('000'), fit('002', false), fit('042')],
     };
     const r = applyThermalFit(s.thermal, DEMO_ARM.servos, answer);

@@ -8,8 +8,8 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { beforeAll, describe, expect, it } from 'vitest';
 import * as THREE from 'three';
-import { Window } from 'happy-dom';
-import URDFLoader, { type URDFRobot } from 'urdf-loader';
+import type { URDFRobot } from 'urdf-loader';
+import { parseUrdf } from './support/parseUrdf.ts';
 import { DEMO_ARM, forwardKinematics, jointsFromServoAngles, type Quad } from '@armtwin/ik';
 
 /** The URDF joint each servo 000–005 drives (its value: the servo angle s of §2, in radians). */
@@ -27,16 +27,7 @@ const MESH_DIR = path.join(path.dirname(URDF_FILE), 'meshes');
 let robot: URDFRobot;
 
 beforeAll(() => {
-  // urdf-loader parses with the browser's DOMParser; happy-dom stands in for it in node.
-  const win = new Window();
-  Object.assign(globalThis, {
-    DOMParser: win.DOMParser,
-    Document: win.Document,
-    Element: win.Element,
-  });
-  const loader = new URDFLoader();
-  loader.parseVisual = false;
-  robot = loader.parse(fs.readFileSync(URDF_FILE, 'utf8'));
+  robot = parseUrdf(fs.readFileSync(URDF_FILE, 'utf8'));
 });
 
 /** Deterministic pseudo-random numbers (mulberry32), so a failure reproduces. */

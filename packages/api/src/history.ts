@@ -143,11 +143,30 @@ export interface ThermalServoFit {
   voltRmseV: number | null;
   /** Why it is not (fully) fitted; '' when it is. */
   reason: string;
+  /**
+   * What the model says the range should have looked like from its motion alone, on the grid's
+   * cell centres (`ThermalModelAnswer.times`): temperature run freely from the first report
+   * (re-started after a gap), and supply voltage; null where it cannot say.
+   */
+  predicted: { temp: (number | null)[]; volt: (number | null)[] };
+}
+
+/**
+ * The power the arm's motion drew, W, read from the supply's sag across `supplyOhms`
+ * (@armtwin/protocol's thermal-predict.ts): from the reported voltages and from the model's.
+ */
+export interface ThermalPowerTrace {
+  supplyOhms: number;
+  measuredW: (number | null)[];
+  predictedW: (number | null)[];
 }
 
 /** `/history/thermal-model`: every servo's model fitted from its history in range. */
 export interface ThermalModelAnswer extends RangeEcho {
   /** Grid step the fit used, ms. */
   stepMs: number;
+  /** The grid's cell centres, epoch ms: the times of every `predicted` and `power` value. */
+  times: number[];
   servos: ThermalServoFit[];
+  power: ThermalPowerTrace;
 }

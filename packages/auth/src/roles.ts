@@ -30,6 +30,9 @@ const VIEWER_READ = [
   // Who holds each arm (retained) and the control events (docs/protocol.md § Control).
   'arm/+/holder',
   'arm/+/audit',
+  // The thermal model's early warnings, raised by the middleware (docs/protocol.md § A thermal
+  // model of each servo).
+  'arm/+/alert',
 ] as const;
 
 // An operator moves an arm only on its own control topic, and claims it on its own claim topic:
@@ -82,7 +85,8 @@ export const ROLE_RULES: Record<Role, RoleRules> = {
   },
   middleware: {
     read: ['arm/+/status', 'arm/+/control', 'arm/+/control/+', 'arm/+/audit'],
-    write: [],
+    // Its thermal watch's early warnings (docs/protocol.md § A thermal model of each servo).
+    write: ['arm/+/alert'],
   },
 };
 

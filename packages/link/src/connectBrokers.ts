@@ -21,7 +21,7 @@ import {
   type BrokerListOptions,
   type BrokerMove,
 } from '@armtwin/protocol';
-import { probeBroker, type ConnectFn } from './probe.ts';
+import { probeBroker, type ConnectFn, type ProbeConnected } from './probe.ts';
 
 export interface BrokerLinkOptions extends BrokerListOptions {
   /** Makes an mqtt.js client (tests and the page may hand in theirs). */
@@ -33,8 +33,8 @@ export interface BrokerLinkOptions extends BrokerListOptions {
    * (default: its own client id, a clean session).
    */
   probeOptions: Partial<IClientOptions>;
-  /** Runs on a probe's connection before it ends (the middleware subscribes there). */
-  onProbeConnected?: (client: MqttClient) => Promise<void> | void;
+  /** Runs on a probe's connection before it ends (a part may register its session there). */
+  onProbeConnected?: ProbeConnected;
 }
 
 export const DEFAULT_BROKER_LINK_OPTIONS: Omit<BrokerLinkOptions, 'probeOptions'> = {

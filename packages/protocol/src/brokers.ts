@@ -12,9 +12,9 @@ export interface BrokerListOptions {
   /** While on a fall-back, the first broker is probed this often, ms. */
   probeMs: number;
   /**
-   * Probes in a row the first broker must answer before a part goes back to it. Publishers go
-   * back after 2; the middleware after one more, so that, whatever the phase of the probes, the
-   * publishers are back before it leaves the fall-back (docs/protocol.md § Several brokers).
+   * Probes in a row the first broker must answer before a part goes back to it (2: a flapping
+   * broker is not chased). The middleware does not move: it is connected to every broker
+   * (docs/protocol.md § Several brokers).
    */
   returnAfterProbes: number;
 }

@@ -15,5 +15,7 @@ export * from './control-arbiter.ts';
 export * from './thermal-model.ts';
 export * from './thermal-fit.ts';
 export * from './thermal-watch.ts';
+export * from './thermal-alert.ts';
+export * from './thermal-predict.ts';
 export * from './brokers.ts';
 export * from './thermal-trace.ts';

@@ -167,6 +167,31 @@ export class SimModel {
     for (let i = 0; i < this.servos.count; i++) this.servos.stop(i, t);
   }
 
+  /**
+   * Puts servos at a pose at once, at rest (`pulses`: servo id → pulse width, µs, in the units
+   * of a `#IIIPpppp!` move); every other servo stops where it is. Each pulse is held within its
+   * servo's limits; the keep-out rules are not asked (a pose is where an arm is, not a move).
+   * Returns the pulses placed by servo id. Throws, changing nothing, for a servo the arm lacks
+   * or a pulse that is not a finite number.
+   */
+  placeAt(pulses: ReadonlyMap<number, number>, t: number): Map<number, number> {
+    const s = this.servos;
+    for (const [id, pwm] of pulses) {
+      if (s.indexOf(id) < 0) throw new RangeError(`no servo ${id3(id)}`);
+      if (!Number.isFinite(pwm)) throw new RangeError(`servo ${id3(id)}: ${pwm} is not a pulse`);
+    }
+    this.advance(t);
+    for (let i = 0; i < s.count; i++) s.stop(i, t);
+    const placed = new Map<number, number>();
+    for (const [id, pwm] of pulses) {
+      const i = s.indexOf(id);
+      const p = Math.min(s.maxPwm[i]!, Math.max(s.minPwm[i]!, pwm));
+      s.place(i, p, t);
+      placed.set(id, p);
+    }
+    return placed;
+  }
+
   /** The reason a frame cannot run, or '' when it can. Changes nothing. */
   private check(frame: Frame): string {
     switch (frame.type) {

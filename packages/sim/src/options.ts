@@ -39,6 +39,12 @@ export interface SimModelOptions {
   overheatC: number;
   /** Thermal time constant while an overheat fault is on, ms (fast, for demos). */
   overheatTauMs: number;
+  /**
+   * Heat runs this many times faster than the clock (1 = real time): the thermal time
+   * constants are divided by it, nothing else changes. For tests and demos that must not wait
+   * minutes for a servo to warm (`armtwin sim --thermal-time-scale 4`).
+   */
+  thermalTimeScale: number;
   /** How positions are reported (see ReportUnits). */
   report: ReportUnits;
   /** Pulse widths at power-on, µs, by servo index (missing → 1500, the centre). */
@@ -80,6 +86,7 @@ export const DEFAULT_SIM_MODEL_OPTIONS: SimModelOptions = {
   thermalTauMs: 20_000,
   overheatC: 85,
   overheatTauMs: 8_000,
+  thermalTimeScale: 1,
   report: 'auto',
   initialPwm: [],
 };

@@ -213,6 +213,19 @@ export class SimRunner {
     return true;
   }
 
+  /**
+   * Puts the arm at a pose at once (`SimModel.placeAt`): what is under way stops and every
+   * command still queued (a latency fault) is dropped. Returns the pulses placed by servo id;
+   * throws, changing nothing, for a servo the arm lacks or a pulse that is not a number.
+   */
+  placeAt(pulses: ReadonlyMap<number, number>): Map<number, number> {
+    this.stateLoop.catchUp();
+    const t = this.clock.now();
+    const placed = this.model.placeAt(pulses, t);
+    this.discardQueued();
+    return placed;
+  }
+
   /** Applies faults now; returns the faults in force. Throws for a servo the arm lacks. */
   applyFaults(faults: Fault[]): FaultState {
     const t = this.clock.now();

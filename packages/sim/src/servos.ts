@@ -106,7 +106,7 @@ export class Servos {
         steady = hot;
         tau = o.overheatTauMs;
       }
-      this.temp[i]! += (steady - this.temp[i]!) * (1 - Math.exp(-dt / tau));
+      this.temp[i]! += (steady - this.temp[i]!) * (1 - Math.exp((-dt * o.thermalTimeScale) / tau));
     }
     this.last = t;
     this.updateSupply();
@@ -140,6 +140,16 @@ export class Servos {
   stop(i: number, t: number): void {
     const p = this.pwmAt(i, t);
     this.from[i] = this.to[i] = this.prev[i] = p;
+    this.t0[i] = t;
+    this.dur[i] = 0;
+  }
+
+  /**
+   * Puts servo i at `pwm` at once, at rest (a model copy set to the real arm's pose: a
+   * simulation may jump). A stalled servo stays jammed, now at `pwm`.
+   */
+  place(i: number, pwm: number, t: number): void {
+    this.from[i] = this.to[i] = this.prev[i] = pwm;
     this.t0[i] = t;
     this.dur[i] = 0;
   }

@@ -40,6 +40,8 @@ export interface SimOptions {
   modelsDir: string;
   /** Position reports: as the profile says (`auto`), all §8 angle frames, or all pulse widths. */
   report: ReportUnits;
+  /** Heat runs this many times faster than the clock (`SimModelOptions.thermalTimeScale`). */
+  thermalTimeScale: number;
   /** State and health rates, Hz. */
   rate: number;
   healthRate: number;
@@ -63,6 +65,7 @@ export const DEFAULT_SIM_OPTIONS = {
   profile: DEFAULT_PROFILE,
   modelsDir: MODELS_DIR,
   report: 'auto',
+  thermalTimeScale: 1,
   rate: DEFAULT_SIM_RUNNER_OPTIONS.rate,
   healthRate: DEFAULT_SIM_RUNNER_OPTIONS.healthRate,
   serialPath: '',
@@ -91,7 +94,7 @@ export async function startSim(
   const { log } = o;
   const profile = loadSimProfile(o.profile, o.modelsDir);
   const runnerOptions = {
-    model: { ...profile.model, report: o.report },
+    model: { ...profile.model, report: o.report, thermalTimeScale: o.thermalTimeScale },
     rate: o.rate,
     healthRate: o.healthRate,
     faults: o.faults,
@@ -173,6 +176,7 @@ export async function startSim(
       arm: o.armId,
       profile: o.profile,
       report: o.report,
+      ...(o.thermalTimeScale !== 1 ? { thermalTimeScale: o.thermalTimeScale } : {}),
       rate: o.rate,
       healthRate: o.healthRate,
       faults: sim.runner.faults,

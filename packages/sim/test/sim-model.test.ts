@@ -127,6 +127,23 @@ describe('SimModel physics', () => {
     expect(m.servos.temp[1]!).toBeLessThan(rest + 1);
   });
 
+  test('a thermal time scale of 4 warms a stalled servo in 5 s as much as real time does in 20 s', () => {
+    const warm = (scale: number, ms: number) => {
+      const m = new SimModel({ thermalTimeScale: scale }, T0);
+      m.servos.setStalled(1, true, T0);
+      run(m, move(1, 2000, 0));
+      for (let t = T0; t <= T0 + ms; t += 20) m.advance(t);
+      return m.servos.temp[1]!;
+    };
+    const real = warm(1, 20_000);
+    expect(real).toBeGreaterThan(warm(1, 0) + 20);
+    expect(warm(4, 5_000)).toBeCloseTo(real, 6);
+    // The motion is not scaled: a move takes as long as ever.
+    const m = new SimModel({ thermalTimeScale: 4 }, T0);
+    run(m, move(0, 2000, 1000));
+    expect(m.servos.pwmAt(0, T0 + 500)).toBeCloseTo(1750, 6);
+  });
+
   test('several servos moving at once sag the supply below 6.5 V; one does not', () => {
     const m = new SimModel({}, T0);
     run(m, move(0, 2500, 0));

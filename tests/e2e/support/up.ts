@@ -6,11 +6,13 @@
  */
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
+import os from 'node:os';
 import path from 'node:path';
 import mqtt, { type MqttClient } from 'mqtt';
 import { createReader, type Frame } from '@armtwin/protocol';
 import { freePorts, REPO_ROOT } from '../../helpers/services.ts';
 import { until } from './sim.ts';
+import { writeControlUsers } from '../../integration/control-cases.ts';
 
 export const USERS_FILE = path.join(REPO_ROOT, 'deploy', 'users.example.json');
 /** The sample users' passwords are `<name>-demo`. */
@@ -89,6 +91,26 @@ export async function startUp(
 }
 
 /** Logs in as `user` and records arm `armId`'s status and operator topics. */
+/**
+ * `armtwin up` with the control tests' users (alice, bob, carol, the arm1 device; passwords
+ * `demoPassword`), its log in `outputDir`; `stop` also removes the users file's folder.
+ */
+export async function startUpWithControlUsers(name: string, outputDir: string): Promise<UpProcess> {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), `armtwin-e2e-${name}-`));
+  const up = await startUp(
+    path.join(outputDir, `armtwin-up-${name}-${process.pid}.log`),
+    [],
+    writeControlUsers(dir, demoPassword),
+  );
+  return {
+    ...up,
+    async stop() {
+      await up.stop();
+      fs.rmSync(dir, { recursive: true, force: true });
+    },
+  };
+}
+
 export class ArmWatcher {
   /** Base servo pulses with their arrival time (ms epoch). */
   readonly positions: { at: number; id: number; pwm: number }[] = [];

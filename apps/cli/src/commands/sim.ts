@@ -33,6 +33,7 @@ interface SimFlags {
   profile: string;
   models: string;
   report: ReportUnits;
+  thermalTimeScale: number;
   rate: number;
   healthRate: number;
   username?: string;
@@ -116,6 +117,12 @@ export function registerSim(program: Command): void {
       number('rate', 1, MAX_STATE_RATE),
       d.rate,
     )
+    .option(
+      '--thermal-time-scale <k>',
+      'heat runs k times faster than the clock (tests, demos: no waiting minutes for a servo to warm)',
+      number('thermal time scale', 0.01, 1000),
+      d.thermalTimeScale,
+    )
     .option('--health-rate <hz>', 'health rate, Hz', number('health rate', 0.1, 100), d.healthRate)
     .option('--username <name>', 'broker user name (env MQTT_USERNAME)')
     .option('--password <secret>', 'broker password (env MQTT_PASSWORD)')
@@ -159,6 +166,7 @@ export function registerSim(program: Command): void {
         profile: flags.profile,
         modelsDir: flags.models,
         report: flags.report,
+        thermalTimeScale: flags.thermalTimeScale,
         rate: flags.rate,
         healthRate: flags.healthRate,
         serialPath: flags.serial ?? '',

@@ -1,7 +1,7 @@
 import path from 'node:path';
 import { InvalidArgumentError, type Command } from 'commander';
 import { DEFAULT_PROFILE, PROFILE_NAME } from '@armtwin/sim';
-import { parseExtraSources, runUp } from '@armtwin/up';
+import { DEFAULT_MODEL_COPIES_OPTIONS, parseExtraSources, runUp } from '@armtwin/up';
 import { loadCliConfig } from '../config.ts';
 import { createLogger, firstOnly } from '../log.ts';
 import { armId, number } from './options.ts';
@@ -42,6 +42,7 @@ interface UpFlags {
   camera?: string;
   models?: string;
   cspSources?: string[];
+  modelIdle?: number;
 }
 
 export function registerUp(program: Command): void {
@@ -75,6 +76,11 @@ export function registerUp(program: Command): void {
     .option(
       '--models <dir>',
       'an extra folder of robot profiles, served at /models/ (before public/models) and read by --arms',
+    )
+    .option(
+      '--model-idle <minutes>',
+      `a model copy (/api/arms/{id}/model) with nothing sent to it stops after this long (default ${DEFAULT_MODEL_COPIES_OPTIONS.idleMs / 60_000})`,
+      number('model idle time', 0.1, 1440),
     )
     .option('--no-web', 'do not build the HUD when apps/web/dist is missing')
     .option('--no-middleware', 'do not start the middleware')
@@ -122,6 +128,7 @@ Ctrl-C stops everything: the arm says offline, the middleware flushes, influxd s
         ...(flags.camera ? { camera: flags.camera } : {}),
         ...(flags.models ? { modelsDir: path.resolve(flags.models) } : {}),
         cspSources: flags.cspSources ?? cspSources(env.cspSources),
+        ...(flags.modelIdle ? { modelIdleMs: flags.modelIdle * 60_000 } : {}),
         env: process.env,
         say,
         onFirst: firstOnly(log),

@@ -36,6 +36,11 @@ export interface HistoryOptions {
   thermalMaxAngleCells: number;
   /** `/history/thermal-model`: the fit's settings (defaults: `DEFAULT_THERMAL_FIT_OPTIONS`). */
   thermalFit: Partial<ThermalFitOptions>;
+  /**
+   * `/history/thermal-model`: the supply's internal resistance and common wiring, Ω, across
+   * which the motion's power is read from the sag (the simulator's; measure yours once).
+   */
+  thermalSupplyOhms: number;
 }
 
 export const DEFAULT_HISTORY_OPTIONS: HistoryOptions = {
@@ -51,6 +56,7 @@ export const DEFAULT_HISTORY_OPTIONS: HistoryOptions = {
   thermalMinAngleMs: 20,
   thermalMaxAngleCells: 40_000,
   thermalFit: {},
+  thermalSupplyOhms: 0.3,
 };
 
 /** §5 of PROTOCOL.md. */

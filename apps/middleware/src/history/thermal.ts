@@ -8,13 +8,22 @@
  * squares (thermal-fit.ts). Only the reader does I/O.
  */
 import type { ThermalModelAnswer, ThermalServoFit } from '@armtwin/api';
-import { fitThermal, thermalTraces, type ServoSamples, type TimedValue } from '@armtwin/protocol';
+import {
+  armPowerW,
+  fitThermal,
+  predictTrace,
+  thermalTraces,
+  type ServoSamples,
+  type TimedValue,
+} from '@armtwin/protocol';
 import type { EndpointContext } from './endpoints.ts';
 import type { HistoryParams } from './params.ts';
 import { samplesBy } from './shape.ts';
 import { WINDOW_LADDER, windowCount } from './window.ts';
 
 const finite = (x: number): number | null => (Number.isFinite(x) ? x : null);
+/** A predicted value as JSON: null where unknown, else to 0.01 (°C, V, W). */
+const value = (x: number): number | null => (Number.isFinite(x) ? Math.round(x * 100) / 100 : null);
 
 /** The grid: the smallest ladder step of at least `minMs` giving ≤ maxCells cells. */
 export function thermalStep(
@@ -71,8 +80,11 @@ export async function thermalModel(
   }));
   const gridStart = Math.floor(p.startMs / step.ms) * step.ms;
   const traces = thermalTraces(samples, gridStart, p.stopMs, step.ms);
+  const predictions: ReturnType<typeof predictTrace>[] = [];
   const servos: ThermalServoFit[] = ids.map((id, i) => {
     const f = fitThermal(traces[i]!, o.thermalFit);
+    const predicted = predictTrace(f.params, traces[i]!);
+    predictions.push(predicted);
     return {
       id,
       params: f.params,
@@ -83,7 +95,27 @@ export async function thermalModel(
       rmseC: finite(f.rmseC),
       voltRmseV: finite(f.voltRmseV),
       reason: f.reason,
+      predicted: {
+        temp: Array.from(predicted.temp, value),
+        volt: Array.from(predicted.volt, value),
+      },
     };
   });
-  return { arm: p.arm, start: p.startMs, stop: p.stopMs, stepMs: step.ms, servos };
+  const n = traces[0]?.temp.length ?? 0;
+  const volt0 = servos.map((s) => s.params.volt0V);
+  const power = (volts: ArrayLike<number>[]) =>
+    Array.from(armPowerW(volt0, volts, o.thermalSupplyOhms), value);
+  return {
+    arm: p.arm,
+    start: p.startMs,
+    stop: p.stopMs,
+    stepMs: step.ms,
+    times: Array.from({ length: n }, (_, k) => gridStart + (k + 0.5) * step.ms),
+    servos,
+    power: {
+      supplyOhms: o.thermalSupplyOhms,
+      measuredW: power(traces.map((t) => t.volt ?? [])),
+      predictedW: power(predictions.map((x) => x.volt)),
+    },
+  };
 }

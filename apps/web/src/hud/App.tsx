@@ -24,6 +24,10 @@ import { ImportPanel } from '../panels/Import/ImportPanel.tsx';
 import { PanelTabs } from './PanelTabs.tsx';
 import { SheetHandle } from './SheetHandle.tsx';
 import type { PanelTab } from './sheetTabs.ts';
+import { ModeBar } from '../modes/ModeBar.tsx';
+import { SHADOW_REASON } from '../modes/modes.ts';
+import { useHud } from './HudContext.ts';
+import { useSampled } from './useSampled.ts';
 import './layout.css';
 
 const SHEET_ID = 'hud-sheet';
@@ -32,6 +36,10 @@ export function App() {
   // The bottom sheet's tab (null: lowered) and the last one raised; only the phone layout shows it.
   const [open, setOpen] = useState<PanelTab | null>(null);
   const [last, setLast] = useState<PanelTab>('jog');
+  // Shadow mode: every panel's controls off (a disabled fieldset; the stop and the mode switch
+  // stand outside the panels, and the panels still fold).
+  const hud = useHud();
+  const shadow = useSampled(() => hud.modes.mode === 'shadow');
   const show = (tab: PanelTab | null) => {
     setOpen(tab);
     if (tab) setLast(tab);
@@ -42,15 +50,29 @@ export function App() {
     window.dispatchEvent(new Event('resize'));
   }, [open]);
 
-  const slot = (tab: PanelTab, panel: ReactNode) => (
-    <div className={open === tab ? 'slot open' : 'slot'} data-tab={tab}>
-      {panel}
+  // `modeFree`: who this page is, which broker it reads (Log-in, Connection) and the record of
+  // what the arm did (History: load, replay, export, all on this page) act on no arm, so Shadow
+  // leaves them on (a viewer opens in Shadow and must still log in and read the history).
+  const slot = (tab: PanelTab, panel: ReactNode, modeFree = false) => (
+    <div
+      className={open === tab ? 'slot open' : 'slot'}
+      data-tab={tab}
+      data-mode-free={modeFree || undefined}
+    >
+      <fieldset
+        className="mode-fieldset"
+        disabled={shadow && !modeFree}
+        title={shadow && !modeFree ? SHADOW_REASON : undefined}
+      >
+        {panel}
+      </fieldset>
     </div>
   );
   return (
     <div className={open ? 'hud sheet-open' : 'hud'}>
       <header className="hud-bar">
         <h1 className="visually-hidden">armtwin HUD</h1>
+        <ModeBar />
         <EmergencyStopButton />
       </header>
       <div className="hud-sheet" id={SHEET_ID}>
@@ -65,15 +87,15 @@ export function App() {
           {slot('setup', <ImportPanel />)}
         </aside>
         <aside className="column center" aria-label="History">
-          {slot('view', <HistoryPanel />)}
+          {slot('view', <HistoryPanel />, true)}
         </aside>
         <aside className="column right" aria-label="The arm and its connection">
-          {slot('setup', <LoginPanel />)}
+          {slot('setup', <LoginPanel />, true)}
           {slot('arm', <FleetPanel />)}
           {slot('view', <CameraPanel />)}
           {slot('arm', <StatusPanel />)}
           {slot('arm', <HealthPanel />)}
-          {slot('setup', <ConnectionPanel />)}
+          {slot('setup', <ConnectionPanel />, true)}
         </aside>
       </div>
       <PanelTabs open={open} last={last} sheetId={SHEET_ID} onOpen={show} />

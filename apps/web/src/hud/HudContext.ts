@@ -11,6 +11,8 @@ import type { Waypoints } from '../panels/Plan/Waypoints.ts';
 import type { PlanPreview } from '../panels/Plan/PlanPreview.ts';
 import type { PlanRunner } from '../panels/Plan/PlanRunner.ts';
 import type { WaypointEditor } from '../panels/Plan/WaypointEditor.ts';
+import type { RunRecorder } from '../panels/Plan/RunRecorder.ts';
+import type { RunReplay } from '../panels/Plan/RunReplay.ts';
 import type { RequestLog } from '../panels/Command/RequestLog.ts';
 import type { CameraHub } from '../cameras/CameraHub.ts';
 import type { CameraScreens } from '../scene/CameraScreens.ts';
@@ -18,6 +20,7 @@ import type { CalibrationSession } from '../panels/Calibration/CalibrationSessio
 import type { HoldJog } from '../panels/Jog/HoldJog.ts';
 import type { GamepadJog } from '../panels/Jog/GamepadJog.ts';
 import type { RenderChoice } from '../config/renderThread.ts';
+import type { ModeSwitch } from '../modes/ModeSwitch.ts';
 
 /** The Plan panel's plain objects. */
 export interface PlanTools {
@@ -28,6 +31,10 @@ export interface PlanTools {
   readonly runner: PlanRunner;
   /** The waypoint spheres in 3D (once the 3D view has started). */
   editor: WaypointEditor | null;
+  /** Rehearse, then run: the rehearsal in Model mode, the actual run, their tracking error. */
+  readonly recorder: RunRecorder;
+  /** "Replay run": the actual run as the replay's sibling, the rehearsal as the ghost. */
+  readonly runReplay: RunReplay;
 }
 
 export interface Hud {
@@ -54,6 +61,8 @@ export interface Hud {
   calibration: CalibrationSession;
   /** Hold-to-jog (buttons, keys, gamepad) of the Jog panel. */
   jog: { hold: HoldJog; gamepad: GamepadJog };
+  /** Model / Shadow / Twin for the selected arm (src/modes). */
+  modes: ModeSwitch;
   /** Controls another arm (the fleet list): saves it and reconnects. */
   selectArm(armId: string): void;
   /** Where the 3D view is drawn (the page's thread or a worker), and why (Status panel). */

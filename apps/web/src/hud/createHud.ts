@@ -32,6 +32,8 @@ import { PlanPreview } from '../panels/Plan/PlanPreview.ts';
 import { PlanRunner } from '../panels/Plan/PlanRunner.ts';
 import { WaypointEditor } from '../panels/Plan/WaypointEditor.ts';
 import { Waypoints } from '../panels/Plan/Waypoints.ts';
+import { RunRecorder } from '../panels/Plan/RunRecorder.ts';
+import { RunReplay } from '../panels/Plan/RunReplay.ts';
 import { RequestLog } from '../panels/Command/RequestLog.ts';
 import { CameraHub } from '../cameras/CameraHub.ts';
 import { CameraScreens } from '../scene/CameraScreens.ts';
@@ -40,6 +42,8 @@ import { HoldJog } from '../panels/Jog/HoldJog.ts';
 import { GamepadJog } from '../panels/Jog/GamepadJog.ts';
 import type { Hud, PlanTools } from './HudContext.ts';
 import { installDebugHook } from './debugHook.ts';
+import { ModeSwitch } from '../modes/ModeSwitch.ts';
+import { SiblingFeed } from '../modes/SiblingFeed.ts';
 
 /** The page's elements: the 3D view's container and the line that says the model is loading. */
 export interface HudElements {
@@ -76,15 +80,29 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
   });
   const target = new TargetPreview();
   const replay = new ReplayPlayer();
+  // Model / Shadow / Twin: applied to each new link once its role is known.
+  const modes = new ModeSwitch({
+    location: window.location,
+    replaceUrl: (url) => window.history.replaceState(window.history.state, '', url),
+    storage: (() => {
+      try {
+        return window.sessionStorage;
+      } catch {
+        return null;
+      }
+    })(),
+  });
+  // The translucent sibling: the replay, else (Model mode) the model copy beside the arm.
+  const sibling = new SiblingFeed(replay, () => (modes.mode === 'model' ? modes.copy : null));
   // The 3D view draws in a worker (OffscreenCanvas) when possible and not told otherwise, else
   // here; a worker that fails before its first frame hands over to the main thread.
   let rendering = chooseRenderThread(window.location.search, canRenderOffscreen());
   let built = false; // the fallback may come while the viewer is built, before `hud` is
-  const mainView = () => new Viewer(els.view, store, target, replay);
+  const mainView = () => new Viewer(els.view, store, target, sibling);
   const viewer: SceneView =
     rendering.thread === 'worker'
       ? new FallbackSceneView(
-          { worker: () => new WorkerViewer(els.view, store, target, replay), main: mainView },
+          { worker: () => new WorkerViewer(els.view, store, target, sibling), main: mainView },
           (reason) => {
             console.warn(
               `3D view: drawing on the main thread, the render worker failed: ${reason}`,
@@ -114,6 +132,8 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
     preview: new PlanPreview(),
     runner: new PlanRunner(),
     editor: null,
+    recorder: new RunRecorder(),
+    runReplay: new RunReplay(replay),
   };
   const requests = new RequestLog();
   const calibration = new CalibrationSession(store);
@@ -125,7 +145,10 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
   const cameraScreens = new CameraScreens(viewer, cameras, cameras.decoders);
   // Hold-to-jog reads the link live (it is replaced on reconnect); the e-stop lets go of it.
   const hold = new HoldJog({
-    store,
+    // Holds step from the driven arm's pose: the model copy's in Model mode.
+    get store() {
+      return modes.driven(store);
+    },
     link: () => hud.link,
     robot: () => ({ sliders: robots.active.spec.sliders, motion: robots.active.motion }),
   });
@@ -139,6 +162,11 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
   });
   const letGoOnStop = (link: ArmLink) => link.stopListeners.add(() => hold.releaseAll(false));
   letGoOnStop(firstLink);
+  const startSession = (link: ArmLink) =>
+    void session.start(link).then(() => {
+      if (hud.link === link) modes.attach(link, store);
+      render(hud);
+    });
 
   const hud: Hud = {
     store,
@@ -153,6 +181,7 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
     cameraScreens,
     calibration,
     jog: { hold, gamepad },
+    modes,
     rendering,
     link: firstLink,
     selectArm(armId: string) {
@@ -172,8 +201,9 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
       letGoOnStop(hud.link);
       plan.runner.cancel(prev.armId === next.armId ? '' : 'stopped: another arm was selected');
       plan.preview.clear();
+      if (prev.armId !== next.armId) plan.recorder.clear();
       robots.switched(prev, next);
-      void session.start(hud.link);
+      startSession(hud.link);
       render(hud);
     },
   };
@@ -183,15 +213,19 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
   // The ghost runs along the plan being previewed, and along each re-plan of a run.
   // (the calibration wizard's ghost, while it is open, comes first)
   viewer.ghostSource = {
-    sample: (now, out) => calibration.sample(now, out) || plan.preview.sample(now, out),
+    sample: (now, out) =>
+      calibration.sample(now, out) ||
+      plan.runReplay.sample(now, out) || // "Replay run": the rehearsal beside the actual run
+      plan.preview.sample(now, out),
   };
   plan.runner.onPlan((p) => plan.preview.show(p, polaritiesOf(store.opts.arm), performance.now()));
   plan.runner.onEnd(() => plan.preview.clear()); // the ghost goes when the plan is over
+  plan.runner.onEnd((state) => plan.recorder.end(state === 'done')); // rehearsal / actual run
   robots.onFeedback((f) => requests.take(f));
   const debug = installDebugHook(hud, viewer);
 
   function start(): void {
-    void session.start(hud.link);
+    startSession(hud.link);
     // Let go of the arm when the page goes away (the deadman's `0` at once, not after the will).
     window.addEventListener('pagehide', () => hud.link.release());
     window.addEventListener('pageshow', (e) => e.persisted && hud.reconnect(hud.settings));

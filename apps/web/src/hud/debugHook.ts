@@ -26,6 +26,9 @@ export interface DebugHook {
   replay: ReplayPlayer;
   history: typeof historyProbe;
   session: Session;
+  /** Model / Shadow / Twin, the model copy's store, and the Plan panel's rehearsal recorder. */
+  modes: Hud['modes'];
+  recorder: Hud['plan']['recorder'];
   /** The fleet, the active robot, and the Plan panel's objects. */
   robots: {
     readonly fleet: FleetLink;
@@ -71,6 +74,8 @@ export function installDebugHook(hud: Hud, viewer: SceneView): DebugHook {
     replay: hud.replay,
     history: historyProbe,
     session: hud.session,
+    modes: hud.modes,
+    recorder: plan.recorder,
     robots: {
       get fleet() {
         return robots.fleet;

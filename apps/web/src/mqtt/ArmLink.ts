@@ -28,6 +28,8 @@ import { NO_PERMISSIONS, type LinkPermissions } from '../auth/roles.ts';
 import { connectOptions } from './connectOptions.ts';
 import type { MqttConnect, MqttLike } from './MqttLike.ts';
 import { ControlClaim, guestName, type ControlIdentity } from './ControlClaim.ts';
+import { ModelCopySide } from './ModelCopySide.ts';
+import { commandTopic, modelArmId, stopArms, type ArmMode } from '../modes/modes.ts';
 
 /** What the page hears from the link besides data (src/auth/Session.ts listens). */
 export interface LinkEvents {
@@ -83,8 +85,15 @@ export class ArmLink {
   private events: LinkEvents = {};
   private connected = false;
   private readonly taps: LinkTap[] = [];
-  /** Who holds the arm, and this page's claims on it (docs/protocol.md § Control). */
-  control: ControlClaim;
+  /** Who holds the real arm, and this page's claims on it (docs/protocol.md § Control). */
+  private armClaim: ControlClaim;
+  /** The arm's model copy `{id}-model`: read, claimed and held in Model mode (§ Modes). */
+  private readonly copy: ModelCopySide;
+  /**
+   * Model / Shadow / Twin (../modes/modes.ts): which arm this page's commands drive. Every
+   * command leaves through `publish`, which routes it by this, so no panel can bypass it.
+   */
+  private armMode: ArmMode = 'twin';
   /**
    * "Broker 2 of 2: ws://…" while connected with a list of several brokers, '' with one
    * (docs/protocol.md § Several brokers). Sampled by the Status panel.
@@ -101,7 +110,15 @@ export class ArmLink {
     private readonly intervals: IntervalTimers = NATIVE_INTERVALS,
   ) {
     this.topics = armTopics(settings.armId);
-    this.control = this.controlFor({ name: guestName(), enforced: false, admin: false });
+    const guest = { name: guestName(), enforced: false, admin: false };
+    this.armClaim = this.controlFor(guest);
+    const copyId = modelArmId(settings.armId);
+    this.copy = new ModelCopySide(
+      settings.armId,
+      this.controlFor(guest, copyId ?? settings.armId),
+      (message) => (this.store.connectionError = message),
+      now,
+    );
     this.coalescer = new MoveCoalescer((id, pwm) => this.sendMove(id, pwm), {
       intervalMs: settings.jogIntervalMs,
     });
@@ -120,7 +137,10 @@ export class ArmLink {
   ): void {
     const s = this.settings;
     this.permissions = permissions;
-    if (who) this.control = this.controlFor(who);
+    if (who) {
+      this.armClaim = this.controlFor(who);
+      this.copy.claim = this.controlFor(who, this.copy.id ?? s.armId);
+    }
     this.events = events;
     this.store.connection = 'connecting';
     const deadman = permissions.deadman;
@@ -150,6 +170,7 @@ export class ArmLink {
         if (err) this.store.connectionError = `subscribe failed: ${err.message}`;
       });
       this.subscribeTaps(client);
+      if (this.armMode === 'model') this.copy.enter(client, deadman);
       // Everyone's commands, for the predictive twin; a broker may refuse a role this (ACL).
       client.subscribe([`${this.topics.control}/#`], { qos: 0 }, () => {});
     });
@@ -187,7 +208,11 @@ export class ArmLink {
       this.beatTimer = this.intervals.setInterval(() => {
         if (!this.connected || !current()) return;
         this.holdOperator(client);
-        this.control.beat();
+        this.armClaim.beat();
+        if (this.armMode === 'model') {
+          this.copy.holdOperator(client, '1');
+          this.copy.claim.beat();
+        }
       }, OPERATOR_BEAT_MS);
   }
 
@@ -204,7 +229,8 @@ export class ArmLink {
     this.brokerInUse = b.count > 1 ? describeBroker(b) : '';
     if (this.brokerIndex >= 0 && b.index !== this.brokerIndex) {
       this.brokerMoves++;
-      this.control.moved();
+      this.armClaim.moved();
+      this.copy.claim.moved();
     }
     this.brokerIndex = b.index;
   }
@@ -246,8 +272,9 @@ export class ArmLink {
    */
   setTorque(on: boolean): boolean {
     const client = this.client;
-    if (!client || !this.permissions.command) return false;
-    client.publish(this.topics.torque, on ? '1' : '0', { qos: 1 }, (err) => {
+    const arm = this.armMode === 'shadow' ? null : this.drivenArmId;
+    if (!client || !this.permissions.command || arm === null) return false;
+    client.publish(armTopics(arm).torque, on ? '1' : '0', { qos: 1 }, (err) => {
       if (err) this.lastPublishError = err.message;
     });
     return true;
@@ -264,9 +291,44 @@ export class ArmLink {
     this.beatTimer = undefined;
   }
 
-  /** Moves from this page would reach the arm: its role may command and nobody else holds it. */
+  /**
+   * Moves from this page would reach the driven arm: its role may command, the mode drives an
+   * arm (not Shadow) and nobody else holds it.
+   */
   get mayMove(): boolean {
-    return this.permissions.command && this.control.mayMove;
+    return this.permissions.command && this.armMode !== 'shadow' && this.control.mayMove;
+  }
+
+  /** Who holds the driven arm (the copy in Model mode), and this page's claims on it. */
+  get control(): ControlClaim {
+    return this.armMode === 'model' ? this.copy.claim : this.armClaim;
+  }
+
+  get mode(): ArmMode {
+    return this.armMode;
+  }
+
+  /** The arm this page's commands drive now: the copy in Model mode, else the arm. */
+  get drivenArmId(): string {
+    return this.armMode === 'model' && this.copy.id ? this.copy.id : this.settings.armId;
+  }
+
+  /**
+   * Switches what this page drives (../modes/ModeSwitch.ts calls it). Pending jogs are dropped.
+   * Into Model: the copy's status, holder and audit are read (its status into `copy`) and the
+   * page holds the copy's deadman while it is there; out of Model: the copy's deadman is let go
+   * (a `0`, as the page's will would) and its claim released, and the copy is no longer read.
+   */
+  setMode(mode: ArmMode, copy: ArmStore | null = this.copy.store): void {
+    if (mode === this.armMode || (mode === 'model' && !this.copy.id)) return;
+    this.coalescer.cancelAll();
+    const client = this.client;
+    const was = this.armMode;
+    this.armMode = mode;
+    this.copy.store = copy;
+    if (!client || !this.connected) return;
+    if (mode === 'model') this.copy.enter(client, this.permissions.deadman);
+    else if (was === 'model') this.copy.leave(client, this.permissions.deadman);
   }
 
   private get holderTopic(): string {
@@ -277,8 +339,8 @@ export class ArmLink {
     return auditTopic(this.settings.armId);
   }
 
-  private controlFor(who: ControlIdentity): ControlClaim {
-    return new ControlClaim(this.settings.armId, who, (topic, payload) => {
+  private controlFor(who: ControlIdentity, armId = this.settings.armId): ControlClaim {
+    return new ControlClaim(armId, who, (topic, payload) => {
       const client = this.client;
       if (!client || !this.permissions.command) return false;
       client.publish(topic, payload, { qos: 1 }, (err) => {
@@ -294,9 +356,11 @@ export class ArmLink {
     } else if (topic === this.topics.control || topic.startsWith(`${this.topics.control}/`)) {
       this.store.noteControl(payload, now());
     } else if (topic === this.holderTopic) {
-      this.control.onHolder(payload);
+      this.armClaim.onHolder(payload);
     } else if (topic === this.auditTopic) {
-      this.control.onAudit(payload);
+      this.armClaim.onAudit(payload);
+    } else if (this.copy.onMessage(topic, payload)) {
+      // the model copy's (Model mode)
     } else if (topic === this.topics.online) {
       const text = decoder.decode(payload).trim();
       this.store.armOnline = text === '1' ? true : text === '0' ? false : null;
@@ -309,22 +373,40 @@ export class ArmLink {
   /** The connection dropped: a gap starts (once), and the health charts get a break. */
   private lost(): void {
     this.connected = false;
+    this.copy.lost();
     if (this.gap.lost(Date.now())) this.store.history.pushGap(Date.now() / 1000);
   }
 
+  /**
+   * Every command leaves here, routed by the mode (../modes/modes.ts `commandTopic`): to the
+   * arm in Twin, to its copy in Model, nowhere in Shadow (stops included: the emergency stop
+   * has its own route, `emergencyStop`).
+   */
   private publish(payload: string, isCommand = true, allowed = this.permissions.command): boolean {
     const client = this.client;
     if (!client || !allowed) return false;
-    if (isCommand && !this.control.mayMove && !STOPS_ONLY.test(payload)) {
-      this.lastPublishError = `not sent: ${this.control.heldBy} controls the arm`;
+    const claim = this.control;
+    const to = commandTopic(this.settings.armId, this.armMode, this.userOf(claim));
+    if (to === null) {
+      this.lastPublishError = 'not sent: Shadow mode sends no commands';
+      return false;
+    }
+    if (isCommand && !claim.mayMove && !STOPS_ONLY.test(payload)) {
+      this.lastPublishError = `not sent: ${claim.heldBy} controls the arm`;
       return false;
     }
     if (isCommand) this.store.counters.published++;
-    this.store.noteControl(payload, now());
-    client.publish(this.control.controlTopic, payload, { qos: 1 }, (err) => {
+    // The predictive twin of the real arm hears only what goes to the real arm.
+    (this.armMode === 'model' ? this.copy.store : this.store)?.noteControl(payload, now());
+    client.publish(to, payload, { qos: 1 }, (err) => {
       if (err) this.lastPublishError = err.message;
     });
     return true;
+  }
+
+  /** The user of a claim's per-user topics, null for the plain topic (ControlClaim's rule). */
+  private userOf(claim: ControlClaim): string | null {
+    return claim.ownTopics ? claim.who.name : null;
   }
 
   /**
@@ -414,13 +496,27 @@ export class ArmLink {
     for (const fn of this.stopListeners) fn();
     this.coalescer.cancelAll();
     this.store.commandedPwm.fill(NaN);
-    const sent = this.publish(EMERGENCY_STOP, true, this.permissions.stop);
-    if (sent) flushNow(this.client);
-    return sent;
+    const client = this.client;
+    if (!client || !this.permissions.stop) return false;
+    // The stop wins over every mode: the real arm always, and the copy too in Model mode.
+    for (const arm of stopArms(this.settings.armId, this.armMode)) {
+      const claim = arm === this.settings.armId ? this.armClaim : this.copy.claim;
+      const to = commandTopic(arm, 'twin', this.userOf(claim));
+      this.store.counters.published++;
+      if (arm === this.settings.armId) this.store.noteControl(EMERGENCY_STOP, now());
+      client.publish(to!, EMERGENCY_STOP, { qos: 1 }, (err) => {
+        if (err) this.lastPublishError = err.message;
+      });
+    }
+    flushNow(client);
+    return true;
   }
 
   private ping(): void {
     if (this.store.connection !== 'connected' || !this.client || !this.permissions.command) return;
+    // Pings measure the real arm's round trip: none in Model (the arm's control topics stay
+    // silent while rehearsing) or Shadow (no commands at all).
+    if (this.armMode !== 'twin') return;
     const seq = this.store.ping.send(now());
     this.publish(encodePing(seq), false);
   }
@@ -435,10 +531,14 @@ export class ArmLink {
     const client = this.client;
     this.client = null;
     if (!client) return;
-    if (this.connected && this.control.holding)
-      client.publish(this.control.claimTopic, 'release', { qos: 1 });
+    if (this.connected && this.armClaim.holding)
+      client.publish(this.armClaim.claimTopic, 'release', { qos: 1 });
+    if (this.connected && this.copy.claim.holding)
+      client.publish(this.copy.claim.claimTopic, 'release', { qos: 1 });
     if (this.permissions.deadman && this.connected)
       client.publish(this.topics.operator, '0', { qos: 1, retain: true });
+    if (this.permissions.deadman && this.connected && this.armMode === 'model')
+      this.copy.holdOperator(client, '0');
     client.end(false);
     this.store.connection = 'idle';
   }

@@ -68,9 +68,14 @@ export class ControlClaim {
     return this.holder?.requests.includes(this.who.name) ?? false;
   }
 
+  /** This page's commands and requests go on its user's own topics (logged in, or holding). */
+  get ownTopics(): boolean {
+    return this.who.enforced || this.holding;
+  }
+
   /** Where this page's commands go: its own topic when logged in or holding, else the plain one. */
   get controlTopic(): string {
-    return this.who.enforced || this.holding
+    return this.ownTopics
       ? userTopic(this.armId, 'control', this.who.name)
       : topic(this.armId, 'control');
   }

@@ -10,6 +10,8 @@ export interface MqttLike {
   on(event: 'error', cb: (err: Error) => void): unknown;
   on(event: 'message', cb: (topic: string, payload: Uint8Array) => void): unknown;
   subscribe(topics: string[], opts: { qos: 0 | 1 }, cb?: (err: Error | null) => void): unknown;
+  /** Optional on a fake; mqtt.js has it (the copy's topics are let go when leaving Model mode). */
+  unsubscribe?(topics: string[]): unknown;
   publish(
     topic: string,
     payload: string,

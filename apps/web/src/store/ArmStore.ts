@@ -4,84 +4,39 @@
  * frame (`sample`, then `rendered`), the health charts read `history`, and React panels read
  * its fields through `useSampled` a few times a second. No message causes a React render, and
  * nothing here allocates per frame. Every method takes `now` (a monotonic ms clock,
- * performance.now() in the page) so tests drive time themselves.
+ * performance.now() in the page) so tests drive time themselves. Its parts: the status and
+ * control readers (./statusReader.ts, ./commandReader.ts), the health row (./HealthRow.ts), the
+ * tweens and the predictor that draw the arm (./PoseTweens.ts, ./TwinPredictor.ts), the joints'
+ * tracking error (./trackJoints.ts), its settings (./armStoreOptions.ts).
  */
-import {
-  PWM_CENTRE,
-  US_PER_DEG,
-  angleFromPwm,
-  createReader,
-  unhandled,
-  type Frame,
-  type Group,
-  type Reader,
-} from '@armtwin/protocol';
-import { DEMO_ARM, type ArmProfile } from '@armtwin/ik';
+import { PWM_CENTRE, US_PER_DEG, angleFromPwm, type Reader } from '@armtwin/protocol';
+import type { ArmProfile } from '@armtwin/ik';
 import { HealthHistory } from './HealthHistory.ts';
-import { DEFAULT_THERMAL_PARAMS, ThermalWatch, type ThermalWatchOptions } from '@armtwin/protocol';
-import { IntervalEstimator, JointTween } from './interpolation.ts';
-import { TwinPredictor, type TwinMode, type TwinPredictorOptions } from './TwinPredictor.ts';
+import { HealthRow } from './HealthRow.ts';
+import { DEFAULT_THERMAL_PARAMS, ThermalWatch } from '@armtwin/protocol';
+import { PoseTweens } from './PoseTweens.ts';
+import { TwinPredictor, type TwinMode } from './TwinPredictor.ts';
 import { TrackingErrors } from './trackingError.ts';
+import { trackJoints } from './trackJoints.ts';
+import { createCommandReader } from './commandReader.ts';
+import { createStatusReader } from './statusReader.ts';
 import { RateMeter } from './RateMeter.ts';
 import { PingTracker } from './PingTracker.ts';
+import { countDrop, type FirstErrors } from './readerErrors.ts';
 import {
-  countDrop,
-  emptyDropCounters,
-  type DropCounters,
-  type FirstErrors,
-} from './readerErrors.ts';
+  DEFAULT_ARM_STORE_OPTIONS,
+  emptyStoreCounters,
+  type ArmStoreOptions,
+  type ConnectionState,
+  type StoreCounters,
+} from './armStoreOptions.ts';
 
-export interface ArmStoreOptions {
-  /** The arm's profile: servo count, names, polarity. */
-  arm: ArmProfile;
-  /** The seed's α: > 1 reaches each reported pose sooner, < 1 later (smoother, laggier). */
-  interpolationAlpha: number;
-  /** Health rows kept for the strip charts (at 2 Hz, 240 = two minutes). */
-  historyLength: number;
-  /** No state report for longer than this, ms, and the data is stale. */
-  staleAfterMs: number;
-  /**
-   * State reports per second (over the last second) from which each report is drawn as it is,
-   * not tweened: reports then come faster than frames, and a tween toward the newest one only
-   * lags behind it (by up to a report interval, more when a busy page takes several reports at
-   * once). Below it, reports are interpolated (a 5 Hz arm glides).
-   */
-  drawNewestAboveHz: number;
-  /**
-   * How the arm is drawn: `predict` (where it is at the display instant, from its reports,
-   * their `$TIM` and what was commanded: ./TwinPredictor.ts), `interpolate` (the seed's tween
-   * toward each report, drawn as it is above `drawNewestAboveHz`) or `newest` (each report as it is).
-   */
-  twinMode: TwinMode;
-  predictor: Partial<TwinPredictorOptions>;
-  /** The thermal early warning's settings (@armtwin/protocol `DEFAULT_THERMAL_WATCH_OPTIONS`). */
-  thermal: Partial<ThermalWatchOptions>;
-}
-
-export const DEFAULT_ARM_STORE_OPTIONS: ArmStoreOptions = {
-  arm: DEMO_ARM,
-  interpolationAlpha: 1,
-  historyLength: 240,
-  staleAfterMs: 1000,
-  drawNewestAboveHz: 100,
-  twinMode: 'predict',
-  predictor: {},
-  thermal: {},
-};
-
-export type ConnectionState =
-  'idle' | 'connecting' | 'connected' | 'reconnecting' | 'offline' | 'error';
-
-export interface StoreCounters extends DropCounters {
-  /** MQTT messages on the status topic. */
-  messages: number;
-  /** Frames decoded (group members included). */
-  frames: number;
-  /** `$ERR` frames from the controller. */
-  controllerErrors: number;
-  /** Messages this HUD published on the control topic. */
-  published: number;
-}
+export {
+  DEFAULT_ARM_STORE_OPTIONS,
+  type ArmStoreOptions,
+  type ConnectionState,
+  type StoreCounters,
+} from './armStoreOptions.ts';
 
 export class ArmStore {
   readonly opts: ArmStoreOptions;
@@ -137,46 +92,52 @@ export class ArmStore {
   /** First message per reader error kind, for the Status panel. */
   readonly firstError: FirstErrors = {};
 
-  private tweens!: JointTween[];
+  /** The `interpolate` mode's tweens toward each report. */
+  private tweens!: PoseTweens;
   /** The predictive twin (`twinMode` 'predict'); fed every report and every command seen. */
   readonly predictor: TwinPredictor;
   /** The arm-time stamp of the state report being taken in. */
   private reportStamp = NaN;
   private readonly controlReader: Reader;
-  private readonly interval = new IntervalEstimator();
   private readonly messageRate = new RateMeter();
   private readonly stateRate = new RateMeter();
   private readonly reader: Reader;
-  private rowTemp!: Float64Array;
-  private rowVolt!: Float64Array;
-  private rowPredicted!: Float64Array;
+  /** The health row of the report being taken in. */
+  private row!: HealthRow;
   private drawn!: Float64Array;
   private now = 0;
-  /** Whether the stream is fast enough to draw each report as it is (`drawNewestAboveHz`). */
-  private drawNewest = false;
 
   constructor(opts: Partial<ArmStoreOptions> = {}) {
     this.opts = { ...DEFAULT_ARM_STORE_OPTIONS, ...opts };
     this.predictor = new TwinPredictor(this.opts.arm.servos, this.opts.predictor);
     this.allocate();
-    this.counters = {
-      messages: 0,
-      frames: 0,
-      ...emptyDropCounters(),
-      controllerErrors: 0,
-      published: 0,
-    };
-    this.reader = createReader({
-      onFrame: (f) => this.onFrame(f),
-      onGroup: (g) => this.onGroup(g),
-      onError: (e) => countDrop(this.counters, this.firstError, e),
-    });
-    this.controlReader = createReader({
-      onFrame: (f) => this.onCommand(f),
-      onGroup: (g) => {
-        for (const f of g.frames) this.onCommand(f);
+    this.counters = emptyStoreCounters();
+    this.reader = createStatusReader(
+      {
+        counted: (n) => (this.counters.frames += n),
+        stateArrived: (stamp) => this.stateArrived(stamp),
+        position: (id, pwm) => this.setPosition(id, pwm),
+        angle: (id, deg) => this.setAngle(id, deg),
+        healthRow: () => this.row.clear(),
+        health: (id, temp, mv) => this.setHealth(id, temp, mv),
+        healthDone: (stamp) => this.row.push(stamp, this.thermal, this.history),
+        kmsResult: (code) => {
+          this.kmsReply = code;
+          this.kmsReplies++;
+        },
+        ping: (seq) => this.ping.echo(seq, this.now),
+        controllerError: (text) => {
+          this.counters.controllerErrors++;
+          this.lastControllerError = text;
+        },
       },
-    });
+      (e) => countDrop(this.counters, this.firstError, e),
+    );
+    this.controlReader = createCommandReader(
+      this.predictor,
+      () => this.opts.arm,
+      () => this.now,
+    );
   }
 
   private allocate(): void {
@@ -187,10 +148,9 @@ export class ArmStore {
     this.commandedPwm = new Float64Array(n).fill(NaN);
     this.temp = new Float64Array(n).fill(NaN);
     this.mv = new Float64Array(n).fill(NaN);
-    this.rowTemp = new Float64Array(n);
-    this.rowVolt = new Float64Array(n);
+    this.row = new HealthRow(n);
     this.drawn = new Float64Array(n).fill(NaN);
-    this.tweens = Array.from({ length: n }, () => new JointTween());
+    this.tweens = new PoseTweens(n);
     this.predictor.configure(this.opts.arm.servos);
     const setting = this.tracking?.setting ?? 'auto';
     this.tracking = new TrackingErrors(n);
@@ -200,7 +160,6 @@ export class ArmStore {
       this.opts.arm.servos.map(() => DEFAULT_THERMAL_PARAMS),
       this.opts.thermal,
     );
-    this.rowPredicted = new Float64Array(n);
   }
 
   /**
@@ -238,92 +197,12 @@ export class ArmStore {
     this.controlReader.clearStamp();
   }
 
-  private onCommand(f: Frame): void {
-    const servos = this.opts.arm.servos;
-    if (f.type === 'move' && f.id < this.servoCount)
-      this.predictor.command(f.id, angleFromPwm(f.pwm, servos[f.id]!.polarity), f.ms, this.now);
-    else if (f.type === 'angleMove' && f.id < this.servoCount)
-      this.predictor.command(f.id, f.deg, f.ms, this.now);
-    else if (f.type === 'stop') this.predictor.stop(f.id === 255 ? undefined : f.id, this.now);
-  }
-
-  private onGroup(g: Group): void {
-    let positions = 0;
-    let health = 0;
-    this.rowTemp.fill(NaN);
-    this.rowVolt.fill(NaN);
-    this.counters.frames += g.frames.length;
-    for (const f of g.frames) {
-      if (f.type === 'position') {
-        if (positions++ === 0) this.stateArrived(g.time);
-        this.setPosition(f.id, f.pwm);
-      } else if (f.type === 'angle') {
-        if (positions++ === 0) this.stateArrived(g.time);
-        this.setAngle(f.id, f.deg);
-      } else if (f.type === 'health') {
-        health++;
-        this.setHealth(f.id, f.temp, f.mv);
-      } else {
-        this.handle(f);
-      }
-    }
-    if (health > 0) this.pushHealthRow(g.time);
-  }
-
-  private onFrame(f: Frame): void {
-    this.counters.frames++;
-    this.handle(f);
-  }
-
-  private handle(f: Frame): void {
-    switch (f.type) {
-      case 'position':
-        this.stateArrived(f.time);
-        this.setPosition(f.id, f.pwm);
-        break;
-      case 'angle':
-        this.stateArrived(f.time);
-        this.setAngle(f.id, f.deg);
-        break;
-      case 'health':
-        this.rowTemp.fill(NaN);
-        this.rowVolt.fill(NaN);
-        this.setHealth(f.id, f.temp, f.mv);
-        this.pushHealthRow(f.time);
-        break;
-      case 'kmsResult':
-        this.kmsReply = f.code;
-        this.kmsReplies++;
-        break;
-      case 'ping':
-        this.ping.echo(f.seq, this.now);
-        break;
-      case 'controllerError':
-        this.counters.controllerErrors++;
-        this.lastControllerError = f.text;
-        break;
-      // `$TIM` stamps the frames after it (the reader does that), and host → arm frames
-      // someone else published on the status topic say nothing about the arm.
-      case 'time':
-      case 'move':
-      case 'angleMove':
-      case 'readPosition':
-      case 'readHealth':
-      case 'stop':
-      case 'kms':
-        break;
-      default:
-        return unhandled(f);
-    }
-  }
-
   private stateArrived(stamp: number | undefined): void {
     this.lastStateAt = this.now;
     this.reportStamp = this.predictor.arrive(stamp, this.now);
     if (stamp !== undefined && !(stamp <= this.lastStateStamp)) this.lastStateStamp = stamp;
     this.stateRate.add(this.now);
-    this.interval.arrive(this.now);
-    this.drawNewest = this.stateRate.rate(this.now) >= this.opts.drawNewestAboveHz;
+    this.tweens.arrive(this.now, this.stateRate.rate(this.now), this.opts.drawNewestAboveHz);
   }
 
   private setPosition(id: number, pwm: number): void {
@@ -343,31 +222,14 @@ export class ArmStore {
     this.angle[id] = deg;
     this.thermal.position(id, deg);
     this.predictor.report(id, this.reportStamp, deg);
-    this.tweens[id]!.retarget(
-      deg,
-      this.now,
-      this.drawNewest ? 0 : this.interval.intervalMs,
-      this.opts.interpolationAlpha,
-    );
+    this.tweens.retarget(id, deg, this.now, this.opts.interpolationAlpha);
   }
 
   private setHealth(id: number, temp: number, mv: number): void {
     if (id >= this.servoCount) return;
     this.temp[id] = temp;
     this.mv[id] = mv;
-    this.rowTemp[id] = temp;
-    this.rowVolt[id] = mv / 1000;
-  }
-
-  private pushHealthRow(stamp: number | undefined): void {
-    const t = stamp ?? Date.now();
-    this.rowPredicted.fill(NaN);
-    for (let i = 0; i < this.servoCount; i++) {
-      if (Number.isNaN(this.rowTemp[i]!)) continue;
-      this.thermal.health(i, t, this.rowTemp[i]!);
-      this.rowPredicted[i] = this.thermal.state(i)!.predictedC;
-    }
-    this.history.push(t / 1000, this.rowTemp, this.rowVolt, this.rowPredicted);
+    this.row.set(id, temp, mv);
   }
 
   /**
@@ -380,38 +242,20 @@ export class ArmStore {
     const alpha = this.opts.interpolationAlpha;
     const mode = this.opts.twinMode;
     if (mode === 'predict') this.predictor.sample(now, this.drawn);
-    this.updateTracking();
+    trackJoints(this.tracking, this.predictor, this.opts.arm.servos, this.commandedPwm, this.angle);
     for (let i = 0; i < this.servoCount; i++) {
       const v =
         mode === 'predict'
           ? this.drawn[i]!
           : mode === 'newest'
             ? this.angle[i]!
-            : this.tweens[i]!.valueAt(now, alpha);
+            : this.tweens.valueAt(i, now, alpha);
       if (v !== this.rendered[i] && !(Number.isNaN(v) && Number.isNaN(this.rendered[i]!))) {
         this.rendered[i] = v;
         changed = true;
       }
     }
     return changed;
-  }
-
-  /**
-   * Tracking error per joint: the reported angle against the command's course at the same
-   * instant (./trackingError.ts); without a course seen, against this HUD's commanded pulse
-   * once the joint has stopped moving.
-   */
-  private updateTracking(): void {
-    const servos = this.opts.arm.servos;
-    for (let i = 0; i < this.servoCount; i++) {
-      const j = this.predictor.joint(i);
-      if (!j) continue;
-      let commanded = j.commandedAt(j.s0);
-      const pwm = this.commandedPwm[i]!;
-      if (Number.isNaN(commanded) && Number.isFinite(pwm) && j.reportVelocity() === 0)
-        commanded = angleFromPwm(pwm, servos[i]!.polarity);
-      this.tracking.set(i, commanded, this.angle[i]!);
-    }
   }
 
   /** The pose drawn by the last `sample` is a prediction that no report has confirmed yet. */
@@ -447,7 +291,7 @@ export class ArmStore {
   }
 
   get expectedStateIntervalMs(): number {
-    return this.interval.intervalMs;
+    return this.tweens.intervalMs;
   }
 
   setInterpolationAlpha(alpha: number): void {
@@ -463,12 +307,11 @@ export class ArmStore {
     this.commandedPwm.fill(NaN);
     this.temp.fill(NaN);
     this.mv.fill(NaN);
-    for (const t of this.tweens) t.reset();
+    this.tweens.reset();
     this.predictor.reset();
     this.thermal.reset();
     this.tracking.reset();
     this.controlReader.reset();
-    this.interval.reset();
     this.messageRate.reset();
     this.stateRate.reset();
     this.history.clear();
@@ -478,6 +321,5 @@ export class ArmStore {
     this.lastStateAt = NaN;
     this.lastStateStamp = NaN;
     this.kmsReply = null;
-    this.drawNewest = false;
   }
 }

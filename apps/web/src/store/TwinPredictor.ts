@@ -145,6 +145,21 @@ export class TwinPredictor {
   }
 
   /**
+   * The poses ahead of a sample, for a renderer that draws later than the page samples (the
+   * render worker): `count` poses at page times `from + stepMs`, `from + 2·stepMs`, …, joint
+   * after joint (`out[k·n + i]`). Each is the prediction itself (never past a target, a limit or
+   * a stop), so a pose between two of them is one too. Changes nothing here.
+   */
+  poseAhead(from: number, stepMs: number, count: number, out: Float64Array): void {
+    const n = this.joints.length;
+    for (let k = 0; k < count; k++) {
+      const t = this.armTime(from + (k + 1) * stepMs);
+      for (let i = 0; i < n && k * n + i < out.length; i++)
+        out[k * n + i] = this.joints[i]!.predict(t);
+    }
+  }
+
+  /**
    * The frame of the last `sample` finished drawing at page time `now`: the pose should have
    * been predicted that much later (learnt as a moving average, bounded).
    */

@@ -10,6 +10,7 @@ import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { fleetList, healthSummary, type FleetArm } from '../../robots/fleet.ts';
 import { ControlBar } from './ControlBar.tsx';
+import { isModelArmId, MODEL_ARM_SUFFIX } from '../../modes/modes.ts';
 
 const onlineWord = (o: boolean | null) =>
   o === true ? 'online' : o === false ? 'offline' : 'unknown';
@@ -39,7 +40,8 @@ export function FleetPanel() {
       rows: rows.map((r) => ({
         id: r.id,
         online: r.online,
-        robot: r.title ?? r.profileName ?? 'no profile announced',
+        // A model copy (docs/protocol.md § Modes) is said to be one.
+        robot: `${isModelArmId(r.id) ? `model copy of ${r.id.slice(0, -MODEL_ARM_SUFFIX.length)} · ` : ''}${r.title ?? r.profileName ?? 'no profile announced'}`,
         level: r.level,
         alarm: r.alarm,
       })),

@@ -1,7 +1,9 @@
 /**
  * The charts tab: temperature per servo (60 / 75 °C lines), supply voltage per servo (6.5 V
- * line), and the chosen joint's actual against commanded angle. Each with its CSV export;
- * a view that failed shows its error text instead.
+ * line), each with the thermal model's prediction dashed beside it and its early warnings
+ * marked; the power the motion drew, measured and predicted; and the chosen joint's actual
+ * against commanded angle. Each with its CSV export; a view that failed shows its error text
+ * instead.
  */
 import { useMemo } from 'react';
 import { SERVO_COLOURS, TEMP_LINES, VOLT_LINES } from '../Health/constants.ts';
@@ -11,25 +13,34 @@ import { downloadText } from './download.ts';
 import { timeTickFormat, type ChartSpec } from './historyChart.ts';
 import type { AngleViews, OverviewViews } from './loadHistory.ts';
 import { SeriesChart } from './SeriesChart.tsx';
-import type { SeriesAnswer } from '@armtwin/api';
+import type { SeriesAnswer, ThermalModelAnswer } from '@armtwin/api';
+import type { Marker } from '../../charts/markerPlugin.ts';
+import { powerSeries, predictedSeries, warningMarkers } from './thermalSeries.ts';
 import type { Loaded } from './loaded.ts';
 import { ViewError, ViewHeader } from './ViewHeader.tsx';
 
 const colourOf = (id: string) => SERVO_COLOURS[Number(id) % SERVO_COLOURS.length]!;
 const CHART_HEIGHT = 120;
 
-function perServo(answer: SeriesAnswer, name: (id: string) => string): Aligned {
-  return alignSeries(
-    answer.series.map((s) => ({ label: name(s.id), times: s.times, values: s.values })),
-  );
-}
-
-function specFor(answer: SeriesAnswer, base: Omit<ChartSpec, 'colours' | 'height'>): ChartSpec {
+/** Measured per servo, then the model's prediction per servo (dashed, the same colour). */
+function perServo(
+  answer: SeriesAnswer,
+  name: (id: string) => string,
+  model: ThermalModelAnswer | null,
+  field: 'temp' | 'volt',
+): { aligned: Aligned; ids: string[]; dashed: boolean[] } {
+  const measured = answer.series.map((s) => ({
+    id: s.id,
+    label: name(s.id),
+    times: s.times,
+    values: s.values,
+  }));
+  const predicted = model ? predictedSeries(model, field, name) : [];
+  const all = [...measured, ...predicted];
   return {
-    ...base,
-    colours: answer.series.map((s) => colourOf(s.id)),
-    height: CHART_HEIGHT,
-    tick: timeTickFormat(answer.stop - answer.start),
+    aligned: alignSeries(all),
+    ids: all.map((s) => s.id),
+    dashed: all.map((_, i) => i >= measured.length),
   };
 }
 
@@ -40,13 +51,23 @@ function ServoSeriesView(props: {
   spec: Omit<ChartSpec, 'colours' | 'height'>;
   servoName: (id: string) => string;
   arm: string;
+  model: ThermalModelAnswer | null;
+  markers?: readonly Marker[];
 }) {
-  const { view, servoName, spec } = props;
-  const shown = useMemo(
-    () =>
-      view.ok ? { aligned: perServo(view.data, servoName), spec: specFor(view.data, spec) } : null,
-    [view, servoName, spec],
-  );
+  const { view, servoName, spec, model, markers, name } = props;
+  const shown = useMemo(() => {
+    if (!view.ok) return null;
+    const s = perServo(view.data, servoName, model, name);
+    const full: ChartSpec = {
+      ...spec,
+      colours: s.ids.map(colourOf),
+      dashed: s.dashed,
+      height: CHART_HEIGHT,
+      tick: timeTickFormat(view.data.stop - view.data.start),
+      ...(markers ? { markers } : {}),
+    };
+    return { aligned: s.aligned, spec: full };
+  }, [view, servoName, spec, model, markers, name]);
   const csv =
     shown && view.ok
       ? () =>
@@ -72,6 +93,7 @@ function ServoSeriesView(props: {
 }
 
 const TEMP_SPEC = { unit: '°', include: [20, 80], thresholds: TEMP_LINES } as const;
+const POWER_COLOURS = ['#38bdf8', '#38bdf8'];
 const VOLT_SPEC = { unit: 'V', include: [6, 8], thresholds: VOLT_LINES } as const;
 const ANGLE_COLOURS = ['#38bdf8', '#fbbf24'];
 
@@ -85,6 +107,30 @@ export function ChartsView(props: {
   servoName: (id: string) => string;
 }) {
   const { overview, angles, servoName } = props;
+  const model = overview.thermal.ok ? overview.thermal.data : null;
+  const markers = useMemo(
+    () => (overview.audit.ok ? warningMarkers(overview.audit.data.events, servoName) : []),
+    [overview.audit, servoName],
+  );
+  const power = useMemo(() => {
+    if (!model) return null;
+    const spec: ChartSpec = {
+      unit: 'W',
+      include: [0, 1],
+      colours: POWER_COLOURS,
+      dashed: [false, true],
+      height: CHART_HEIGHT,
+      tick: timeTickFormat(model.stop - model.start),
+    };
+    return { aligned: alignSeries(powerSeries(model)), spec };
+  }, [model]);
+  const powerCsv = power
+    ? () =>
+        downloadText(
+          csvFileName(props.arm, 'power', overview.range.start),
+          seriesCsv(power.aligned),
+        )
+    : null;
   const angle = useMemo(() => {
     if (!angles?.actual.ok || !angles.commanded.ok) return null;
     const name = servoName(angles.id);
@@ -130,6 +176,8 @@ export function ChartsView(props: {
         spec={TEMP_SPEC}
         servoName={servoName}
         arm={props.arm}
+        model={model}
+        markers={markers}
       />
       <ServoSeriesView
         name="volt"
@@ -138,7 +186,30 @@ export function ChartsView(props: {
         spec={VOLT_SPEC}
         servoName={servoName}
         arm={props.arm}
+        model={model}
       />
+      <section className="history-view" aria-label="Power drawn by the motion">
+        <ViewHeader
+          title="Power drawn by the motion"
+          csvLabel="Download power CSV"
+          onCsv={powerCsv}
+        />
+        {!overview.thermal.ok && <ViewError error={overview.thermal.error} />}
+        {power && (
+          <SeriesChart
+            name="power"
+            title="Power drawn by the motion, measured and predicted by the thermal model"
+            aligned={power.aligned}
+            spec={power.spec}
+          />
+        )}
+        {model && (
+          <p className="dim small-print" data-testid="thermal-model-note">
+            Dashed: the thermal model fitted from this range, from the motion alone (power read from
+            the supply&apos;s sag across {model.power.supplyOhms} Ω).
+          </p>
+        )}
+      </section>
       <section className="history-view" aria-label="Commanded and actual angle">
         <ViewHeader
           title="Angle: actual and commanded"

@@ -32,6 +32,7 @@ export function SeriesChart({
       labels: [...aligned.labels],
       points: pointCounts(aligned),
       max: seriesMax(aligned),
+      markers: (spec.markers ?? []).map((m) => m.label),
     };
     const ro = new ResizeObserver(() =>
       chart.setSize({ width: Math.max(240, el.clientWidth), height: spec.height }),

@@ -2,7 +2,7 @@
  * The tables tab: tracking error per joint (mean and maximum absolute error between commanded
  * and actual angle, samples compared — `/history/tracking`) and the alarm log (one row per
  * episode — `/history/alarms`) and the control log (who took, gave and lost control, refused
- * moves — `/history/audit`). Every value is rendered as text.
+ * moves, the thermal model's early warnings — `/history/audit`). Every value is rendered as text.
  */
 import { alarmsCsv, auditCsv, csvFileName, trackingCsv } from './csv.ts';
 import { downloadText } from './download.ts';

@@ -4,6 +4,7 @@
  * the data changes and resizes it with its box.
  */
 import uPlot from 'uplot';
+import { markerPlugin, type Marker } from '../../charts/markerPlugin.ts';
 import { thresholdPlugin, type Threshold } from '../../charts/thresholdPlugin.ts';
 import type { Aligned } from './align.ts';
 
@@ -19,6 +20,10 @@ export interface ChartSpec {
   colours: readonly string[];
   /** Series drawn as steps with dots (commands) instead of lines, by position. */
   stepped?: readonly boolean[];
+  /** Series drawn dashed (a model's prediction), by position. */
+  dashed?: readonly boolean[];
+  /** Moments marked with a vertical line (the thermal model's early warnings). */
+  markers?: readonly Marker[];
   height: number;
   /** Formats an x tick (epoch ms); see `timeTickFormat`. */
   tick?: (ms: number) => string;
@@ -52,7 +57,7 @@ export function createHistoryChart(el: HTMLElement, spec: ChartSpec, a: Aligned)
     height: spec.height,
     legend: { show: true, live: false },
     cursor: { drag: { x: false, y: false } },
-    plugins: [thresholdPlugin(spec.thresholds ?? [])],
+    plugins: [thresholdPlugin(spec.thresholds ?? []), markerPlugin(spec.markers ?? [])],
     scales: {
       x: { time: true },
       y: {
@@ -83,6 +88,7 @@ export function createHistoryChart(el: HTMLElement, spec: ChartSpec, a: Aligned)
         spanGaps: true,
         points: { show: Boolean(spec.stepped?.[i]), size: 4 },
         ...(spec.stepped?.[i] && stepped ? { paths: stepped, dash: [4, 3] } : {}),
+        ...(spec.dashed?.[i] ? { dash: [4, 3], width: 1.25 } : {}),
       })),
     ],
   };

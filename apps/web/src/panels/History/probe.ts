@@ -11,6 +11,8 @@ export interface ChartProbe {
   points: number[];
   /** Largest value per series (NaN when it has none). */
   max: number[];
+  /** Labels of the moments marked (the thermal model's early warnings). */
+  markers: string[];
 }
 
 /** The last "Make plan from this range": samples read, waypoints made, error (MakePlan.tsx). */

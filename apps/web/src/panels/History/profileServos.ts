@@ -55,6 +55,12 @@ export function onlyProfileServos(o: OverviewViews, ids: readonly string[]): Pro
       ours,
     ),
     audit: o.audit, // who did what: the arm's, not a servo's
+    thermal: keep(
+      o.thermal,
+      (a) => a.servos,
+      (a, servos) => ({ ...a, servos }),
+      ours,
+    ),
   };
   return { overview, others: [...others].sort() };
 }

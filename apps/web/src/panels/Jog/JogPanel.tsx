@@ -20,22 +20,23 @@ import { DEFAULT_HOLD_KEYS, keyLabel } from './holdJogMath.ts';
 import { TIP_AXES } from './tipHold.ts';
 
 export function JogPanel() {
-  const { store, link, session, robots, target, jog: holdJog } = useHud();
+  const { store, link, session, robots, target, jog: holdJog, modes } = useHud();
+  // The arm the sliders drive and show: the model copy in Model mode, else the arm.
+  const driven = () => modes.driven(store);
   const polarity = (k: number) => store.opts.arm.servos[k]?.polarity ?? 1;
   const { hold, gamepad } = holdJog;
   const servos = robots.active.spec.sliders;
   const snap = useSampled(() => {
     const now = performance.now();
+    const arm = driven();
     return {
-      enabled: link.mayMove && store.connection === 'connected' && !store.isStale(now),
+      enabled: link.mayMove && store.connection === 'connected' && !arm.isStale(now),
       allowed: link.permissions.command,
       heldBy: link.control.heldBy,
-      live: Array.from(store.pwm, (p, i) => {
+      live: Array.from(arm.pwm, (p, i) => {
         const spec = servos[i];
         if (!spec) return NaN;
-        return round1(
-          spec.speaksAngle ? spec.valueFromAngle(store.angle[i]!) : spec.valueFromPwm(p),
-        );
+        return round1(spec.speaksAngle ? spec.valueFromAngle(arm.angle[i]!) : spec.valueFromPwm(p));
       }),
     };
   });
@@ -49,7 +50,7 @@ export function JogPanel() {
    */
   const jog = (i: number, id: number, pwm: number) => {
     const motion = robots.active.motion;
-    const from = Array.from(store.pwm);
+    const from = Array.from(driven().pwm);
     if (motion && from.length === motion.ids.length && from.every(Number.isFinite)) {
       const to = [...from];
       to[i] = pwm;

@@ -25,6 +25,7 @@ import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { MAX_WAYPOINTS } from './Waypoints.ts';
 import { isTaught, planTargets } from './taught.ts';
+import { RehearsalSection } from './RehearsalSection.tsx';
 
 /** Speed of HUD plans: a fraction of each servo's limit, and the tip's speed (mm/s). */
 const PLAN_SPEED = 0.3;
@@ -33,7 +34,9 @@ const PLAN_LINEAR_SPEED = 80;
 type Planned = { plan: Plan; spec: MotionSpec };
 
 export function PlanPanel() {
-  const { robots, plan: tools, store, link, target } = useHud();
+  const { robots, plan: tools, store, link, target, modes } = useHud();
+  // The arm a plan runs on: the model copy in Model mode (a rehearsal), else the arm.
+  const driven = () => modes.driven(store);
   const { waypoints, preview, runner } = tools;
   const [note, setNote] = useState<{ text: string; bad: boolean } | null>(null);
 
@@ -48,13 +51,13 @@ export function PlanPanel() {
     enabled:
       link.mayMove &&
       store.connection === 'connected' &&
-      !store.isStale(performance.now()) &&
+      !driven().isStale(performance.now()) &&
       robots.active.motion !== null,
     hasTarget: target.active && target.code === 0,
   }));
 
   const current = (): number[] | null => {
-    const pwm = Array.from(store.pwm);
+    const pwm = Array.from(driven().pwm);
     return pwm.every(Number.isFinite) ? pwm : null;
   };
 
@@ -123,7 +126,28 @@ export function PlanPanel() {
     // Always plan again from where the arm is now (it may have moved since the preview).
     const p = plan();
     if (!p || !motion) return;
+    const on = driven();
+    runner.start(link, on, motion, p.plan, p.spec);
+    // A run in Model mode is a rehearsal: the copy's trajectory is kept as the prediction.
+    if (modes.mode === 'model')
+      tools.recorder.begin('rehearsal', on, performance.now(), waypoints.version);
+  };
+
+  /** Rehearse, then run: Twin mode, the same waypoints on the arm, its trajectory recorded. */
+  const runOnArm = () => {
+    modes.set('twin');
+    if (!link.mayMove) {
+      setNote({
+        text: `Not run: ${link.control.heldBy || 'this page'} cannot move the arm now (control).`,
+        bad: true,
+      });
+      return;
+    }
+    const motion = robots.active.motion;
+    const p = plan();
+    if (!p || !motion) return;
     runner.start(link, store, motion, p.plan, p.spec);
+    tools.recorder.begin('actual', store, performance.now());
   };
 
   const addAtTip = () => {
@@ -258,6 +282,7 @@ export function PlanPanel() {
           {note.text}
         </p>
       )}
+      <RehearsalSection onRunOnArm={runOnArm} running={running} />
       {runText && (
         <p
           className={`note ${snap.run === 'failed' || snap.run === 'stopped' ? 'bad' : snap.run === 'paused' ? 'warn' : 'ok'}`}

@@ -10,11 +10,11 @@
  * ghost's state) for the debug hook, the Ghost panel and the bench's probe.
  */
 import * as THREE from 'three';
-import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { ProfileKeepOut } from '@armtwin/ik';
 import type { ArmStore } from '../../store/ArmStore.ts';
 import type { TargetPreview } from '../../store/TargetPreview.ts';
-import type { ReplayPlayer } from '../../replay/ReplayPlayer.ts';
+import type { SiblingSource } from '../ReplaySibling.ts';
 import type { JointMap } from '../../robots/robotSpec.ts';
 import type { GhostSource } from '../../robots/sceneHooks.ts';
 import { createStage, type Stage } from '../stage.ts';
@@ -22,8 +22,11 @@ import { FloorPicker } from '../FloorPicker.ts';
 import { MeshFailureNote } from '../MeshFailureNote.ts';
 import type { MeshFailure } from '../loadRobot.ts';
 import type { DrawnRobot, SceneView } from '../SceneView.ts';
-import type { CameraState, FrameInput, FromWorker, TargetState, ToWorker } from './messages.ts';
-import { sameValues, targetDiffers } from './frameDiff.ts';
+import { createOrbitControls, createViewCamera } from '../orbitView.ts';
+import type { FrameInput, FromWorker, ToWorker } from './messages.ts';
+import { cameraState } from './snapshots.ts';
+import { ExtrasSender } from './ExtrasSender.ts';
+import { FrameChanges } from './FrameChanges.ts';
 
 /** Where the render worker comes from (a test or another bundler may hand in its own). */
 export type MakeRenderWorker = () => Worker;
@@ -35,7 +38,7 @@ export const makeRenderWorker: MakeRenderWorker = () =>
 export class WorkerViewer implements SceneView {
   readonly thread = 'worker' as const;
   readonly scene = new THREE.Scene();
-  readonly camera = new THREE.PerspectiveCamera(40, 1, 0.01, 20);
+  readonly camera = createViewCamera();
   readonly controls: OrbitControls;
   readonly canvas: HTMLCanvasElement;
   readonly frameHooks = new Set<(now: number) => boolean>();
@@ -68,31 +71,19 @@ export class WorkerViewer implements SceneView {
   private running = false;
   private cameraDirty = true;
   private invalidated = false;
-  private lastArm: unknown = null;
-  private lastCommanded = new Float64Array(0);
-  private lastTarget: TargetState | null = null;
-  private readonly planBuf = new Float64Array(64);
-  private lastPlan: Float64Array | null = null;
-  private siblingShown = false;
-  private lastTracking = '';
+  /** What of the page's state changed since the last frame sent. */
+  private readonly changes: FrameChanges;
   /** The page's resizes so far: a frame drawn at an older size (cleared since) is not counted. */
   private sizeSeq = 0;
   private readonly resizeObserver: ResizeObserver;
-  /** The world's own children (the stage's): anything else was added by another part. */
-  private readonly ownChildren: Set<THREE.Object3D>;
-  /** The extras' JSON as last sent (sent again only when it changed). */
-  private lastExtras = '';
-  /** The stage's own scene children (floor, grid, lights), in the worker's order too. */
-  private readonly ownScene: THREE.Object3D[];
-  /** The extras' textured meshes (uuid → texture), and the picture last sent for each. */
-  private readonly textured = new Map<string, THREE.Texture>();
-  private readonly sentPictures = new Map<string, string>();
+  /** What other parts added to the world or the scene, and the cameras' pictures. */
+  private readonly extras: ExtrasSender;
 
   constructor(
     private readonly container: HTMLElement,
     private readonly store: ArmStore,
     private readonly target: TargetPreview,
-    private readonly replay: ReplayPlayer | null = null,
+    private readonly replay: SiblingSource | null = null,
     makeWorker: MakeRenderWorker = makeRenderWorker,
   ) {
     const canvas = document.createElement('canvas');
@@ -103,16 +94,11 @@ export class WorkerViewer implements SceneView {
     canvas.style.width = '100%';
     canvas.style.height = '100%';
     this.canvas = canvas;
-    this.camera.position.set(0.86, 0.6, 1.0);
-    this.controls = new OrbitControls(this.camera, canvas);
-    this.controls.target.set(0, 0.21, 0);
-    this.controls.enableDamping = false;
-    this.controls.maxDistance = 4;
-    this.controls.addEventListener('change', () => (this.cameraDirty = true));
+    this.controls = createOrbitControls(this.camera, canvas, () => (this.cameraDirty = true));
     this.controls.update();
     this.stage = createStage(this.scene);
-    this.ownChildren = new Set(this.stage.world.children);
-    this.ownScene = [...this.scene.children];
+    this.extras = new ExtrasSender(this.scene, this.stage.world, (m, t) => this.send(m, t));
+    this.changes = new FrameChanges(store, target, replay);
     this.picker = new FloorPicker(canvas, this.camera, this.stage, target);
     this.failureNote = new MeshFailureNote(container);
     this.worker = makeWorker();
@@ -218,64 +204,14 @@ export class WorkerViewer implements SceneView {
   /** Samples the page's state for `now` and sends the worker what changed (all with `full`). */
   private sendFrame(now: number, full: boolean): void {
     const m: FrameInput = { type: 'frame' };
-    let any = false;
-    const s = this.store;
-    if (this.running && s.sample(now)) {
-      m.rendered = Float64Array.from(s.rendered);
-      any = true;
-    } else if (full) {
-      m.rendered = Float64Array.from(s.rendered);
-      any = true;
-    }
-    if (full || s.opts.arm !== this.lastArm) {
-      this.lastArm = s.opts.arm;
-      m.arm = s.opts.arm;
-      any = true;
-    }
-    if (full || !sameValues(s.commandedPwm, this.lastCommanded)) {
-      this.lastCommanded = Float64Array.from(s.commandedPwm);
-      m.commandedPwm = this.lastCommanded;
-      any = true;
-    }
-    if (full || targetDiffers(this.target, this.lastTarget)) {
-      this.lastTarget = snapshotTarget(this.target);
-      m.target = this.lastTarget;
-      any = true;
-    }
-    const plan = this.ghostSource?.sample(now, this.planBuf) ? this.planBuf : null;
-    if (plan ? !this.lastPlan || !sameValues(plan, this.lastPlan) : this.lastPlan !== null) {
-      this.lastPlan = plan ? Float64Array.from(plan) : null;
-      m.plan = this.lastPlan;
-      any = true;
-    }
-    if (this.replay) {
-      const changed = this.replay.update(now);
-      const shown = this.replay.active && this.replay.record !== null;
-      if (shown !== this.siblingShown || (shown && changed)) {
-        this.siblingShown = shown;
-        m.sibling = shown ? Float64Array.from(this.replay.angles) : null;
-        any = true;
-      }
-    }
-    const t = s.tracking;
-    const trackingKey = t ? `${t.active ? 1 : 0}:${t.version}` : '';
-    if (t && (full || trackingKey !== this.lastTracking)) {
-      this.lastTracking = trackingKey;
-      m.tracking = {
-        active: t.active,
-        version: t.version,
-        colours: Int32Array.from(t.colours),
-        levels: t.levels.slice(),
-      };
-      any = true;
-    }
+    let any = this.changes.collect(m, now, full, this.running, this.ghostSource);
     for (const hook of this.frameHooks) if (hook(now)) this.invalidated = true;
     const invalidated = this.invalidated;
     if (invalidated) {
       this.invalidated = false;
       m.invalidate = true;
       any = true;
-      this.syncExtras();
+      this.extras.sync();
     }
     // A hook may have moved the camera itself (a camera's view): sent with any invalidation.
     if (this.cameraDirty || full || invalidated) {
@@ -283,46 +219,11 @@ export class WorkerViewer implements SceneView {
       m.camera = cameraState(this.camera);
       any = true;
     }
-    this.sendPictures();
+    this.extras.sendPictures();
     // Picking and waypoint raycasts read world matrices, which no render updates on this side.
     this.scene.updateMatrixWorld();
     this.camera.updateMatrixWorld();
     if (any) this.send(m);
-  }
-
-  /**
-   * Sends the worker what other parts added to the world (the waypoint spheres and path, the
-   * cameras' screens) or to the scene (a camera's picture while viewing through), and which of
-   * the stage's own objects they hid, when that changed. Textures go separately
-   * (`sendPictures`): the JSON carries none.
-   */
-  private syncExtras(): void {
-    this.textured.clear();
-    const toJson = (o: THREE.Object3D): unknown => withoutMaps(o, this.textured);
-    const objects = this.stage.world.children.filter((o) => !this.ownChildren.has(o)).map(toJson);
-    const sceneObjects = this.scene.children
-      .filter((o) => o !== this.stage.world && !this.ownScene.includes(o))
-      .map(toJson);
-    const hidden = this.ownScene.flatMap((o, i) => (o.visible ? [] : [i]));
-    const json = JSON.stringify([objects, sceneObjects, hidden]);
-    if (json === this.lastExtras) return;
-    this.lastExtras = json;
-    this.send({ type: 'extras', objects, sceneObjects, hidden });
-    this.sentPictures.clear(); // the meshes are new there: their pictures go again
-  }
-
-  /** Sends each textured extra's picture when it changed (a camera's new frame). */
-  private sendPictures(): void {
-    for (const [uuid, texture] of this.textured) {
-      const image = texture.image as CanvasImageSource | null;
-      const key = `${texture.uuid}:${texture.version}`;
-      if (!image || this.sentPictures.get(uuid) === key) continue;
-      this.sentPictures.set(uuid, key);
-      createImageBitmap(image as ImageBitmapSource, { imageOrientation: 'flipY' }).then(
-        (bitmap) => this.send({ type: 'texture', uuid, bitmap }, [bitmap]),
-        () => this.sentPictures.delete(uuid), // an empty canvas: tried again next frame
-      );
-    }
   }
 
   private onMessage(m: FromWorker): void {
@@ -363,8 +264,8 @@ export class WorkerViewer implements SceneView {
         this.target.ghostShows = m.ghostShows;
         this.renderer.render(this.scene, this.camera);
         const now = m.at - performance.timeOrigin;
-        // The predictor learns how long a sample takes to reach the screen (here: the worker).
-        this.store.frameShown(now);
+        // No display lead is learnt here: the worker poses each frame for its own instant
+        // (./PoseCourse.ts), so the page samples for `now` itself.
         for (const hook of this.renderHooks) hook(now);
         break;
       }
@@ -381,51 +282,4 @@ export class WorkerViewer implements SceneView {
     this.loads.clear();
     this.onFailure?.(message);
   }
-}
-
-/**
- * `o.toJSON()` without texture maps (a camera's picture would go as a data URL each time):
- * each mesh with a map is noted in `textured` (mesh uuid → texture) and keeps its map.
- */
-function withoutMaps(o: THREE.Object3D, textured: Map<string, THREE.Texture>): unknown {
-  const taken: [THREE.MeshBasicMaterial, THREE.Texture][] = [];
-  o.traverse((c) => {
-    const m = (c as THREE.Mesh).material as THREE.MeshBasicMaterial | undefined;
-    if (m && !Array.isArray(m) && m.map) {
-      textured.set(c.uuid, m.map);
-      taken.push([m, m.map]);
-      m.map = null;
-    }
-  });
-  try {
-    return o.toJSON();
-  } finally {
-    for (const [m, map] of taken) m.map = map;
-  }
-}
-
-function cameraState(c: THREE.PerspectiveCamera): CameraState {
-  return {
-    position: [c.position.x, c.position.y, c.position.z],
-    quaternion: [c.quaternion.x, c.quaternion.y, c.quaternion.z, c.quaternion.w],
-    fov: c.fov,
-    near: c.near,
-    far: c.far,
-  };
-}
-
-function snapshotTarget(t: TargetPreview): TargetState {
-  return {
-    active: t.active,
-    x: t.x,
-    y: t.y,
-    z: t.z,
-    code: t.code,
-    angles: Float64Array.from(t.angles),
-    hitJoint: t.hitJoint,
-    ghostEnabled: t.ghostEnabled,
-    refused: t.refused,
-    refusedAngles: Float64Array.from(t.refusedAngles),
-    refusedJoint: t.refusedJoint,
-  };
 }

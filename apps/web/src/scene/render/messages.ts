@@ -4,6 +4,7 @@
  * structured-clone data: plain numbers, strings, arrays and typed arrays, no three.js objects.
  */
 import type { ArmProfile, ProfileKeepOut } from '@armtwin/ik';
+import type { PoseCourseInput } from './PoseCourse.ts';
 import type { JointMap } from '../../robots/robotSpec.ts';
 import type { MeshFailure } from '../loadRobot.ts';
 import type { TrackingErrors } from '../../store/trackingError.ts';
@@ -45,6 +46,11 @@ export interface FrameInput {
   type: 'frame';
   /** The live arm's drawn servo angles, degrees (the store's `rendered`). */
   rendered?: Float64Array;
+  /**
+   * With `rendered`, for the predictive twin: the instant it is for and the predicted poses
+   * after it, so the worker draws the pose of its own frame's instant (./PoseCourse.ts).
+   */
+  course?: PoseCourseInput;
   commandedPwm?: Float64Array;
   arm?: ArmProfile;
   target?: TargetState;

@@ -1,0 +1,40 @@
+import uPlot from 'uplot';
+
+/** A moment marked across a chart: a vertical dashed line at `at` (epoch ms) and a short label. */
+export interface Marker {
+  at: number;
+  colour: string;
+  label: string;
+}
+
+/** A uPlot plugin that draws markers (early warnings, say) over the plot on every redraw. */
+export function markerPlugin(markers: readonly Marker[]): uPlot.Plugin {
+  return {
+    hooks: {
+      draw: (u: uPlot) => {
+        const { ctx } = u;
+        const { left, top, width, height } = u.bbox;
+        ctx.save();
+        ctx.setLineDash([3, 3]);
+        ctx.lineWidth = 1.5 * uPlot.pxRatio;
+        ctx.font = `${10 * uPlot.pxRatio}px system-ui`;
+        ctx.textBaseline = 'top';
+        for (const m of markers) {
+          const x = Math.round(u.valToPos(m.at / 1000, 'x', true));
+          if (x < left || x > left + width) continue;
+          ctx.strokeStyle = ctx.fillStyle = m.colour;
+          ctx.beginPath();
+          ctx.moveTo(x, top);
+          ctx.lineTo(x, top + height);
+          ctx.stroke();
+          // The label on the side with room: right of the line, left of it near the right edge.
+          const right = x < left + width / 2;
+          ctx.textAlign = right ? 'left' : 'right';
+          const pad = 3 * uPlot.pxRatio;
+          ctx.fillText(m.label, right ? x + pad : x - pad, top + 2 * uPlot.pxRatio);
+        }
+        ctx.restore();
+      },
+    },
+  };
+}

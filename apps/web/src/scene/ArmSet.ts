@@ -1,0 +1,68 @@
+/**
+ * The arms drawn from one robot's URDF: the live arm with its tracking paint, the ghost and,
+ * when a replay is given, the replay's sibling, all posed through the robot's joint map. Built
+ * and swapped the same way by the page's Viewer (./Viewer.ts) and the render worker's scene
+ * (./render/WorkerScene.ts).
+ */
+import type * as THREE from 'three';
+import type { JointMap } from '../robots/robotSpec.ts';
+import { Ghost, ghostMaterial, type GhostStore, type GhostTarget } from './Ghost.ts';
+import { PosedRobot } from './PosedRobot.ts';
+import { ReplaySibling, siblingMaterial, type SiblingSource } from './ReplaySibling.ts';
+import { RobotModelLoader, solidMaterial, type MeshFailure } from './loadRobot.ts';
+import { TrackingPaint } from './TrackingPaint.ts';
+
+export interface ArmSet {
+  live: PosedRobot;
+  /** The live arm's links painted by tracking error. */
+  tracking: TrackingPaint;
+  ghost: Ghost;
+  /** The replay's sibling (null without a replay). */
+  sibling: ReplaySibling | null;
+  /** The live arm's meshes that could not be loaded (left out; the rest is drawn). */
+  failures: MeshFailure[];
+}
+
+/**
+ * Loads `urdfUrl` as a new set of arms (not yet in any scene); rejects with a readable message
+ * when the URDF cannot be used. The live arm is posed at once from `store.rendered`: the store
+ * is sampled only when the arm moves, and an arm at rest may not report a change for a long
+ * while (a fleet switch showed zeros).
+ */
+export async function loadArmSet(
+  urdfUrl: string,
+  joints: JointMap,
+  store: GhostStore,
+  target: GhostTarget,
+  replay: SiblingSource | null,
+): Promise<ArmSet> {
+  const loader = new RobotModelLoader(urdfUrl);
+  const [built, builtGhost, builtSibling] = await Promise.all([
+    loader.build(solidMaterial),
+    loader.build(ghostMaterial),
+    replay ? loader.build(siblingMaterial) : null,
+  ]);
+  const live = new PosedRobot(built.robot, joints);
+  live.pose(store.rendered);
+  return {
+    live,
+    tracking: new TrackingPaint(built.robot, joints.names),
+    ghost: new Ghost(new PosedRobot(builtGhost.robot, joints), store, target),
+    sibling:
+      builtSibling && replay
+        ? new ReplaySibling(new PosedRobot(builtSibling.robot, joints), replay)
+        : null,
+    failures: built.failures,
+  };
+}
+
+/** Puts `next` in `world` in place of `prev` (its robots removed, its paint disposed). */
+export function swapArmSet(world: THREE.Object3D, prev: ArmSet | null, next: ArmSet): void {
+  if (prev) {
+    for (const old of [prev.live.robot, prev.ghost.robot, prev.sibling?.robot])
+      old?.removeFromParent();
+    prev.tracking.dispose();
+  }
+  world.add(next.live.robot, next.ghost.robot);
+  if (next.sibling) world.add(next.sibling.robot);
+}
