@@ -124,9 +124,10 @@ async function open(page: Page, arm: string) {
   // render=main: the live arm's meshes (measured below) are on the page only then.
   await page.goto(`${up.url}?arm=${arm}&render=main`);
   await page.waitForFunction(() => (window as unknown as HudWindow).__armtwin?.ready === true);
+  // An operator: a viewer opens in Shadow mode, where the Cartesian panel's inputs are off too.
   const form = page.getByRole('form', { name: 'Log in' });
-  await form.getByLabel('Username').fill('viewer');
-  await form.getByLabel('Password').fill(demoPassword('viewer'));
+  await form.getByLabel('Username').fill('operator');
+  await form.getByLabel('Password').fill(demoPassword('operator'));
   await form.getByRole('button', { name: 'Log in' }).click();
 }
 
