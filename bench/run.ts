@@ -17,7 +17,14 @@ import {
 } from '../tests/helpers/services.ts';
 import { machineInfo, versions } from './lib/machine.ts';
 import { killAll, liveChildren } from './lib/proc.ts';
-import { markdown, updateBenchmarksMd, writeJson, type RunRecord } from './lib/report.ts';
+import {
+  markdown,
+  newestRunOf,
+  updateBenchmarksMd,
+  writeJson,
+  type CarriedSection,
+  type RunRecord,
+} from './lib/report.ts';
 import { REPO } from './lib/stack.ts';
 import { HUD_DIST } from './lib/hud-browser.ts';
 import type { BenchContext, Section, SectionResult } from './lib/types.ts';
@@ -191,9 +198,19 @@ async function main(): Promise<number> {
       versions: await versions(influx?.url),
       sections: results,
     };
+    // A default run's table keeps the sections it leaves out (the soak) from their newest run.
+    const carried: Record<string, CarriedSection> = {};
+    if (!args.only)
+      for (const id of NOT_BY_DEFAULT) {
+        const c = newestRunOf(resultsDir, id);
+        if (c) carried[id] = c;
+      }
+    if (Object.keys(carried).length)
+      run.carried = Object.fromEntries(Object.entries(carried).map(([id, c]) => [id, c.stamp]));
     const json = writeJson(resultsDir, run);
     const rel = path.relative(REPO, json);
-    const block = markdown(run, sections, rel);
+    const shown = SECTIONS.filter((s) => sections.includes(s) || carried[s.id]);
+    const block = markdown(run, shown, rel, carried);
     if (args.md) await updateBenchmarksMd(path.join(REPO, 'BENCHMARKS.md'), block);
     console.log(`\n${block}\n`);
     log(`wrote ${rel}${args.md ? ' and BENCHMARKS.md' : ''}`);

@@ -1,18 +1,23 @@
 /**
  * The emergency stop measured from outside the page (issue 17 item 3): Playwright's mouse and
- * keyboard through CDP on the HUD's "Emergency stop" button and the Escape key, and a Node
- * MQTT subscriber on the arm's control topic. One sample: the time from dispatching the first
- * input of the gesture (the mouse button's press, released at once after it, as Playwright's
- * `click` does; the Escape key's press) to `#255PDST!` arriving at the subscriber, both read on
- * this process's clock. Whatever renders the page (main thread or a worker) and whichever
+ * keyboard through CDP on the HUD's "Emergency stop" button and the Escape key, and an MQTT
+ * subscriber on the arm's control topic: Mosquitto's own `mosquitto_sub`, in a process of its
+ * own, which stamps each message as it takes it (`-F '%U'`, the Unix time in ns), so neither
+ * this process's garbage collection nor the CDP events it parses delay the arrival. One sample:
+ * the time from dispatching the first input of the gesture (the mouse button's press, released
+ * at once after it, as Playwright's `click` does; the Escape key's press) to `#255PDST!`
+ * arriving at the subscriber (epoch ms: this process's `performance.timeOrigin + now()`, the
+ * subscriber's Unix time). Whatever renders the page (main thread or a worker) and whichever
  * event the page stops on (`pointerdown` or `click`), the probe sees only input and the wire.
  * Between samples the arm is set moving again (the caller's `rearm`, a move on the control
  * topic) and a random 200–500 ms pause puts the next input at another phase of the page's frame.
  */
+import { spawn } from 'node:child_process';
+import readline from 'node:readline';
 import type { MqttClient } from 'mqtt';
 import type { Page } from 'playwright-core';
-import { connectMqtt } from './stack.ts';
 import { sleep } from './proc.ts';
+import { connectMqtt } from './stack.ts';
 import { summarize } from './stats.ts';
 
 export const STOP_FRAME = '#255PDST!';
@@ -26,10 +31,13 @@ export type StopInput = 'click' | 'escape' | 'node';
  * `page` timeStamp → the stop's `WebSocket.send` (the event waiting for the page's main thread,
  * and the handler); of that, `queue` timeStamp → the first listener on `window` (NaN when the
  * HUD's own listener comes first, as for keydown); `wire` send → the subscriber (the browser's
- * socket, the broker, the Node subscriber). NaN where the page saw nothing.
+ * socket, the broker, the subscriber); `input` the event's `timeStamp` → the subscriber (the
+ * stop as the browser's own input clock sees it: all but Playwright's dispatch). NaN where the
+ * page saw nothing.
  */
 export interface StopBreakdown {
   total: number;
+  input: number;
   dispatch: number;
   page: number;
   queue: number;
@@ -104,17 +112,16 @@ export async function startStopProbe(
   publisher: MqttClient,
 ): Promise<StopProbe> {
   const topic = `arm/${arm}/control`;
-  const sub = await connectMqtt(brokerUrl, `bench-estop-sub-${process.pid}`);
+  const sub = await startStampingSubscriber(brokerUrl, topic);
   let waiting: ((t: number) => void) | null = null;
-  sub.on('message', (_t, payload) => {
-    const at = performance.now();
+  sub.onMessage = (epochMs, payload) => {
     if (waiting && payload.includes(STOP_FRAME)) {
       const w = waiting;
       waiting = null;
-      w(at);
+      // Epoch ms → this process's performance.now().
+      w(epochMs - performance.timeOrigin);
     }
-  });
-  await sub.subscribeAsync(topic, { qos: 0 });
+  };
 
   const button = page.getByRole('button', { name: 'Emergency stop' });
   await page.evaluate(installStopTrace, STOP_FRAME);
@@ -165,6 +172,7 @@ export async function startStopProbe(
           const ev = t?.event;
           parts.push({
             total: t1 - t0,
+            input: ev ? t1 - bench(ev.ts) : NaN,
             dispatch: ev ? bench(ev.ts) - t0 : NaN,
             page: ev && t ? t.sent - ev.ts : NaN,
             queue: ev && t && ev.at <= t.sent ? ev.at - ev.ts : NaN,
@@ -175,14 +183,61 @@ export async function startStopProbe(
       return out;
     },
     async close() {
-      await sub.endAsync().catch(() => {});
+      sub.close();
     },
   };
 }
 
+interface StampingSubscriber {
+  /** Each message: when the subscriber took it (Unix epoch ms) and its payload. */
+  onMessage: (epochMs: number, payload: string) => void;
+  close(): void;
+}
+
+/** `mosquitto_sub` on `topic`, printing each message's arrival time; resolves once subscribed. */
+async function startStampingSubscriber(
+  brokerUrl: string,
+  topic: string,
+): Promise<StampingSubscriber> {
+  const u = new URL(brokerUrl);
+  // A topic of its own tells when it is subscribed (nothing bogus on the arm's topic).
+  const ready = `bench/estop-sub/${process.pid}/${Date.now()}`;
+  const args = ['-h', u.hostname, '-p', u.port || '1883', '-q', '0', '-F', '%U %t %p'];
+  args.push('-t', topic, '-t', ready, '-i', `bench-estop-sub-${process.pid}-${Date.now()}`);
+  const child = spawn('mosquitto_sub', args, { stdio: ['ignore', 'pipe', 'pipe'] });
+  const s: StampingSubscriber = {
+    onMessage: () => {},
+    close: () => child.kill(),
+  };
+  let err = '';
+  child.stderr.on('data', (b: Buffer) => (err += b.toString()));
+  let seen = false;
+  readline.createInterface({ input: child.stdout }).on('line', (line) => {
+    const [stamp = '', t = '', ...rest] = line.split(' ');
+    if (t === ready) return void (seen = true);
+    const [sec, ns = '0'] = stamp.split('.');
+    s.onMessage(Number(sec) * 1000 + Number(ns.padEnd(9, '0')) / 1e6, rest.join(' '));
+  });
+  const pub = await connectMqtt(brokerUrl, `bench-estop-ready-${process.pid}`);
+  try {
+    const deadline = Date.now() + 10_000;
+    while (!seen) {
+      if (child.exitCode !== null || Date.now() > deadline)
+        throw new Error(
+          `mosquitto_sub did not subscribe to ${topic}: ${err.trim() || 'timed out'}`,
+        );
+      await pub.publishAsync(ready, 'ready', { qos: 0 });
+      await sleep(100);
+    }
+  } finally {
+    await pub.endAsync().catch(() => {});
+  }
+  return s;
+}
+
 /** Each part's summary, and the slowest samples whole (where a slow stop's time went). */
 export function breakdownSummary(parts: StopBreakdown[], slowest = 5) {
-  const keys = ['total', 'dispatch', 'page', 'queue', 'wire'] as const;
+  const keys = ['total', 'input', 'dispatch', 'page', 'queue', 'wire'] as const;
   const r = (v: number) => Math.round(v * 100) / 100;
   return {
     ...Object.fromEntries(keys.map((k) => [k, summarize(parts.map((p) => p[k]))])),

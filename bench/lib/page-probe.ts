@@ -24,6 +24,8 @@ export interface ProbeResult {
   clockSkewEndMs: number;
   chartCanvases: number;
   pixelRatio: number;
+  /** A moving frame's cost where the worker budgets software WebGL's frames (else 0), ms. */
+  frameCostMs: number;
   storeMessages: number;
   servoCount: number;
   /** Time spent inside renderer.render (WebGL submission, incl. waits on the GPU process). */
@@ -44,6 +46,7 @@ interface Hook {
     renderer: { render(s: unknown, c: unknown): void };
     renderedFrames: number;
     pixelRatio: number;
+    frameCostMs?: number;
     renderHooks?: Set<(now: number) => void>;
     thread?: 'main' | 'worker';
     jointValues?(which?: 'robot'): number[];
@@ -166,6 +169,7 @@ export function installProbe(maxFrames: number): boolean {
         clockSkewEndMs: epoch() - Date.now(),
         chartCanvases: document.querySelectorAll('.uplot canvas').length,
         pixelRatio: viewer.pixelRatio,
+        frameCostMs: viewer.frameCostMs ?? 0,
         storeMessages: store.counters.messages - msgs0,
         servoCount: n,
         renderMsTotal: renderMs,

@@ -1,7 +1,8 @@
 /**
  * Writes a run: `bench/results/<stamp>.json` (everything) and the generated part of
  * BENCHMARKS.md, between the `<!-- bench:begin -->` and `<!-- bench:end -->` markers (the
- * hand-written text around them is kept).
+ * hand-written text around them is kept). A section a full run leaves out (the 30-minute soak)
+ * keeps its rows from the newest run that measured it, each marked with that run.
  */
 import fs from 'node:fs';
 import path from 'node:path';
@@ -20,12 +21,49 @@ export interface RunRecord {
   machine: Record<string, unknown>;
   versions: Record<string, string>;
   sections: Record<string, SectionResult & { title: string }>;
+  /** Sections not run this time whose rows come from an earlier run: id → that run's stamp. */
+  carried?: Record<string, string>;
+}
+
+/** A section's result from an earlier run, as `newestRunOf` finds it. */
+export interface CarriedSection {
+  stamp: string;
+  result: SectionResult & { title: string };
+}
+
+/**
+ * The newest run in `dir` (`<stamp>.json`, stamps sort by time) where section `id` was measured
+ * (status ok), or null.
+ */
+export function newestRunOf(dir: string, id: string): CarriedSection | null {
+  const files = fs.existsSync(dir)
+    ? fs
+        .readdirSync(dir)
+        .filter((f) => /^\d{4}-\d\d-\d\dT[\d-]+\.json$/.test(f))
+        .sort()
+        .reverse()
+    : [];
+  for (const f of files) {
+    try {
+      const run = JSON.parse(fs.readFileSync(path.join(dir, f), 'utf8')) as RunRecord;
+      const result = run.sections?.[id];
+      if (result?.status === 'ok') return { stamp: run.stamp, result };
+    } catch {
+      // an unreadable file is not a run
+    }
+  }
+  return null;
 }
 
 const cell = (s: string) => s.replace(/\|/g, '\\|');
 const mark = (m: boolean | null) => (m === null ? 'reported' : m ? 'yes' : '**no**');
 
-export function markdown(run: RunRecord, sections: Section[], jsonFile: string): string {
+export function markdown(
+  run: RunRecord,
+  sections: Section[],
+  jsonFile: string,
+  carried: Record<string, CarriedSection> = {},
+): string {
   const m = run.machine as {
     cores: number;
     cpuModel: string;
@@ -52,8 +90,10 @@ export function markdown(run: RunRecord, sections: Section[], jsonFile: string):
   const notes: string[] = [];
   const plots: string[] = [];
   sections.forEach((s, i) => {
-    const r = run.sections[s.id];
+    const c = carried[s.id];
+    const r = run.sections[s.id] ?? c?.result;
     if (!r) return;
+    const from = run.sections[s.id] || !c ? '' : ` (run \`${c.stamp}\`)`;
     if (r.status !== 'ok') {
       lines.push(`| ${i + 1} | ${cell(s.title)} | ${r.status} | | | |`);
       notes.push(`- §${i + 1} ${s.title}: **${r.status}** — ${r.reason}`);
@@ -61,7 +101,7 @@ export function markdown(run: RunRecord, sections: Section[], jsonFile: string):
     }
     for (const row of r.rows)
       lines.push(
-        `| ${i + 1} | ${cell(row.figure)} | ${cell(row.value)} | ${cell(row.baseline)} | ${cell(row.target)} | ${mark(row.met)} |`,
+        `| ${i + 1} | ${cell(row.figure + from)} | ${cell(row.value)} | ${cell(row.baseline)} | ${cell(row.target)} | ${mark(row.met)} |`,
       );
     for (const p of r.plots ?? []) plots.push(`![${p.title}](bench/results/${p.file})`);
   });

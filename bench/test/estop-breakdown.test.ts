@@ -2,7 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { breakdownSummary, type StopBreakdown } from '../lib/estop-probe.ts';
 
 const sample = (total: number, dispatch: number, page: number, queue: number, wire: number) =>
-  ({ total, dispatch, page, queue, wire }) satisfies StopBreakdown;
+  ({ total, input: total - dispatch, dispatch, page, queue, wire }) satisfies StopBreakdown;
 
 describe('breakdownSummary (where the emergency stop’s time went)', () => {
   it('summarises each part and lists the slowest samples whole, slowest first', () => {
@@ -21,6 +21,6 @@ describe('breakdownSummary (where the emergency stop’s time went)', () => {
     expect(s.total.max).toBe(40);
     expect(s.queue.n).toBe(2);
     expect(s.slowest.map((p) => p.total)).toEqual([40, 12]);
-    expect(s.slowest[0]).toMatchObject({ dispatch: 30, wire: 8 });
+    expect(s.slowest[0]).toMatchObject({ input: 10, dispatch: 30, wire: 8 });
   });
 });

@@ -4,7 +4,9 @@
  * so, the worker draws the arm and follows it, the orbit camera and a click on the floor work
  * from the page, and — with a 250 Hz stream, the health charts and the History panel open —
  * a click on Emergency stop and the Escape key each put `#255PDST!` on the broker (seen by a
- * Node MQTT subscriber, ArmObserver). `?render=main` keeps the view on the page's thread.
+ * Node MQTT subscriber, ArmObserver). With software WebGL (SwiftShader here) the worker paces
+ * its frames and the Status panel says so; `?frames=full` draws every frame. `?render=main`
+ * keeps the view on the page's thread.
  * Behaviour only: no timings are asserted (those are the bench's, bench/browser.ts).
  */
 import type { Page } from '@playwright/test';
@@ -15,6 +17,7 @@ interface WorkerHook {
   __armtwin: {
     viewer: {
       thread: string;
+      software: boolean;
       renderedFrames: number;
       camera: { position: { x: number; y: number; z: number } };
       jointValues(which?: string): number[];
@@ -28,6 +31,17 @@ const frames = (page: Page) =>
   page.evaluate(() => (window as unknown as WorkerHook).__armtwin.viewer.renderedFrames);
 const drawnBase = (page: Page) =>
   page.evaluate(() => (window as unknown as WorkerHook).__armtwin.viewer.jointValues()[0] ?? NaN);
+const software = (page: Page) =>
+  page.evaluate(() => (window as unknown as WorkerHook).__armtwin.viewer.software);
+
+/** A jog of the base moves the arm as drawn (by the worker from the page's samples, or the page). */
+async function drawnArmFollowsAJog(page: Page): Promise<void> {
+  const before = await drawnBase(page);
+  await page.getByRole('slider', { name: 'Base', exact: true }).fill('60');
+  await expect
+    .poll(async () => Math.abs((await drawnBase(page)) - before), { timeout: 10_000 })
+    .toBeGreaterThan(0.3);
+}
 
 test.describe('rendering in a worker', () => {
   test.use({ simArgs: ['--rate', '250'], hudQuery: '&render=worker' });
@@ -37,19 +51,20 @@ test.describe('rendering in a worker', () => {
     arm,
   }) => {
     const { page } = hud;
-    await expect(page.getByTestId('render-thread')).toHaveText('Rendering: worker');
+    await expect(page.getByTestId('render-thread')).toContainText('Rendering: worker');
     expect(
       await page.evaluate(() => (window as unknown as WorkerHook).__armtwin.viewer.thread),
     ).toBe('worker');
     await expect(page.locator('#view canvas[data-render="worker"]')).toBeVisible();
     await expect.poll(() => frames(page)).toBeGreaterThan(0);
 
-    // The drawn arm follows a jog (the worker poses it from the page's samples).
-    const before = await drawnBase(page);
-    await page.getByRole('slider', { name: 'Base', exact: true }).fill('60');
-    await expect
-      .poll(async () => Math.abs((await drawnBase(page)) - before), { timeout: 10_000 })
-      .toBeGreaterThan(0.3);
+    await drawnArmFollowsAJog(page);
+    // Software WebGL draws on the CPU: the worker paces its frames, and says what one costs.
+    await expect(page.getByTestId('render-thread')).toHaveText(
+      (await software(page))
+        ? /^Rendering: worker, software WebGL paced to 50 % \(\d+ ms a frame\)$/
+        : 'Rendering: worker',
+    );
 
     // Orbiting: a drag on the view turns the page's camera, and the worker draws it.
     const view = page.locator('#view canvas');
@@ -127,7 +142,7 @@ test.describe('rendering in a worker', () => {
 
   test('a click on the floor places the Cartesian target (picked on the page)', async ({ hud }) => {
     const { page } = hud;
-    await expect(page.getByTestId('render-thread')).toHaveText('Rendering: worker');
+    await expect(page.getByTestId('render-thread')).toContainText('Rendering: worker');
     await page.evaluate(() => {
       const w = window as unknown as WorkerHook & { __placed?: number[] };
       w.__armtwin.target.onPlace((x, y) => (w.__placed = [x, y]));
@@ -178,11 +193,7 @@ test.describe('falling back to the main thread', () => {
     await expect(page.locator('#view canvas')).toHaveCount(1);
     await expect(page.locator('#view canvas[data-render="worker"]')).toHaveCount(0);
     await expect.poll(() => frames(page)).toBeGreaterThan(0);
-    const before = await drawnBase(page);
-    await page.getByRole('slider', { name: 'Base', exact: true }).fill('60');
-    await expect
-      .poll(async () => Math.abs((await drawnBase(page)) - before), { timeout: 10_000 })
-      .toBeGreaterThan(0.3);
+    await drawnArmFollowsAJog(page);
   });
 });
 
@@ -191,10 +202,27 @@ test.describe('rendering on the main thread', () => {
 
   test('?render=main keeps the view on the page and says so', async ({ hud }) => {
     const { page } = hud;
-    await expect(page.getByTestId('render-thread')).toHaveText('Rendering: main thread');
+    await expect(page.getByTestId('render-thread')).toHaveText(
+      /^Rendering: main thread(, software WebGL)?$/,
+    );
     expect(
       await page.evaluate(() => (window as unknown as WorkerHook).__armtwin.viewer.thread),
     ).toBe('main');
     await expect.poll(() => frames(page)).toBeGreaterThan(0);
+  });
+});
+
+test.describe('every frame drawn (?frames=full)', () => {
+  test.use({ hudQuery: '&render=worker&frames=full' });
+
+  test('software WebGL is not paced, says so, and the worker still follows the arm', async ({
+    hud,
+  }) => {
+    const { page } = hud;
+    await expect.poll(() => frames(page)).toBeGreaterThan(0);
+    await drawnArmFollowsAJog(page);
+    await expect(page.getByTestId('render-thread')).toHaveText(
+      (await software(page)) ? 'Rendering: worker, software WebGL' : 'Rendering: worker',
+    );
   });
 });

@@ -110,5 +110,22 @@ describe('FrameMirror (the worker’s copy of the page’s frame)', () => {
     }
     m.takeRendered(1010);
     expect(m.store.rendered[0]).toBeCloseTo(2, 3);
+    // …and says how far past the page's sample that is (the Status panel's lead counts it).
+    expect(m.aheadMs).toBeCloseTo(20, 3);
+  });
+
+  it('says how far along the course the drawn pose is: 0 before it or without one, its end at most', () => {
+    const c = new PoseCourse();
+    expect(c.aheadAt(2000)).toBe(0);
+    c.set(Float64Array.of(0, 0), {
+      at: 1000,
+      stepMs: 8,
+      poses: Float64Array.of(1, 1, 2, 2, 3, 3),
+    });
+    expect(c.aheadAt(990)).toBe(0);
+    expect(c.aheadAt(1012)).toBe(12);
+    expect(c.aheadAt(5000)).toBe(24);
+    c.set(Float64Array.of(0, 0), null);
+    expect(c.aheadAt(1012)).toBe(0);
   });
 });

@@ -101,9 +101,10 @@ describe('FallbackSceneView', () => {
     worker.loads[0]!.reject(new Error('render worker: Uncaught Error: no WebGL'));
     expect(view.thread).toBe('main');
     expect(reasons).toEqual(['render worker: Uncaught Error: no WebGL']);
-    expect(fallbackChoice(reasons[0]!)).toEqual({
+    expect(fallbackChoice(reasons[0]!, true)).toEqual({
       thread: 'main',
       note: 'worker failed: render worker: Uncaught Error: no WebGL',
+      pace: true,
     });
     expect(worker.disposed).toBe(true);
     expect(main.frameHooks.has(hook)).toBe(true);

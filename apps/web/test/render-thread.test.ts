@@ -8,9 +8,10 @@ import { flushNow } from '../src/mqtt/flushNow.ts';
 
 describe('chooseRenderThread', () => {
   it('draws in a worker by default where possible, on the main thread when asked', () => {
-    expect(chooseRenderThread('', true)).toEqual({ thread: 'worker', note: '' });
-    expect(chooseRenderThread('?render=worker', true)).toEqual({ thread: 'worker', note: '' });
-    expect(chooseRenderThread('?render=main', true)).toEqual({ thread: 'main', note: '' });
+    const paced = { note: '', pace: true };
+    expect(chooseRenderThread('', true)).toEqual({ thread: 'worker', ...paced });
+    expect(chooseRenderThread('?render=worker', true)).toEqual({ thread: 'worker', ...paced });
+    expect(chooseRenderThread('?render=main', true)).toEqual({ thread: 'main', ...paced });
     expect(chooseRenderThread('?render=nonsense', true).thread).toBe('worker');
     expect(chooseRenderThread('', false).thread).toBe('main');
     expect(chooseRenderThread('?render=worker&render=main', true).thread).toBe('main');
@@ -21,6 +22,13 @@ describe('chooseRenderThread', () => {
     expect(c.thread).toBe('main');
     expect(c.note).toMatch(/OffscreenCanvas/);
     expect(chooseRenderThread('', false, { defaultThread: 'worker' }).thread).toBe('main');
+  });
+
+  it('paces software WebGL unless `?frames=full` asks for every frame', () => {
+    expect(chooseRenderThread('?frames=full', true).pace).toBe(false);
+    expect(chooseRenderThread('?frames=full&render=main', false).pace).toBe(false);
+    expect(chooseRenderThread('?frames=paced', true).pace).toBe(true);
+    expect(chooseRenderThread('?frames=full&frames=x', true).pace).toBe(true);
   });
 
   it('a default of main is taken when the query says nothing', () => {

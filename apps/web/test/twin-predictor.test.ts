@@ -180,6 +180,11 @@ describe('ArmStore in predict mode', () => {
     expect(s.rendered[0]).toBeCloseTo(angleFromPwm(1510, 1) + v * 10, 1);
     expect(s.predicting).toBe(true);
     expect(s.predictionLeadMs).toBeGreaterThan(0);
+    // A renderer that draws later along the course (the worker) adds its own lead.
+    const sampled = s.predictionLeadMs;
+    s.drawnAheadMs = 12;
+    expect(s.predictionLeadMs).toBeCloseTo(sampled + 12, 9);
+    s.drawnAheadMs = 0;
     s.noteControl('#255PDST!', 1031);
     s.ingest(`$TIM:${EPOCH + 40}!${state([1520, ...rest.slice(1)])}`, 1041);
     s.ingest(`$TIM:${EPOCH + 60}!${state([1520, ...rest.slice(1)])}`, 1061);

@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { servoHealth } from '../src/store/healthWords.ts';
+import { renderWords } from '../src/panels/Status/words.ts';
 import { applyQuery, defaultSettings, validateSettings } from '../src/config/settings.ts';
 import { parseTarget } from '../src/panels/Cartesian/parseTarget.ts';
 import { ghostPose } from '../src/store/ghostPose.ts';
@@ -147,5 +148,25 @@ describe('ghostPose', () => {
         out,
       ),
     ).toBe('nothing');
+  });
+});
+
+describe('renderWords: where and how the 3D view is drawn (Status panel)', () => {
+  const base = {
+    thread: 'worker' as const,
+    note: '',
+    software: false,
+    frameCostMs: 0,
+    budget: 0.5,
+  };
+  it('names the thread, software WebGL and its pacing, and a fallback’s reason', () => {
+    expect(renderWords(base)).toBe('Rendering: worker');
+    expect(renderWords({ ...base, software: true })).toBe('Rendering: worker, software WebGL');
+    expect(renderWords({ ...base, software: true, frameCostMs: 17.6 })).toBe(
+      'Rendering: worker, software WebGL paced to 50 % (18 ms a frame)',
+    );
+    expect(renderWords({ ...base, thread: 'main', note: 'worker failed: x', software: true })).toBe(
+      'Rendering: main thread (worker failed: x), software WebGL',
+    );
   });
 });

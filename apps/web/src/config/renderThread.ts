@@ -3,7 +3,9 @@
  * OffscreenCanvas (scene/render/), so WebGL never holds up the page's main thread; `main`
  * draws it on the page's thread (scene/Viewer.ts). A browser without
  * `HTMLCanvasElement.transferControlToOffscreen` (or without module workers) always gets `main`.
- * Pure.
+ * With software WebGL the worker paces its frames (scene/FramePacer.ts `SOFTWARE_PACING`), so
+ * drawing on the CPU never takes the machine's cores from the stop, MQTT and the rest;
+ * `?frames=full` draws every frame anyway (a strong CPU without a GPU). Pure.
  */
 import type { RenderThread } from '../scene/SceneView.ts';
 
@@ -24,6 +26,8 @@ export interface RenderChoice {
   thread: RenderThread;
   /** Why, in words for the Status panel ('' when the choice is the default that works). */
   note: string;
+  /** Whether the worker paces software WebGL's frames (`?frames=full`: it does not). */
+  pace: boolean;
 }
 
 /** The render thread for `search` (the page's query) on a browser that `canOffscreen` or not. */
@@ -33,16 +37,22 @@ export function chooseRenderThread(
   opts: RenderThreadOptions = DEFAULT_RENDER_THREAD_OPTIONS,
 ): RenderChoice {
   // The last one counts (a test runner's default, then what one test asks for).
-  const asked = new URLSearchParams(search).getAll('render').at(-1);
+  const query = new URLSearchParams(search);
+  const asked = query.getAll('render').at(-1);
   const wanted: RenderThread = asked === 'worker' || asked === 'main' ? asked : opts.defaultThread;
+  const pace = query.getAll('frames').at(-1) !== 'full';
   if (wanted === 'worker' && !canOffscreen)
-    return { thread: 'main', note: 'this browser cannot draw in a worker (no OffscreenCanvas)' };
-  return { thread: wanted, note: '' };
+    return {
+      thread: 'main',
+      note: 'this browser cannot draw in a worker (no OffscreenCanvas)',
+      pace,
+    };
+  return { thread: wanted, note: '', pace };
 }
 
 /** What the Status panel says after the worker failed (`reason`) and the main thread took over. */
-export function fallbackChoice(reason: string): RenderChoice {
-  return { thread: 'main', note: `worker failed: ${reason}` };
+export function fallbackChoice(reason: string, pace: boolean): RenderChoice {
+  return { thread: 'main', note: `worker failed: ${reason}`, pace };
 }
 
 /** Whether this browser can hand a canvas to a worker. */

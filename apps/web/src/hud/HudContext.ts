@@ -20,6 +20,7 @@ import type { CalibrationSession } from '../panels/Calibration/CalibrationSessio
 import type { HoldJog } from '../panels/Jog/HoldJog.ts';
 import type { GamepadJog } from '../panels/Jog/GamepadJog.ts';
 import type { RenderChoice } from '../config/renderThread.ts';
+import type { SceneView } from '../scene/SceneView.ts';
 import type { ModeSwitch } from '../modes/ModeSwitch.ts';
 
 /** The Plan panel's plain objects. */
@@ -67,6 +68,8 @@ export interface Hud {
   selectArm(armId: string): void;
   /** Where the 3D view is drawn (the page's thread or a worker), and why (Status panel). */
   rendering: RenderChoice;
+  /** The 3D view's own figures, read by the Status panel as it samples. */
+  view: Pick<SceneView, 'software' | 'frameCostMs'>;
 }
 
 export const HudContext = createContext<Hud | null>(null);

@@ -102,12 +102,15 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
   const viewer: SceneView =
     rendering.thread === 'worker'
       ? new FallbackSceneView(
-          { worker: () => new WorkerViewer(els.view, store, target, sibling), main: mainView },
+          {
+            worker: () => new WorkerViewer(els.view, store, target, sibling, rendering.pace),
+            main: mainView,
+          },
           (reason) => {
             console.warn(
               `3D view: drawing on the main thread, the render worker failed: ${reason}`,
             );
-            rendering = fallbackChoice(reason);
+            rendering = fallbackChoice(reason, rendering.pace);
             if (!built) return;
             hud.rendering = rendering;
             render(hud);
@@ -183,6 +186,7 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
     jog: { hold, gamepad },
     modes,
     rendering,
+    view: viewer,
     link: firstLink,
     selectArm(armId: string) {
       const next = settingsForArm(hud.settings, armId);

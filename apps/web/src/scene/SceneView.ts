@@ -31,6 +31,8 @@ export interface SceneView {
   readonly ghostPainted: string;
   readonly meshFailures: readonly MeshFailure[];
   readonly pixelRatio: number;
+  /** A moving frame's cost, ms, where frames run on a budget (software WebGL in the worker); else 0. */
+  readonly frameCostMs: number;
   readonly software: boolean;
   readonly renderedFrames: number;
   ghostSource: GhostSource | null;

@@ -101,6 +101,10 @@ export class Viewer implements SceneView {
   get pixelRatio(): number {
     return this.pacer.governor.ratio;
   }
+  /** The page's frames run unbudgeted (the render worker budgets software WebGL's). */
+  get frameCostMs(): number {
+    return this.pacer.costMs;
+  }
 
   /** The arm's z-up frame (metres), the camera and the canvas, for the scene's add-ons. */
   get world(): THREE.Group {

@@ -14,13 +14,15 @@ import {
   cameraRejects,
   fleetRejects,
   formatRate,
+  renderWords,
   twinWords,
 } from './words.ts';
 import { gapWords } from '../../mqtt/GapTracker.ts';
 import { droppedWords } from '../../store/readerErrors.ts';
+import { SOFTWARE_PACING } from '../../scene/FramePacer.ts';
 
 export function StatusPanel() {
-  const { store, settings, link, robots, cameras, rendering } = useHud();
+  const { store, settings, link, robots, cameras, rendering, view } = useHud();
   const storage = useStorageStatus();
   const s = useSampled(() => {
     const now = performance.now();
@@ -53,6 +55,12 @@ export function StatusPanel() {
       twinMode: store.opts.twinMode,
       predicting: store.predicting,
       leadMs: Math.round(store.predictionLeadMs),
+      rendering: renderWords({
+        ...rendering,
+        software: view.software,
+        frameCostMs: view.frameCostMs,
+        budget: SOFTWARE_PACING.budget,
+      }),
     };
   });
 
@@ -138,8 +146,7 @@ export function StatusPanel() {
         {twinWords(s.twinMode, s.predicting, s.leadMs)}
       </p>
       <p className="note dim" data-testid="render-thread" data-thread={rendering.thread}>
-        {rendering.thread === 'worker' ? 'Rendering: worker' : 'Rendering: main thread'}
-        {rendering.note ? ` (${rendering.note})` : ''}
+        {s.rendering}
       </p>
     </section>
   );

@@ -33,6 +33,25 @@ export function cameraRejects(total: number, byReason: Record<string, number>): 
   return `${total} rejected (${parts.join(', ')})`;
 }
 
+/**
+ * Where the 3D view is drawn, and how: `Rendering: worker, software WebGL paced to 50 % (18 ms a
+ * frame)`; a fallback's reason in brackets after the thread.
+ */
+export function renderWords(r: {
+  thread: 'main' | 'worker';
+  note: string;
+  software: boolean;
+  frameCostMs: number;
+  budget: number;
+}): string {
+  const where = r.thread === 'worker' ? 'Rendering: worker' : 'Rendering: main thread';
+  const w = r.note ? `${where} (${r.note})` : where;
+  if (!r.software) return w;
+  return r.frameCostMs > 0
+    ? `${w}, software WebGL paced to ${Math.round(r.budget * 100)} % (${Math.round(r.frameCostMs)} ms a frame)`
+    : `${w}, software WebGL`;
+}
+
 /** What the 3D arm shows: a prediction (and how far ahead of the reports), or the reports. */
 export function twinWords(mode: string, predicting: boolean, leadMs: number): string {
   if (predicting) return `Predicted: drawn ${leadMs} ms ahead of the arm's last report.`;

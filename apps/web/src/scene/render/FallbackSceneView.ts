@@ -100,6 +100,9 @@ export class FallbackSceneView implements SceneView {
   get pixelRatio(): number {
     return this.current.pixelRatio;
   }
+  get frameCostMs(): number {
+    return this.current.frameCostMs;
+  }
   get software(): boolean {
     return this.current.software;
   }

@@ -38,6 +38,8 @@ export class FrameMirror {
   drawLeadMs = 0;
   /** The tick (epoch ms) the drawn angles were last posed in. */
   private posedAt = NaN;
+  /** How far along the course past the page's sample the drawn angles are, ms. */
+  aheadMs = 0;
 
   /** The replay's sibling as the page last sent it. */
   readonly siblingSource: SiblingSource;
@@ -100,6 +102,7 @@ export class FrameMirror {
   takeRendered(epochMs = NaN): boolean {
     this.posedAt = epochMs;
     const moved = this.course.poseAt(epochMs + this.drawLeadMs, this.store.rendered);
+    this.aheadMs = Number.isFinite(epochMs) ? this.course.aheadAt(epochMs + this.drawLeadMs) : 0;
     const c = this.renderedChanged;
     this.renderedChanged = false;
     return moved || c;

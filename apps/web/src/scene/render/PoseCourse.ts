@@ -30,6 +30,17 @@ export class PoseCourse {
         : null;
   }
 
+  /**
+   * How far past the sample's instant the pose at `epochMs` is, ms: along the course, at most
+   * its end (0 without a course, or before the sample's instant).
+   */
+  aheadAt(epochMs: number): number {
+    const c = this.course;
+    if (!c) return 0;
+    const span = Math.floor(c.poses.length / this.base.length) * c.stepMs;
+    return Math.min(span, Math.max(0, epochMs - c.at));
+  }
+
   /** The pose at `epochMs` into `out` (sized as the sample); true if any angle changed. */
   poseAt(epochMs: number, out: Float64Array): boolean {
     const base = this.base;

@@ -6,14 +6,15 @@
  * pose, the orbit camera) arrives from the page as `FrameInput` messages and is copied into
  * small stand-ins (./FrameMirror.ts), so Ghost, TargetMarker and ReplaySibling run unchanged. It
  * renders only when something moved, lowers the resolution while frames are slow and draws one
- * full-resolution frame once things rest, as the Viewer does (../FramePacer.ts).
+ * full-resolution frame once things rest, as the Viewer does (../FramePacer.ts); with software
+ * WebGL it paces its frames to the budget there (`SOFTWARE_PACING`).
  */
 import * as THREE from 'three';
 import { frameCamera } from '../../robots/sceneHooks.ts';
 import type { JointMap } from '../../robots/robotSpec.ts';
 import { createStage, type Stage } from '../stage.ts';
 import type { MeshFailure } from '../loadRobot.ts';
-import { FramePacer } from '../FramePacer.ts';
+import { FramePacer, SOFTWARE_PACING } from '../FramePacer.ts';
 import { TargetMarker } from '../TargetMarker.ts';
 import { TranslucentTwin } from '../TranslucentTwin.ts';
 import { ZonesView } from '../ZonesView.ts';
@@ -72,9 +73,11 @@ export class WorkerScene {
     readonly software: boolean,
     dpr: number,
     private readonly post: (m: FromWorker) => void,
+    /** Pace the frames (software WebGL, unless the page asked for every frame). */
+    paced = false,
   ) {
     this.renderer = createRenderer(software, canvas);
-    this.pacer = new FramePacer(this.renderer, Math.min(dpr || 1, 2));
+    this.pacer = new FramePacer(this.renderer, Math.min(dpr || 1, 2), paced ? SOFTWARE_PACING : {});
     this.camera.lookAt(this.controls.target);
     this.stage = createStage(this.scene);
     this.extras = new WorkerExtras(this.scene, this.stage.world);
@@ -202,6 +205,8 @@ export class WorkerScene {
       frames: this.frames,
       sizeSeq: this.sizeSeq,
       pixelRatio: this.renderer.getPixelRatio(),
+      costMs: this.pacer.costMs,
+      aheadMs: this.mirror.aheadMs,
       robot: a?.live.values() ?? [],
       ghost: a?.ghost.posed.values() ?? [],
       sibling: a?.sibling?.posed.values() ?? [],

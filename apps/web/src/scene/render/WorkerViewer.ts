@@ -49,6 +49,7 @@ export class WorkerViewer implements SceneView {
   meshFailures: readonly MeshFailure[] = [];
   renderedFrames = 0;
   pixelRatio = 1;
+  frameCostMs = 0;
   software = false;
   /** WebGL's renderer string in the worker ('' until it answered). */
   webglRenderer = '';
@@ -84,6 +85,8 @@ export class WorkerViewer implements SceneView {
     private readonly store: ArmStore,
     private readonly target: TargetPreview,
     private readonly replay: SiblingSource | null = null,
+    /** Whether software WebGL's frames are paced (../FramePacer.ts; `?frames=full`: not). */
+    private readonly pace = true,
     makeWorker: MakeRenderWorker = makeRenderWorker,
   ) {
     const canvas = document.createElement('canvas');
@@ -108,7 +111,14 @@ export class WorkerViewer implements SceneView {
     const offscreen = canvas.transferControlToOffscreen();
     const { width, height } = this.size();
     this.send(
-      { type: 'init', canvas: offscreen, width, height, dpr: window.devicePixelRatio || 1 },
+      {
+        type: 'init',
+        canvas: offscreen,
+        width,
+        height,
+        dpr: window.devicePixelRatio || 1,
+        pace: this.pace,
+      },
       [offscreen],
     );
   }
@@ -258,6 +268,8 @@ export class WorkerViewer implements SceneView {
         // A frame drawn before the latest resize was wiped by it: not yet a frame on screen.
         if (m.sizeSeq === this.sizeSeq) this.renderedFrames = m.frames;
         this.pixelRatio = m.pixelRatio;
+        this.frameCostMs = m.costMs;
+        this.store.drawnAheadMs = m.aheadMs;
         this.drawn = { robot: m.robot, ghost: m.ghost, sibling: m.sibling };
         this.ghostPainted = m.ghostPainted;
         this.tracking = m.trackingLevels ? { levels: m.trackingLevels } : null;

@@ -66,7 +66,15 @@ export interface FrameInput {
 }
 
 export type ToWorker =
-  | { type: 'init'; canvas: OffscreenCanvas; width: number; height: number; dpr: number }
+  | {
+      type: 'init';
+      canvas: OffscreenCanvas;
+      width: number;
+      height: number;
+      dpr: number;
+      /** Pace software WebGL's frames (../FramePacer.ts `SOFTWARE_PACING`). */
+      pace: boolean;
+    }
   /** `seq` counts the page's resizes: each drawn frame says which size it was drawn at. */
   | { type: 'resize'; width: number; height: number; dpr: number; seq: number }
   | { type: 'load'; id: number; urdfUrl: string; joints: JointMap; sibling: boolean }
@@ -117,6 +125,10 @@ export type FromWorker =
       /** The `seq` of the last resize this frame was drawn after (0: the size at init). */
       sizeSeq: number;
       pixelRatio: number;
+      /** A frame's cost, ms, smoothed, where the frames run on a budget (software WebGL); else 0. */
+      costMs: number;
+      /** How far past the page's sample the pose drawn is, along the predicted course, ms. */
+      aheadMs: number;
       robot: number[];
       ghost: number[];
       sibling: number[];

@@ -39,7 +39,7 @@ scope.onmessage = (e) => {
       case 'init': {
         const renderer = webglRenderer(() => new OffscreenCanvas(1, 1));
         const software = isSoftwareRenderer(renderer);
-        scene = new WorkerScene(m.canvas, software, m.dpr, post);
+        scene = new WorkerScene(m.canvas, software, m.dpr, post, software && m.pace);
         scene.resize(m.width, m.height, m.dpr);
         post({ type: 'ready', software, renderer });
         break;
