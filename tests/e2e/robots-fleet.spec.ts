@@ -82,7 +82,8 @@ test('robots: armtwin5 and track6 both load and animate; the fleet list switches
     const trackSlider = page.getByRole('slider', { name: 'Track', exact: true });
     await expect(trackSlider).toBeEnabled();
     await expect(trackSlider).toHaveAttribute('max', '3000');
-    expect((await joints(page)).length).toBe(7);
+    // Drawn as track6 from the worker's first frame of it (paced frames may come a little later).
+    await expect.poll(async () => (await joints(page)).length).toBe(7);
 
     // Jog the track to 1500 mm: the sim's carriage moves, and so does the drawn one (metres).
     const since = Date.now();
