@@ -82,6 +82,21 @@ describe('FramePacer with a budget (software WebGL in the render worker)', () =>
     expect(renderer.ratio).toBe(2);
   });
 
+  it('a pause (a hidden tab) is not taken for a frame’s cost', () => {
+    const { pacer } = rig({ budget: 0.5 });
+    const drawn: number[] = [];
+    const draw = (now: number) => void drawn.push(now);
+    for (let t = 0; t <= 320; t += 32) pacer.step(t, true, draw); // 32 ms frames
+    const cost = pacer.costMs;
+    expect(cost).toBeCloseTo(32, 0);
+    pacer.step(10_000, true, draw); // the next tick came 10 s later: drawn at once
+    expect(drawn.at(-1)).toBe(10_000);
+    pacer.step(10_032, true, draw);
+    expect(pacer.costMs).toBeCloseTo(cost, 6);
+    pacer.step(10_064, true, draw); // and the pace is the frames' own again: one every 64 ms
+    expect(drawn.slice(-2)).toEqual([10_000, 10_064]);
+  });
+
   it('a frame that waits for the budget is drawn later, not dropped', () => {
     const { renderer, pacer } = rig({ budget: 0.5 });
     const drawn: number[] = [];

@@ -51,6 +51,13 @@ export const SOFTWARE_PACING = { budget: 0.5 } satisfies Partial<FramePacerOptio
 
 /** How much of each new frame's cost the running estimate takes. */
 const COST_SMOOTHING = 0.3;
+/**
+ * A draw-to-tick time this long is a pause (a hidden tab, a stalled machine), not a frame's
+ * cost: not learnt. Below it, a cost counts at most `MAX_COST_MS`, so one slow frame does not
+ * hold the next ones back for long.
+ */
+const PAUSE_MS = 1000;
+const MAX_COST_MS = 250;
 
 /** What the pacer sets on the renderer. */
 export interface PixelRatioTarget {
@@ -126,7 +133,12 @@ export class FramePacer {
     const c = this.costOf;
     if (!c) return;
     this.costOf = null;
-    const cost = now - c.at;
+    const elapsed = now - c.at;
+    if (!(elapsed < PAUSE_MS)) {
+      this.nextAt = now;
+      return;
+    }
+    const cost = Math.min(elapsed, MAX_COST_MS);
     if (c.moving) {
       this.costMs = this.costMs > 0 ? this.costMs + COST_SMOOTHING * (cost - this.costMs) : cost;
       this.governor.frame(cost);
