@@ -12,11 +12,10 @@
  * Between samples the arm is set moving again (the caller's `rearm`, a move on the control
  * topic) and a random 200–500 ms pause puts the next input at another phase of the page's frame.
  */
-import { spawn } from 'node:child_process';
 import readline from 'node:readline';
 import type { MqttClient } from 'mqtt';
 import type { Page } from 'playwright-core';
-import { sleep } from './proc.ts';
+import { sleep, spawnChild } from './proc.ts';
 import { connectMqtt } from './stack.ts';
 import { summarize } from './stats.ts';
 
@@ -194,7 +193,10 @@ interface StampingSubscriber {
   close(): void;
 }
 
-/** `mosquitto_sub` on `topic`, printing each message's arrival time; resolves once subscribed. */
+/**
+ * `mosquitto_sub` on `topic`, printing each message's arrival time; resolves once subscribed.
+ * A tracked child (./proc.ts): the run kills it at the end whatever happened.
+ */
 async function startStampingSubscriber(
   brokerUrl: string,
   topic: string,
@@ -204,15 +206,13 @@ async function startStampingSubscriber(
   const ready = `bench/estop-sub/${process.pid}/${Date.now()}`;
   const args = ['-h', u.hostname, '-p', u.port || '1883', '-q', '0', '-F', '%U %t %p'];
   args.push('-t', topic, '-t', ready, '-i', `bench-estop-sub-${process.pid}-${Date.now()}`);
-  const child = spawn('mosquitto_sub', args, { stdio: ['ignore', 'pipe', 'pipe'] });
+  const child = spawnChild('mosquitto_sub', args, { stdout: 'pipe' });
   const s: StampingSubscriber = {
     onMessage: () => {},
-    close: () => child.kill(),
+    close: () => void child.stop(),
   };
-  let err = '';
-  child.stderr.on('data', (b: Buffer) => (err += b.toString()));
   let seen = false;
-  readline.createInterface({ input: child.stdout }).on('line', (line) => {
+  readline.createInterface({ input: child.proc.stdout! }).on('line', (line) => {
     const [stamp = '', t = '', ...rest] = line.split(' ');
     if (t === ready) return void (seen = true);
     const [sec, ns = '0'] = stamp.split('.');
@@ -222,10 +222,13 @@ async function startStampingSubscriber(
   try {
     const deadline = Date.now() + 10_000;
     while (!seen) {
-      if (child.exitCode !== null || Date.now() > deadline)
+      const code = child.proc.exitCode;
+      if (code !== null || Date.now() > deadline) {
+        s.close();
         throw new Error(
-          `mosquitto_sub did not subscribe to ${topic}: ${err.trim() || 'timed out'}`,
+          `mosquitto_sub did not subscribe to ${topic}: ${code !== null ? `exit code ${code}` : 'timed out'}`,
         );
+      }
       await pub.publishAsync(ready, 'ready', { qos: 0 });
       await sleep(100);
     }
