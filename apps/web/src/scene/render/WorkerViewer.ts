@@ -169,6 +169,7 @@ export class WorkerViewer implements SceneView {
 
   dispose(): void {
     this.running = false;
+    this.store.drawnAheadMs = 0; // a fallback's page-side frames add no lead of their own
     cancelAnimationFrame(this.frame);
     this.resizeObserver.disconnect();
     window.removeEventListener('resize', this.resize);
