@@ -1,10 +1,16 @@
 /**
  * Who may use `armtwin up`'s own routes, checked against the same log-ins as the broker (HTTP
  * Basic through its failed-log-in throttle, SECURITY.md); in the anonymous local demo
- * (`logins` null) anyone is an operator.
+ * (`logins` null) anyone is an operator. Also `/api/whoami` for the HUD, and the hand-over of a
+ * Basic log-in to the middleware as its bearer token.
  */
 import type http from 'node:http';
-import { basicCredentials, type LoginResult, type LoginThrottle } from '@armtwin/auth';
+import {
+  basicCredentials,
+  whoamiAnswer,
+  type LoginResult,
+  type LoginThrottle,
+} from '@armtwin/auth';
 import type { Authorize } from './calibration-route.ts';
 
 /** The log-in named by an HTTP Basic header, through the throttle the broker uses. */
@@ -35,4 +41,28 @@ export function anyLogIn(logins: LoginThrottle | null): Authorize {
     !logins || (await basicUser(req, logins)).ok
       ? { ok: true }
       : { ok: false, status: 401, error: 'log in' };
+}
+
+/**
+ * HTTP Basic with a user's name and password (any role: a viewer may read the history) is
+ * turned into the bearer token the middleware checks; anything else reaches it unchanged.
+ */
+export async function basicToBearer(
+  req: http.IncomingMessage,
+  logins: LoginThrottle,
+  token: string,
+): Promise<void> {
+  if (!/^Basic /i.test(req.headers.authorization ?? '')) return;
+  if ((await basicUser(req, logins)).ok) req.headers.authorization = `Bearer ${token}`;
+  else delete req.headers.authorization;
+}
+
+/** `GET /api/whoami`, for the HUD (`whoamiAnswer`): the anonymous demo is an operator. */
+export async function whoami(
+  req: http.IncomingMessage,
+  res: http.ServerResponse,
+  logins: LoginThrottle | null,
+): Promise<void> {
+  const a = whoamiAnswer(logins ? await basicUser(req, logins) : 'anonymous-demo');
+  res.writeHead(a.status, a.headers).end(a.body);
 }

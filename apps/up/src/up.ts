@@ -16,7 +16,7 @@ import fs from 'node:fs';
 import http from 'node:http';
 import https from 'node:https';
 import path from 'node:path';
-import { whoamiAnswer, type LoginThrottle, type Users } from '@armtwin/auth';
+import type { Users } from '@armtwin/auth';
 import { startBroker, type Broker, type BrokerTls } from '@armtwin/broker';
 import { isModelArmId, linkOptions, MODEL_ARM_SUFFIX } from '@armtwin/protocol';
 import {
@@ -29,7 +29,7 @@ import {
   type MqttSim,
 } from '@armtwin/sim';
 import { createCameraPart } from './camera-part.ts';
-import { anyLogIn, basicUser, operatorOnly } from './authorize.ts';
+import { anyLogIn, basicToBearer, operatorOnly, whoami } from './authorize.ts';
 import { calibrationRoute, isCalibrationRequest } from './calibration-route.ts';
 import { isKeepOutRequest, keepOutRoute } from './keep-out-route.ts';
 import { importRoute, isImportRequest } from './import-route.ts';
@@ -320,30 +320,6 @@ export async function startUp(o: UpOptions): Promise<Up> {
     })());
 
   return { url, broker, sim, sims, copies: model.copies, middlewareReady, stop };
-}
-
-/**
- * HTTP Basic with a user's name and password (any role: a viewer may read the history) is
- * turned into the bearer token the middleware checks; anything else reaches it unchanged.
- */
-async function basicToBearer(
-  req: http.IncomingMessage,
-  logins: LoginThrottle,
-  token: string,
-): Promise<void> {
-  if (!/^Basic /i.test(req.headers.authorization ?? '')) return;
-  if ((await basicUser(req, logins)).ok) req.headers.authorization = `Bearer ${token}`;
-  else delete req.headers.authorization;
-}
-
-/** `GET /api/whoami`, for the HUD (`whoamiAnswer`): the anonymous demo is an operator. */
-async function whoami(
-  req: http.IncomingMessage,
-  res: http.ServerResponse,
-  logins: LoginThrottle | null,
-): Promise<void> {
-  const a = whoamiAnswer(logins ? await basicUser(req, logins) : 'anonymous-demo');
-  res.writeHead(a.status, a.headers).end(a.body);
 }
 
 /** The first of `dirs` that holds `<name>/profile.json` (the last one otherwise, for its error). */

@@ -36,14 +36,8 @@ export function busKmsSolver(robot: MotionRobot): BusKmsSolver {
   };
 }
 
-/** The `$KMS` code for a solution a joint limit refuses (as the simulator answers it). */
-export const KMS_LIMIT_CODE = 8;
-
-/** The `$KMS` code for a solution below the floor: §4's code 1 (docs/protocol.md, "The floor"). */
-export const KMS_FLOOR_CODE = 1;
-
-/** The `$KMS` code for a solution whose path enters a keep-out zone: 25 (docs/protocol.md). */
-export const KMS_ZONE_CODE = 25;
+/** The `$KMS` refusal codes, declared once in @armtwin/protocol. */
+export { KMS_FLOOR_CODE, KMS_LIMIT_CODE, KMS_ZONE_CODE } from '@armtwin/protocol';
 
 /**
  * Keep-out zones on a bus (degrees by servo index, from = the positions read now, to = after

@@ -19,6 +19,15 @@ export const MAX_FRAME_LENGTH = 64;
 export const KMS_COORD_MAX = 99_999;
 /** Largest IK status code the reader accepts in `$KMS:c!` (room for codes beyond §4). */
 export const KMS_CODE_MAX = 99;
+/** The `$KMS` code for a solution a joint limit refuses (as the simulator answers it). */
+export const KMS_LIMIT_CODE = 8;
+/** The `$KMS` code for a solution below the floor: §4's code 1 (docs/protocol.md, "The floor"). */
+export const KMS_FLOOR_CODE = 1;
+/**
+ * The `$KMS` code for a solution whose path takes a link into a keep-out zone or onto another
+ * link: motion code 25 (docs/protocol.md, "Keep-out zones").
+ */
+export const KMS_ZONE_CODE = 25;
 export const TEMP_MAX = 999;
 /**
  * Largest supply voltage in a health frame, mV. Four digits up to 9999 mV as §1 shows; a supply

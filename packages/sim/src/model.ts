@@ -3,8 +3,10 @@
  * servo model. Pure: time comes in as an argument (epoch ms), replies go out as encoded frame
  * strings appended to an array the caller owns. The MQTT or serial side lives elsewhere.
  */
-import { isWithinLimits, solveIk, speaksAngle, type ArmProfile } from '@armtwin/ik';
+import { speaksAngle, type ArmProfile } from '@armtwin/ik';
 import {
+  KMS_FLOOR_CODE,
+  KMS_ZONE_CODE,
   PWM_CENTRE,
   PWM_MAX,
   PWM_MIN,
@@ -18,16 +20,15 @@ import {
   encodePing,
   encodePosition,
   unhandled,
-  type AngleMoveFrame,
   type Frame,
   type Group,
-  type MoveFrame,
 } from '@armtwin/protocol';
-import { DEFAULT_SIM_MODEL_OPTIONS, type ReportUnits, type SimModelOptions } from './options.ts';
+import { DEFAULT_SIM_MODEL_OPTIONS, reportAngle, type SimModelOptions } from './options.ts';
+import { solveKms } from './kms.ts';
 import { Servos } from './servos.ts';
 import { keepOutKind } from '@armtwin/motion';
 
-const id3 = (id: number) => String(id).padStart(3, '0');
+import { frameRefusal, id3 } from './frameRefusal.ts';
 
 /** What the controller did with a command, counted by kind. */
 export interface SimCounters {
@@ -192,71 +193,12 @@ export class SimModel {
     return placed;
   }
 
-  /** The reason a frame cannot run, or '' when it can. Changes nothing. */
+  /** The reason a frame cannot run, or '' when it can (./frameRefusal.ts), counted by kind. */
   private check(frame: Frame): string {
-    switch (frame.type) {
-      case 'move':
-        return this.checkMove(frame);
-      case 'angleMove':
-        return this.checkAngleMove(frame);
-      case 'readPosition':
-      case 'readHealth':
-      case 'stop':
-        if (frame.id !== SERVO_ID_ALL && this.servos.indexOf(frame.id) < 0) {
-          this.counters.rejected['unknown-servo']++;
-          return `no servo ${id3(frame.id)}`;
-        }
-        return '';
-      case 'kms':
-      case 'ping':
-      case 'time':
-        return '';
-      case 'position':
-      case 'angle':
-      case 'health':
-      case 'kmsResult':
-      case 'controllerError':
-        this.counters.rejected.unexpected++;
-        return `unexpected ${frame.type} frame on control`;
-      default:
-        return unhandled(frame);
-    }
-  }
-
-  private checkMove(m: MoveFrame): string {
-    const s = this.servos;
-    if (m.id !== SERVO_ID_ALL && s.indexOf(m.id) < 0) {
-      this.counters.rejected['unknown-servo']++;
-      return `no servo ${id3(m.id)}`;
-    }
-    for (let i = 0; i < s.count; i++) {
-      const id = s.ids[i]!;
-      if ((m.id === SERVO_ID_ALL || m.id === id) && !isWithinLimits(id, m.pwm, this.arm)) {
-        this.counters.rejected.limit++;
-        return `limit ${id3(id)} P${m.pwm} outside ${s.minPwm[i]}-${s.maxPwm[i]}`;
-      }
-    }
-    return '';
-  }
-
-  /** `#IIIA±ddd.ddTtttt!`: checked in servo degrees against the profile's limits. */
-  private checkAngleMove(m: AngleMoveFrame): string {
-    const s = this.servos;
-    if (m.id !== SERVO_ID_ALL && s.indexOf(m.id) < 0) {
-      this.counters.rejected['unknown-servo']++;
-      return `no servo ${id3(m.id)}`;
-    }
-    for (let i = 0; i < s.count; i++) {
-      const spec = this.arm.servos[i]!;
-      if (
-        (m.id === SERVO_ID_ALL || m.id === spec.id) &&
-        !(m.deg >= spec.minDeg && m.deg <= spec.maxDeg)
-      ) {
-        this.counters.rejected.limit++;
-        return `limit ${id3(spec.id)} A${m.deg} outside ${spec.minDeg}..${spec.maxDeg}`;
-      }
-    }
-    return '';
+    const r = frameRefusal(frame, this.servos, this.arm);
+    if (!r) return '';
+    this.counters.rejected[r.kind]++;
+    return r.reason;
   }
 
   /**
@@ -351,7 +293,7 @@ export class SimModel {
     return kind === 'zone' ? KMS_ZONE_CODE : KMS_FLOOR_CODE;
   }
 
-  /** `$KMS`: solve, answer `$KMS:c!`, move servos 000–003 together only when c is 0. */
+  /** `$KMS`: solve (./kms.ts), answer `$KMS:c!`, move the servos together only when c is 0. */
   private kms(
     x: number,
     y: number,
@@ -362,53 +304,11 @@ export class SimModel {
     out: string[],
   ) {
     this.counters.kms++;
-    const s = this.servos;
-    if (this.kmsSolver) {
-      // Another arm's IK (profile.ts): every servo it gives a pulse moves, together.
-      const now = Array.from({ length: s.count }, (_, i) => s.pwmAt(i, t));
-      const k = this.kmsSolver(x, y, z, alpha, now);
-      const code = k.code === 0 ? this.kmsKeepOutCode(k.pwm) : k.code;
-      if (code !== 0) this.counters.rejected.ik++;
-      out.push(encodeKmsResult(code));
-      if (code === 0) k.pwm.forEach((p, i) => Number.isNaN(p) || s.moveTo(i, Math.round(p), ms, t));
-      return;
-    }
-    const r = solveIk(x, y, z, alpha, this.arm);
-    const idx = [0, 1, 2, 3].map((j) => s.indexOf(this.arm.servos[j]?.id ?? -1));
-    const ok =
-      r.code === 0 && idx.every((i, j) => i >= 0 && isWithinLimits(s.ids[i]!, r.pwm[j]!, this.arm));
-    if (r.code !== 0) this.counters.rejected.ik++;
-    const sol = new Array<number>(s.count).fill(NaN);
-    idx.forEach((i, j) => (sol[i] = r.pwm[j]!));
-    const low = ok ? this.kmsKeepOutCode(sol) : 0;
-    out.push(encodeKmsResult(low || (r.code === 0 && !ok ? 8 : r.code)));
-    if (!ok || low) return;
-    for (let j = 0; j < 4; j++) s.moveTo(idx[j]!, r.pwm[j]!, ms, t);
-  }
-}
-
-/**
- * The `$KMS` code for a solution that would put the tool or a joint below the floor: §4's code 1
- * ("below the floor"), docs/protocol.md "The floor".
- */
-export const KMS_FLOOR_CODE = 1;
-
-/**
- * The `$KMS` code for a solution whose path takes a link into a keep-out zone or onto another
- * link: motion code 25 (docs/protocol.md, "Keep-out zones").
- */
-export const KMS_ZONE_CODE = 25;
-
-/** Whether a servo is reported in angle frames: as asked, or (`auto`) as its profile says. */
-function reportAngle(report: ReportUnits, speaksAngleFrames: boolean): boolean {
-  switch (report) {
-    case 'auto':
-      return speaksAngleFrames;
-    case 'angle':
-      return true;
-    case 'pulse':
-      return false;
-    default:
-      return unhandled(report);
+    const k = solveKms(x, y, z, alpha, t, this.servos, this.arm, this.kmsSolver, (pwm) =>
+      this.kmsKeepOutCode(pwm),
+    );
+    if (k.ikRefused) this.counters.rejected.ik++;
+    out.push(encodeKmsResult(k.code));
+    for (const m of k.moves) this.servos.moveTo(m.i, m.pwm, ms, t);
   }
 }

@@ -5,6 +5,7 @@
  * below 6.5 V. Currents are per servo, in amperes; index i is the arm profile's i-th servo.
  */
 import { DEMO_ARM, type ArmProfile } from '@armtwin/ik';
+import { unhandled } from '@armtwin/protocol';
 
 /**
  * How the sim reports positions: `auto` each servo as its profile says (`units`: pulse widths
@@ -13,6 +14,20 @@ import { DEMO_ARM, type ArmProfile } from '@armtwin/ik';
  */
 export const REPORT_UNITS = ['auto', 'angle', 'pulse'] as const;
 export type ReportUnits = (typeof REPORT_UNITS)[number];
+
+/** Whether a servo is reported in angle frames: as asked, or (`auto`) as its profile says. */
+export function reportAngle(report: ReportUnits, speaksAngleFrames: boolean): boolean {
+  switch (report) {
+    case 'auto':
+      return speaksAngleFrames;
+    case 'angle':
+      return true;
+    case 'pulse':
+      return false;
+    default:
+      return unhandled(report);
+  }
+}
 
 export interface SimModelOptions {
   /** The arm whose servos are simulated: ids, angle limits, polarity, top speed. */
