@@ -66,13 +66,21 @@ export class ControllerCore {
   private goals: Goal[] = [];
 
   constructor(
-    readonly joints: readonly Joint[],
+    private joints_: readonly Joint[],
     readonly driver: ControllerDriver,
     private rules: ControllerRules = {},
   ) {}
 
-  /** Puts other rules in force (a profile file edited while running). */
-  setRules(rules: ControllerRules): void {
+  /** The joints, in the driver's order. */
+  get joints(): readonly Joint[] {
+    return this.joints_;
+  }
+
+  /** Puts a new calibration of the same servos and other rules in force (a profile file edited while running). */
+  reconfigure(joints: readonly Joint[], rules: ControllerRules): void {
+    if (joints.map((j) => j.id).join() !== this.joints_.map((j) => j.id).join())
+      throw new RangeError('reconfigure: the same servos, in the same order');
+    this.joints_ = joints;
     this.rules = rules;
   }
 
