@@ -68,7 +68,16 @@ const DRIVERS: DriverRow[] = [
       const line: SerialLine = serialLine(
         host,
         path.join(dir, `${arm}-arm`),
-        (armSide) => ['sim', '--bus', 'dynamixel', '--serial', armSide, '--baud', '1000000', ...profileArgs],
+        (armSide) => [
+          'sim',
+          '--bus',
+          'dynamixel',
+          '--serial',
+          armSide,
+          '--baud',
+          '1000000',
+          ...profileArgs,
+        ],
         'simulated servo bus on the serial line',
       );
       await line.start();
@@ -145,14 +154,14 @@ describe.each(DRIVERS.map((d, i) => ({ ...d, arm: `behaviour-${i}` })))(
       users.on('message', (topic, payload) => {
         const kind = topic.split('/')[2];
         if (kind === 'feedback') feedback.push(JSON.parse(payload.toString()) as never);
-        if (kind === 'holder') holder = (JSON.parse(payload.toString()) as { user: string | null }).user ?? '';
+        if (kind === 'holder')
+          holder = (JSON.parse(payload.toString()) as { user: string | null }).user ?? '';
         const e = kind === 'audit' ? parseAudit(payload) : null;
         if (e) audit.push(e);
       });
-      await users.subscribeAsync(
-        [`arm/${arm}/feedback`, `arm/${arm}/holder`, `arm/${arm}/audit`],
-        { qos: 1 },
-      );
+      await users.subscribeAsync([`arm/${arm}/feedback`, `arm/${arm}/holder`, `arm/${arm}/audit`], {
+        qos: 1,
+      });
       driver = await start(url, arm);
       await w.until(
         () => (w.retained.get(`arm/${arm}/online`) === '1' ? true : undefined),
@@ -175,7 +184,8 @@ describe.each(DRIVERS.map((d, i) => ({ ...d, arm: `behaviour-${i}` })))(
       const request = { id, mode: 'joint', targets: [{ servos: { '000': 1800 } }], execute: true };
       await say('request', JSON.stringify(request));
       const done = await w.until(
-        () => feedback.find((f) => f.id === id && f.status !== 'planned' && f.status !== 'executing'),
+        () =>
+          feedback.find((f) => f.id === id && f.status !== 'planned' && f.status !== 'executing'),
         30_000,
         'the request to end',
       );

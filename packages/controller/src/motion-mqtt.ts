@@ -62,7 +62,12 @@ export function startMotionService(
       const message = err instanceof Error ? err.message : String(err);
       onFirst('request:error', message);
       publish([
-        { id: null, status: 'failed', code: CODE_INVALID, message: `internal error: ${message}`.slice(0, 200) },
+        {
+          id: null,
+          status: 'failed',
+          code: CODE_INVALID,
+          message: `internal error: ${message}`.slice(0, 200),
+        },
       ]);
     }
   };

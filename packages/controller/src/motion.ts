@@ -97,7 +97,11 @@ export class MotionRequests {
     const out: MotionFeedback[] = [];
     const text = typeof payload === 'string' ? payload : Buffer.from(payload).toString('utf8');
     if (!this.bucket.take(t)) {
-      this.count('rateLimited', 'request:rate-limit', `motion requests over ${this.o.requestRate}/s refused`);
+      this.count(
+        'rateLimited',
+        'request:rate-limit',
+        `motion requests over ${this.o.requestRate}/s refused`,
+      );
       const id = /"id"\s*:\s*"([A-Za-z0-9._:-]{1,64})"/.exec(text.slice(0, 2048))?.[1];
       return this.send(out, {
         id: id ?? null,
@@ -109,16 +113,32 @@ export class MotionRequests {
     const v = parseRequest(Buffer.from(text));
     if (!v.ok) {
       this.count('invalid', 'request:invalid', v.message);
-      return this.send(out, { id: v.id, status: 'failed', code: CODE_INVALID, message: v.message, field: v.field });
+      return this.send(out, {
+        id: v.id,
+        status: 'failed',
+        code: CODE_INVALID,
+        message: v.message,
+        field: v.field,
+      });
     }
     const req = v.request;
     const execute = req.execute === true;
     const refused = execute ? (this.o.mayExecute?.(user) ?? '') || this.core.driver.unready() : '';
     if (refused)
-      return this.send(out, { id: req.id, status: 'failed', code: CODE_INVALID, message: `not executed: ${refused}` });
+      return this.send(out, {
+        id: req.id,
+        status: 'failed',
+        code: CODE_INVALID,
+        message: `not executed: ${refused}`,
+      });
     const pose = this.core.driver.pose(t);
     if (pose.some((p) => !Number.isFinite(p)))
-      return this.send(out, { id: req.id, status: 'failed', code: CODE_INVALID, message: "not planned: the arm's pose is not known yet" });
+      return this.send(out, {
+        id: req.id,
+        status: 'failed',
+        code: CODE_INVALID,
+        message: "not planned: the arm's pose is not known yet",
+      });
     const robot = this.robot();
     const outcome = planRequest(robot, req, pose);
     const f = outcomeFeedback(req.id, outcome);
@@ -167,12 +187,20 @@ export class MotionRequests {
             ? 'emergency stop (#255PDST!)'
             : `a command on ${this.o.controlTopic} took over`;
       this.current = undefined;
-      return this.send(out, { id: r.id, status: 'stopped', code: CODE_STOPPED, message: `stopped: ${why}` });
+      return this.send(out, {
+        id: r.id,
+        status: 'stopped',
+        code: CODE_STOPPED,
+        message: `stopped: ${why}`,
+      });
     }
     const step = r.exec.step(t, driver.pose(t));
     switch (step.kind) {
       case 'move':
-        driver.move(step.pwm.map((pwm, i) => ({ i, pwm, ms: step.ms })), t);
+        driver.move(
+          step.pwm.map((pwm, i) => ({ i, pwm, ms: step.ms })),
+          t,
+        );
         break;
       case 'pause':
         driver.hold(all, t);
@@ -212,7 +240,13 @@ export class MotionRequests {
       case 'failed':
         this.current = undefined;
         driver.hold(all, t);
-        this.send(out, { id: r.id, status: 'failed', code: step.code, message: step.message, replans: r.exec.replans });
+        this.send(out, {
+          id: r.id,
+          status: 'failed',
+          code: step.code,
+          message: step.message,
+          replans: r.exec.replans,
+        });
         break;
       default:
         break;

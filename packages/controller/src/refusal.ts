@@ -77,7 +77,10 @@ function moveRefusal(m: MoveFrame, joints: readonly Joint[]): Refusal | null {
   if (unknown) return unknown;
   for (const j of joints)
     if ((m.id === SERVO_ID_ALL || m.id === j.id) && !pulseWithin(j, m.pwm))
-      return { kind: 'limit', reason: `limit ${id3(j.id)} P${m.pwm} outside ${j.minPwm}-${j.maxPwm}` };
+      return {
+        kind: 'limit',
+        reason: `limit ${id3(j.id)} P${m.pwm} outside ${j.minPwm}-${j.maxPwm}`,
+      };
   return null;
 }
 
@@ -90,6 +93,9 @@ function angleMoveRefusal(m: AngleMoveFrame, joints: readonly Joint[]): Refusal 
       (m.id === SERVO_ID_ALL || m.id === j.id) &&
       !(m.deg >= j.minDeg - TOLERANCE && m.deg <= j.maxDeg + TOLERANCE)
     )
-      return { kind: 'limit', reason: `limit ${id3(j.id)} A${m.deg} outside ${j.minDeg}..${j.maxDeg}` };
+      return {
+        kind: 'limit',
+        reason: `limit ${id3(j.id)} A${m.deg} outside ${j.minDeg}..${j.maxDeg}`,
+      };
   return null;
 }

@@ -3,12 +3,7 @@
  * @armtwin/motion): the keep-out check (the floor, the zones, self-collision) and the `$KMS`
  * solver. One home for both drivers: the sim and the servo bus are handed the same ones.
  */
-import {
-  checkFloorMove,
-  keepOutReason,
-  solveTip,
-  type MotionRobot,
-} from '@armtwin/motion';
+import { checkFloorMove, keepOutReason, solveTip, type MotionRobot } from '@armtwin/motion';
 
 /** (pulses now, pulses after the command, by joint index) → refusal reason (`floor: …`, `zone: …`) or ''. */
 export type KeepOutCheck = (from: readonly number[], to: readonly number[]) => string;

@@ -184,7 +184,9 @@ export class SimModel implements ControllerDriver {
     const s = this.servos;
     return {
       frame:
-        kind === 'position' ? this.positionReport(i, t) : encodeHealth(s.ids[i]!, s.temp[i]!, s.mv[i]!),
+        kind === 'position'
+          ? this.positionReport(i, t)
+          : encodeHealth(s.ids[i]!, s.temp[i]!, s.mv[i]!),
     };
   }
 }
