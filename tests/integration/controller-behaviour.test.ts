@@ -46,7 +46,7 @@ afterAll(() => fs.rmSync(dir, { recursive: true, force: true }));
 /** A driver under test: started for arm `arm` on the broker at `url`. */
 interface DriverRow {
   name: string;
-  start(url: string, arm: string): Promise<{ stop(): Promise<void> }>;
+  start(url: string, arm: string): Promise<{ stop(): Promise<unknown> }>;
 }
 
 const DRIVERS: DriverRow[] = [
@@ -99,7 +99,7 @@ const DRIVERS: DriverRow[] = [
 describe.each(DRIVERS.map((d, i) => ({ ...d, arm: `behaviour-${i}` })))(
   'the controller on $name',
   ({ start, arm }) => {
-    let driver: { stop(): Promise<void> } | undefined;
+    let driver: { stop(): Promise<unknown> } | undefined;
     let w: StatusWatcher;
     let users: MqttClient;
     const feedback: { id?: string; status?: string; message?: string }[] = [];

@@ -6,12 +6,11 @@
 import type { MqttClient } from 'mqtt';
 import type { Logger } from 'pino';
 import { connectBrokers, type BrokerClient } from '@armtwin/link';
-import { auditKeepOut, type ControllerCore } from '@armtwin/controller';
+import { auditKeepOut, ControlArbiter, type ControllerCore } from '@armtwin/controller';
 import {
   armTopics,
   describeBroker,
   auditTopic,
-  ControlArbiter,
   encodeControllerError,
   encodeTime,
   holderTopic,

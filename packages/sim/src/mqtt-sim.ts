@@ -8,7 +8,7 @@
  * Deadman: `arm/{id}/operator` is watched (`OperatorWatch`): a `0` there (the operator let go,
  * or the broker published its last will because its page dropped), or a beating operator whose
  * lease ran out, stops a moving arm (`runner.operatorLeft`).
- * One operator at a time: control comes in through a `ControlArbiter` (@armtwin/protocol), which
+ * One operator at a time: control comes in through a `ControlArbiter` (@armtwin/controller), which
  * keeps who holds the arm (retained on `arm/{id}/holder`), takes claims on `arm/{id}/claim/+`
  * and `arm/{id}/override/+`, lets only the holder's moves through and reports on
  * `arm/{id}/audit` (docs/protocol.md, "Control: one operator at a time").
@@ -18,7 +18,6 @@ import type { IClientOptions, MqttClient } from 'mqtt';
 import {
   armTopics,
   auditTopic,
-  ControlArbiter,
   encodeControllerError,
   encodeTime,
   holderTopic,
@@ -27,7 +26,7 @@ import {
   SYSTEM_CLOCK,
   type Clock,
 } from '@armtwin/protocol';
-import { auditKeepOut, MotionRequests } from '@armtwin/controller';
+import { auditKeepOut, ControlArbiter, MotionRequests } from '@armtwin/controller';
 import { startMotionService } from '@armtwin/controller/mqtt';
 import { parseFaults } from './faults.ts';
 import type { SimProfile } from './profile.ts';
