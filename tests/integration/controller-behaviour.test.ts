@@ -14,7 +14,7 @@ import os from 'node:os';
 import path from 'node:path';
 import mqtt, { type MqttClient } from 'mqtt';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { parseAudit, type AuditEvent, type Frame } from '@armtwin/protocol';
+import { parseAudit, type AuditEvent } from '@armtwin/protocol';
 import { MODELS_DIR } from '@armtwin/sim';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
@@ -106,16 +106,8 @@ describe.each(DRIVERS.map((d, i) => ({ ...d, arm: `behaviour-${i}` })))(
     const audit: AuditEvent[] = [];
     let holder = '';
 
-    /** Servo `id`'s angle in every state group (all six servos) after item `from`. */
-    function angles(id: number, from = 0): number[] {
-      const out: number[] = [];
-      for (const it of w.items.slice(from)) {
-        if (!('group' in it) || it.group.frames.length !== SERVOS) continue;
-        const f = it.group.frames.find((x: Frame) => x.type === 'angle' && x.id === id);
-        if (f?.type === 'angle') out.push(f.deg);
-      }
-      return out;
-    }
+    /** Servo `id`'s angle in every state group after item `from`. */
+    const angles = (id: number, from = 0) => w.angles(id, from, SERVOS);
     const reaches = (id: number, deg: number, from: number) =>
       w.until(
         () => (angles(id, from).some((d) => Math.abs(d - deg) < 0.1) ? true : undefined),

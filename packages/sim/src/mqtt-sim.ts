@@ -36,7 +36,7 @@ export interface MqttSimOptions extends Partial<SimRunnerOptions> {
   /** The arm id: `[a-z0-9-]{1,32}`. */
   armId: string;
   clock?: Clock;
-  /** The arm's profile: announced on `arm/{id}/profile`, and motion requests served (motion-service.ts). */
+  /** The arm's profile: announced on `arm/{id}/profile`, and motion requests served (MotionRequests of @armtwin/controller). */
   profile?: SimProfile;
   /** A beating operator is let go after this long without a `1` (0 = only a `0` lets go). */
   operatorLeaseMs?: number;
