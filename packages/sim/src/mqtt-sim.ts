@@ -17,17 +17,14 @@
 import type { IClientOptions, MqttClient } from 'mqtt';
 import {
   armTopics,
-  auditTopic,
-  encodeControllerError,
-  encodeTime,
   holderTopic,
   OPERATOR_LEASE_MS,
   OperatorWatch,
   SYSTEM_CLOCK,
   type Clock,
 } from '@armtwin/protocol';
-import { auditKeepOut, ControlArbiter, MotionRequests } from '@armtwin/controller';
-import { startMotionService } from '@armtwin/controller/mqtt';
+import { MotionRequests, type ControlArbiter } from '@armtwin/controller';
+import { mqttArbiter, startMotionService } from '@armtwin/controller/mqtt';
 import { parseFaults } from './faults.ts';
 import type { SimProfile } from './profile.ts';
 import { SimRunner, type PayloadKind, type SimRunnerOptions } from './runner.ts';
@@ -114,34 +111,12 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
     options.operatorLeaseMs ?? OPERATOR_LEASE_MS,
   );
 
-  const control: ControlArbiter = new ControlArbiter(
+  const control = mqttArbiter(
+    client,
     options.armId,
-    {
-      now: () => clock.now(),
-      setTimeout: (fn, ms) => clock.setTimeout(fn, ms),
-      clearTimeout: (handle) => clock.clearTimeout(handle),
-      // A move the arm refuses by its keep-out rules is part of the record, with its sender.
-      forward: auditKeepOut(
-        () => runner.model.core,
-        (): ControlArbiter => control,
-        (payload) => runner.receive(payload),
-      ),
-      refuse: (message) => {
-        if (client.connected)
-          client.publish(
-            topics.status,
-            encodeTime(Math.round(clock.now())) + encodeControllerError(message),
-            { qos: 0 },
-          );
-      },
-      holder: (record) =>
-        void client.publish(holderTopic(options.armId), JSON.stringify(record), {
-          qos: 1,
-          retain: true,
-        }),
-      audit: (event) =>
-        void client.publish(auditTopic(options.armId), JSON.stringify(event), { qos: 1 }),
-    },
+    clock,
+    () => runner.model.core,
+    (payload) => runner.receive(payload),
     { leaseMs: options.operatorLeaseMs ?? OPERATOR_LEASE_MS },
   );
 
