@@ -5,7 +5,7 @@
  * is refused with the parser's reason; mesh paths are found and rewritten in links only.
  */
 import { describe, expect, it } from 'vitest';
-import { meshRefs, parseUrdfJoints, rewriteMeshPaths } from '../src/index.ts';
+import { meshRefs, parseUrdfJoints, planImport, rewriteMeshPaths } from '../src/index.ts';
 
 const ARM = `<?xml version="1.0"?>
 <robot name="two" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -116,5 +116,22 @@ describe('mesh references', () => {
 
   it('leave the text as it was when nothing is renamed', () => {
     expect(rewriteMeshPaths(ARM, () => null)).toBe(ARM);
+  });
+});
+
+describe('planImport', () => {
+  it('names the robot from the <robot> element, not from a commented-out one', () => {
+    const urdf =
+      '<?xml version="1.0"?>\n<!-- was: <robot name="Old Arm"> -->\n<robot name="New Arm">' +
+      '<link name="a"/><link name="b"/><joint name="j" type="revolute"><parent link="a"/>' +
+      '<child link="b"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" velocity="1"/></joint></robot>';
+    const r = planImport({
+      urdfPath: 'arm.urdf',
+      urdfText: urdf,
+      has: () => false,
+      read: () => new Uint8Array(),
+    });
+    if (!r.ok) throw new Error(r.errors.join('; '));
+    expect(r.plan.name).toBe('new_arm');
   });
 });
