@@ -26,6 +26,7 @@ import {
   type RunRecord,
 } from './lib/report.ts';
 import { REPO } from './lib/stack.ts';
+import { parseBenchArgs } from './lib/args.ts';
 import { HUD_DIST } from './lib/hud-browser.ts';
 import type { BenchContext, Section, SectionResult } from './lib/types.ts';
 import { ikSection } from './ik.ts';
@@ -77,57 +78,14 @@ const NEEDS_BROKER = new Set([
 ]);
 const NEEDS_INFLUX = new Set(['ingest', 'cpu', 'telegraf', 'soak']);
 
-const USAGE = `usage: npm run bench [-- --quick] [-- --only ${SECTIONS.map((s) => s.id).join(',')}] [-- --keep-logs] [-- --no-md]
-  --quick      shorter runs (< 5 min): 5,000 pings at 1 kHz, short ramps and windows
-  --only a,b   run only these sections (e.g. --only camera: the camera section alone, ≈ 2 min)
-  --keep-logs  keep child-process logs (printed at the end)
-  --no-md      do not rewrite BENCHMARKS.md (the JSON and SVGs are still written)
-  --soak-minutes N  length of the soak (default 30); the soak runs only when named: --only soak
-  --hud-dist DIR    serve this built HUD instead of apps/web/dist (e.g. a copy of an older build)
-  --gpu             page sections with hardware WebGL (Chromium on ANGLE/Vulkan) instead of SwiftShader`;
-
-function parseArgs(argv: string[]) {
-  const o = {
-    quick: false,
-    only: null as Set<string> | null,
-    keepLogs: false,
-    md: true,
-    soakMinutes: 30,
-    hudDist: HUD_DIST,
-    gpu: false,
-  };
-  for (let i = 0; i < argv.length; i++) {
-    const a = argv[i]!;
-    if (a === '--quick') o.quick = true;
-    else if (a === '--keep-logs') o.keepLogs = true;
-    else if (a === '--no-md') o.md = false;
-    else if (a === '--gpu') o.gpu = true;
-    else if (a === '--soak-minutes' || a.startsWith('--soak-minutes=')) {
-      const v = Number(a.includes('=') ? a.slice(15) : argv[++i]);
-      if (!Number.isInteger(v) || v < 3)
-        throw new Error(`--soak-minutes: a whole number ≥ 3\n${USAGE}`);
-      o.soakMinutes = v;
-    } else if (a === '--hud-dist' || a.startsWith('--hud-dist=')) {
-      const v = a.includes('=') ? a.slice(11) : (argv[++i] ?? '');
-      if (!v) throw new Error(`--hud-dist: a folder\n${USAGE}`);
-      o.hudDist = path.resolve(v);
-    } else if (a === '--only' || a.startsWith('--only=')) {
-      const v = a.includes('=') ? a.slice(7) : (argv[++i] ?? '');
-      o.only = new Set(v.split(',').filter(Boolean));
-      const bad = [...o.only].filter((id) => !SECTIONS.some((s) => s.id === id));
-      if (bad.length) throw new Error(`unknown section(s): ${bad.join(', ')}\n${USAGE}`);
-    } else if (a === '--help' || a === '-h') {
-      console.log(USAGE);
-      process.exit(0);
-    } else throw new Error(`unknown argument ${a}\n${USAGE}`);
-  }
-  return o;
-}
-
 const log = (m: string) => console.log(`[bench ${new Date().toISOString().slice(11, 19)}] ${m}`);
 
 async function main(): Promise<number> {
-  const args = parseArgs(process.argv.slice(2));
+  const args = parseBenchArgs(
+    process.argv.slice(2),
+    SECTIONS.map((s) => s.id),
+    HUD_DIST,
+  );
   const sections = SECTIONS.filter((s) =>
     args.only ? args.only.has(s.id) : !NOT_BY_DEFAULT.has(s.id),
   );

@@ -76,13 +76,18 @@ fi
 # the pinned requirements, so a changed pin rebuilds the venv and an unchanged one is kept.
 # tests/helpers/servo-sdk-python.ts finds it at the same path. The same venv holds `rtb-data`
 # (Robotics Toolbox's robot descriptions: URDFs with STL and DAE meshes), whose third-party
-# robots tests/integration/robot-import.test.ts imports as a user would, and Foxglove's `mcap`
-# reader, which checks the files `armtwin export` writes (tests/integration/export-mcap.test.ts).
+# robots tests/integration/robot-import.test.ts imports as a user would, `example-robot-data`
+# (its xacro-generated ROS 2 descriptions keep their `<ros2_control>` and `<transmission>` blocks:
+# tests/integration/robot-import-ros2.test.ts), and Foxglove's `mcap` reader, which checks the
+# files `armtwin export` writes (tests/integration/export-mcap.test.ts).
 PYENV_DIR="${ARMTWIN_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/armtwin}/pyenv"
-PYENV_REQS="dynamixel-sdk==4.1.0 feetech-servo-sdk==1.0.0 pyserial==3.5 rtb-data==2.0.0 mcap==1.6.0"
+PYENV_REQS="dynamixel-sdk==4.1.0 feetech-servo-sdk==1.0.0 pyserial==3.5 rtb-data==2.0.0 mcap==1.6.0 example-robot-data==6.0.0"
 PYENV_STAMP="$PYENV_DIR/.armtwin-requirements"
+# example-robot-data is a cmeel wheel: data under site-packages/cmeel.prefix, no module to import.
+PYENV_CHECK='import dynamixel_sdk, scservo_sdk, serial, rtbdata, mcap.reader, os, sysconfig
+assert os.path.isdir(os.path.join(sysconfig.get_paths()["purelib"], "cmeel.prefix/share/example-robot-data/robots"))'
 if [ -x "$PYENV_DIR/bin/python" ] && [ "$(cat "$PYENV_STAMP" 2>/dev/null)" = "$PYENV_REQS" ] \
-  && "$PYENV_DIR/bin/python" -c 'import dynamixel_sdk, scservo_sdk, serial, rtbdata, mcap.reader' 2>/dev/null; then
+  && "$PYENV_DIR/bin/python" -c "$PYENV_CHECK" 2>/dev/null; then
   say "python venv: present ($PYENV_DIR: $PYENV_REQS)"
 else
   if ! command -v python3 >/dev/null; then
@@ -97,7 +102,7 @@ else
   mkdir -p "$(dirname "$PYENV_DIR")"
   python3 -m venv "$PYENV_DIR"
   "$PYENV_DIR/bin/python" -m pip install --quiet --disable-pip-version-check --no-input $PYENV_REQS
-  "$PYENV_DIR/bin/python" -c 'import dynamixel_sdk, scservo_sdk, serial, rtbdata, mcap.reader'
+  "$PYENV_DIR/bin/python" -c "$PYENV_CHECK"
   printf '%s\n' "$PYENV_REQS" >"$PYENV_STAMP"
   say "python venv: ready ($PYENV_DIR)"
 fi

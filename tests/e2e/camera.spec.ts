@@ -32,7 +32,7 @@ function startCamera(armId: string, port = 0): Promise<ServedCameras> {
     cameras: [{ armId, camId: 'front', label: 'Front', source: 'testsrc' }],
     port,
     mqttUrl: '', // the test announces, with the kinds it means to test
-    backoff: { initialMs: 200, maxMs: 2000, factor: 2, healthyMs: 5000 },
+    backoff: { minMs: 200, maxMs: 2000, factor: 2, healthyMs: 5000 },
   });
 }
 

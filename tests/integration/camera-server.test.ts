@@ -65,7 +65,7 @@ async function start(
       },
     ],
     port: 0,
-    backoff: { initialMs: 200, maxMs: 2000, factor: 2, healthyMs: 5000 },
+    backoff: { minMs: 200, maxMs: 2000, factor: 2, healthyMs: 5000 },
     ...options,
   });
   servers.push(s);

@@ -3,7 +3,7 @@
  * point of the batch, whichever comes first. Holds no data itself: it counts, and calls
  * `flush` (which seals the spool's open batch and wakes the shipper).
  */
-import { SYSTEM_CLOCK, type Clock } from './shipper.ts';
+import { SYSTEM_CLOCK, type Clock } from '@armtwin/protocol';
 
 export interface BatcherOptions {
   /** Points per batch (BATCH_SIZE). */

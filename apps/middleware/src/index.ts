@@ -3,7 +3,7 @@
  * endpoints. The orchestrator (`npm start`) and the tests call this; `main.ts` is the CLI.
  */
 import http from 'node:http';
-import { describeBroker, redactBrokerUrl } from '@armtwin/protocol';
+import { describeBroker, redactBrokerUrl, SYSTEM_CLOCK, type Clock } from '@armtwin/protocol';
 import { LoginThrottle, loadUsers } from '@armtwin/auth';
 import { ConfigError, influxSource, type MiddlewareConfig } from './config.ts';
 import { createHistoryHandler, type HistoryHandlerDeps } from './history/index.ts';
@@ -14,7 +14,6 @@ import { Ingest } from './ingest.ts';
 import { createLogger, LogOnce, type Logger } from './log.ts';
 import { Metrics } from './metrics.ts';
 import { startMqtt, type ConnectFn } from './mqtt.ts';
-import { SYSTEM_CLOCK, type Clock } from './shipper.ts';
 import { Storage } from './storage.ts';
 import { startThermalAlerts } from './thermal-alerts-run.ts';
 

@@ -1,6 +1,7 @@
 /**
  * The middleware's counters and their Prometheus text rendering. Plain data: every stage
- * increments its own counters; `/metrics` renders them; the HUD reads the same numbers.
+ * increments its own counters; `/metrics` renders them from one table (`METRIC_FAMILIES`: name,
+ * type, help and where the value is read); the HUD reads the same numbers.
  */
 
 /** Upper bounds (seconds) of the write-latency histogram. */
@@ -71,133 +72,191 @@ const line = (name: string, value: number, labels?: Record<string, string>): str
   return `${name}{${l}} ${value}`;
 };
 
-function family(out: string[], name: string, type: string, help: string, rows: string[]): void {
-  out.push(`# HELP ${name} ${help}`, `# TYPE ${name} ${type}`, ...rows);
-}
+/**
+ * One metric family of `/metrics`: its name (after `armtwin_middleware_`), type and help, and
+ * its value read from the counters: a number, a boolean (1/0), a map of label value → number
+ * (`label` names the label), or the write-latency histogram.
+ */
+type Family = { name: string; help: string } & (
+  | { type: 'counter' | 'gauge'; value: (m: Metrics) => number | boolean }
+  | { type: 'counter'; label: string; values: (m: Metrics) => Record<string, number> }
+  | { type: 'histogram'; histogram: (m: Metrics) => Histogram }
+);
 
-const labelled = (name: string, label: string, map: Record<string, number>): string[] =>
-  Object.entries(map).map(([k, v]) => line(name, v, { [label]: k }));
+/** Every family `/metrics` shows, in the order shown. */
+const METRIC_FAMILIES: readonly Family[] = [
+  {
+    name: 'messages_total',
+    type: 'counter',
+    help: 'MQTT messages received, by topic kind.',
+    label: 'topic',
+    values: (m) => m.messages,
+  },
+  {
+    name: 'frames_total',
+    type: 'counter',
+    help: 'Frames decoded, by kind.',
+    label: 'kind',
+    values: (m) => m.frames,
+  },
+  {
+    name: 'frames_rejected_total',
+    type: 'counter',
+    help: 'Input dropped by the cleaner, by reason.',
+    label: 'reason',
+    values: (m) => m.rejected,
+  },
+  {
+    name: 'points_produced_total',
+    type: 'counter',
+    help: 'Points made from frames.',
+    value: (m) => m.pointsProduced,
+  },
+  {
+    name: 'timestamps_bumped_total',
+    type: 'counter',
+    help: 'Point times moved forward 1 us to stay unique in their series.',
+    value: (m) => m.timestampsBumped,
+  },
+  {
+    name: 'points_written_total',
+    type: 'counter',
+    help: 'Points InfluxDB accepted.',
+    value: (m) => m.pointsWritten,
+  },
+  {
+    name: 'write_batches_total',
+    type: 'counter',
+    help: 'Write requests, by result.',
+    label: 'result',
+    values: (m) => m.batches,
+  },
+  {
+    name: 'write_latency_seconds',
+    type: 'histogram',
+    help: 'InfluxDB write request latency.',
+    histogram: (m) => m.writeLatency,
+  },
+  {
+    name: 'write_retries_total',
+    type: 'counter',
+    help: 'Write attempts that repeated an earlier failed one.',
+    value: (m) => m.retries,
+  },
+  {
+    name: 'points_rejected_total',
+    type: 'counter',
+    help: 'Points InfluxDB refused as bad data (kept in spool/rejected).',
+    value: (m) => m.pointsRejected,
+  },
+  {
+    name: 'points_dropped_total',
+    type: 'counter',
+    help: 'Points lost. Must stay 0.',
+    value: (m) => m.pointsDropped,
+  },
+  {
+    name: 'spool_files',
+    type: 'gauge',
+    help: 'Batches waiting on disk.',
+    value: (m) => m.spoolFiles,
+  },
+  {
+    name: 'spool_points',
+    type: 'gauge',
+    help: 'Points waiting on disk.',
+    value: (m) => m.spoolPoints,
+  },
+  {
+    name: 'spool_bytes',
+    type: 'gauge',
+    help: 'Bytes waiting on disk.',
+    value: (m) => m.spoolBytes,
+  },
+  {
+    name: 'spool_other_destination_points',
+    type: 'gauge',
+    help: 'Points waiting in the spool for another InfluxDB destination (written only by a middleware configured for it).',
+    value: (m) => m.spoolOtherPoints,
+  },
+  {
+    name: 'spool_full',
+    type: 'gauge',
+    help: '1 while the spool is at its bound and MQTT intake is paused.',
+    value: (m) => m.spoolFull,
+  },
+  {
+    name: 'spool_full_events_total',
+    type: 'counter',
+    help: 'Times the spool reached its bound.',
+    value: (m) => m.spoolFullEvents,
+  },
+  {
+    name: 'disk_errors_total',
+    type: 'counter',
+    help: 'Journal or spool file errors.',
+    value: (m) => m.diskErrors,
+  },
+  {
+    name: 'mqtt_connected',
+    type: 'gauge',
+    help: '1 while connected to the broker.',
+    value: (m) => m.mqttConnected,
+  },
+  {
+    name: 'mqtt_connects_total',
+    type: 'counter',
+    help: 'Successful MQTT connections.',
+    value: (m) => m.mqttConnects,
+  },
+  {
+    name: 'mqtt_broker',
+    type: 'gauge',
+    help: "The broker in use: its place in MQTT_URL's list.",
+    value: (m) => m.mqttBroker,
+  },
+  {
+    name: 'mqtt_broker_moves_total',
+    type: 'counter',
+    help: 'Moves to another broker of the list.',
+    value: (m) => m.mqttBrokerMoves,
+  },
+  {
+    name: 'influx_reachable',
+    type: 'gauge',
+    help: '1 while InfluxDB answers.',
+    value: (m) => m.influxReachable,
+  },
+  {
+    name: 'storage_enabled',
+    type: 'gauge',
+    help: '1 when INFLUX_URL is set (or a local influxd runs).',
+    value: (m) => m.storageEnabled,
+  },
+];
+
+function rows(name: string, f: Family, m: Metrics): string[] {
+  if ('values' in f)
+    return Object.entries(f.values(m)).map(([k, v]) => line(name, v, { [f.label]: k }));
+  if ('histogram' in f) {
+    const h = f.histogram(m);
+    return [
+      ...h.counts.map((c, i) => line(`${name}_bucket`, c, { le: String(LATENCY_BUCKETS[i]) })),
+      line(`${name}_bucket`, h.count, { le: '+Inf' }),
+      line(`${name}_sum`, h.sum),
+      line(`${name}_count`, h.count),
+    ];
+  }
+  const v = f.value(m);
+  return [line(name, typeof v === 'boolean' ? Number(v) : v)];
+}
 
 /** Prometheus text exposition format 0.0.4. */
 export function renderMetrics(m: Metrics): string {
   const out: string[] = [];
-  const P = 'armtwin_middleware_';
-  family(
-    out,
-    `${P}messages_total`,
-    'counter',
-    'MQTT messages received, by topic kind.',
-    labelled(`${P}messages_total`, 'topic', m.messages),
-  );
-  family(
-    out,
-    `${P}frames_total`,
-    'counter',
-    'Frames decoded, by kind.',
-    labelled(`${P}frames_total`, 'kind', m.frames),
-  );
-  family(
-    out,
-    `${P}frames_rejected_total`,
-    'counter',
-    'Input dropped by the cleaner, by reason.',
-    labelled(`${P}frames_rejected_total`, 'reason', m.rejected),
-  );
-  family(out, `${P}points_produced_total`, 'counter', 'Points made from frames.', [
-    line(`${P}points_produced_total`, m.pointsProduced),
-  ]);
-  family(
-    out,
-    `${P}timestamps_bumped_total`,
-    'counter',
-    'Point times moved forward 1 us to stay unique in their series.',
-    [line(`${P}timestamps_bumped_total`, m.timestampsBumped)],
-  );
-  family(out, `${P}points_written_total`, 'counter', 'Points InfluxDB accepted.', [
-    line(`${P}points_written_total`, m.pointsWritten),
-  ]);
-  family(
-    out,
-    `${P}write_batches_total`,
-    'counter',
-    'Write requests, by result.',
-    labelled(`${P}write_batches_total`, 'result', m.batches),
-  );
-  const h = m.writeLatency;
-  const name = `${P}write_latency_seconds`;
-  family(out, name, 'histogram', 'InfluxDB write request latency.', [
-    ...h.counts.map((c, i) => line(`${name}_bucket`, c, { le: String(LATENCY_BUCKETS[i]) })),
-    line(`${name}_bucket`, h.count, { le: '+Inf' }),
-    line(`${name}_sum`, h.sum),
-    line(`${name}_count`, h.count),
-  ]);
-  family(
-    out,
-    `${P}write_retries_total`,
-    'counter',
-    'Write attempts that repeated an earlier failed one.',
-    [line(`${P}write_retries_total`, m.retries)],
-  );
-  family(
-    out,
-    `${P}points_rejected_total`,
-    'counter',
-    'Points InfluxDB refused as bad data (kept in spool/rejected).',
-    [line(`${P}points_rejected_total`, m.pointsRejected)],
-  );
-  family(out, `${P}points_dropped_total`, 'counter', 'Points lost. Must stay 0.', [
-    line(`${P}points_dropped_total`, m.pointsDropped),
-  ]);
-  family(out, `${P}spool_files`, 'gauge', 'Batches waiting on disk.', [
-    line(`${P}spool_files`, m.spoolFiles),
-  ]);
-  family(out, `${P}spool_points`, 'gauge', 'Points waiting on disk.', [
-    line(`${P}spool_points`, m.spoolPoints),
-  ]);
-  family(out, `${P}spool_bytes`, 'gauge', 'Bytes waiting on disk.', [
-    line(`${P}spool_bytes`, m.spoolBytes),
-  ]);
-  family(
-    out,
-    `${P}spool_other_destination_points`,
-    'gauge',
-    'Points waiting in the spool for another InfluxDB destination (written only by a middleware configured for it).',
-    [line(`${P}spool_other_destination_points`, m.spoolOtherPoints)],
-  );
-  family(
-    out,
-    `${P}spool_full`,
-    'gauge',
-    '1 while the spool is at its bound and MQTT intake is paused.',
-    [line(`${P}spool_full`, m.spoolFull ? 1 : 0)],
-  );
-  family(out, `${P}spool_full_events_total`, 'counter', 'Times the spool reached its bound.', [
-    line(`${P}spool_full_events_total`, m.spoolFullEvents),
-  ]);
-  family(out, `${P}disk_errors_total`, 'counter', 'Journal or spool file errors.', [
-    line(`${P}disk_errors_total`, m.diskErrors),
-  ]);
-  family(out, `${P}mqtt_connected`, 'gauge', '1 while connected to the broker.', [
-    line(`${P}mqtt_connected`, m.mqttConnected ? 1 : 0),
-  ]);
-  family(out, `${P}mqtt_connects_total`, 'counter', 'Successful MQTT connections.', [
-    line(`${P}mqtt_connects_total`, m.mqttConnects),
-  ]);
-  family(out, `${P}mqtt_broker`, 'gauge', "The broker in use: its place in MQTT_URL's list.", [
-    line(`${P}mqtt_broker`, m.mqttBroker),
-  ]);
-  family(out, `${P}mqtt_broker_moves_total`, 'counter', 'Moves to another broker of the list.', [
-    line(`${P}mqtt_broker_moves_total`, m.mqttBrokerMoves),
-  ]);
-  family(out, `${P}influx_reachable`, 'gauge', '1 while InfluxDB answers.', [
-    line(`${P}influx_reachable`, m.influxReachable ? 1 : 0),
-  ]);
-  family(
-    out,
-    `${P}storage_enabled`,
-    'gauge',
-    '1 when INFLUX_URL is set (or a local influxd runs).',
-    [line(`${P}storage_enabled`, m.storageEnabled ? 1 : 0)],
-  );
+  for (const f of METRIC_FAMILIES) {
+    const name = `armtwin_middleware_${f.name}`;
+    out.push(`# HELP ${name} ${f.help}`, `# TYPE ${name} ${f.type}`, ...rows(name, f, m));
+  }
   return out.join('\n') + '\n';
 }

@@ -7,6 +7,7 @@
  * of the data itself (400/413/422) moves the batch to rejected/ and goes on. A 404
  * (database/bucket missing) triggers ensureBucket before the next try.
  */
+import { backoffDelay, SYSTEM_CLOCK, type Clock } from '@armtwin/protocol';
 import type { InfluxWriter } from './influx.ts';
 import { classifyWriteError } from './influx.ts';
 import type { Logger, LogOnce } from './log.ts';
@@ -20,21 +21,9 @@ export interface ShipperOptions {
   writeConcurrency?: number;
 }
 
-export interface Clock {
-  now(): number;
-  setTimeout(fn: () => void, ms: number): unknown;
-  clearTimeout(handle: unknown): void;
-}
-
-export const SYSTEM_CLOCK: Clock = {
-  now: () => performance.now(),
-  setTimeout: (fn, ms) => setTimeout(fn, ms),
-  clearTimeout: (h) => clearTimeout(h as NodeJS.Timeout),
-};
-
-/** Back-off before the `failures`-th retry: min · 2^(failures−1), capped. */
+/** Back-off before the `failures`-th retry (1: the first): `backoffDelay` from min to max. */
 export const retryDelay = (failures: number, o: ShipperOptions): number =>
-  Math.min(o.maxRetryDelayMs, o.minRetryDelayMs * 2 ** Math.min(30, Math.max(0, failures - 1)));
+  backoffDelay(failures - 1, { minMs: o.minRetryDelayMs, maxMs: o.maxRetryDelayMs });
 
 export class Shipper {
   private stopped = false;

@@ -8,7 +8,8 @@ import { Batcher } from './batcher.ts';
 import { classifyWriteError, type InfluxWriter } from './influx.ts';
 import type { Logger, LogOnce } from './log.ts';
 import type { Metrics } from './metrics.ts';
-import { Shipper, type Clock } from './shipper.ts';
+import type { Clock } from '@armtwin/protocol';
+import { Shipper } from './shipper.ts';
 import { Spool } from './spool.ts';
 import { prepareSpoolTarget } from './spool-target.ts';
 

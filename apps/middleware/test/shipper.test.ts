@@ -7,7 +7,8 @@ import { Batcher } from '../src/batcher.ts';
 import { WriteError, type InfluxWriter } from '../src/influx.ts';
 import { LogOnce } from '../src/log.ts';
 import { Metrics } from '../src/metrics.ts';
-import { retryDelay, Shipper, type Clock, type ShipperOptions } from '../src/shipper.ts';
+import type { Clock } from '@armtwin/protocol';
+import { retryDelay, Shipper, type ShipperOptions } from '../src/shipper.ts';
 import { Spool } from '../src/spool.ts';
 
 afterEach(() => vi.useRealTimers());

@@ -6,6 +6,7 @@
  * +z (no roll), vertical fov, the picture centred; image points are fractions of the picture
  * (0,0 top left, 1,1 bottom right). Pure: no I/O, no three.js; mm in the arm's frame (§4).
  */
+import { solveLinear } from '@armtwin/protocol';
 import type { CameraPose, Vec3 } from './announcement.ts';
 
 /** One match: a twin point (mm, arm frame) and where it is seen in the picture (fractions). */
@@ -121,29 +122,6 @@ function residuals(p: Params, matches: readonly PointMatch[], aspect: number, ou
 
 const sumSq = (r: readonly number[]) => r.reduce((s, x) => s + x * x, 0);
 
-/** Solves the n×n system A x = b by Gaussian elimination with partial pivoting (null: singular). */
-function solveLinear(a: number[][], b: number[]): number[] | null {
-  const n = b.length;
-  const m = a.map((row, i) => [...row, b[i]!]);
-  for (let c = 0; c < n; c++) {
-    let piv = c;
-    for (let r = c + 1; r < n; r++) if (Math.abs(m[r]![c]!) > Math.abs(m[piv]![c]!)) piv = r;
-    if (Math.abs(m[piv]![c]!) < 1e-300) return null;
-    [m[c], m[piv]] = [m[piv]!, m[c]!];
-    for (let r = c + 1; r < n; r++) {
-      const f = m[r]![c]! / m[c]![c]!;
-      for (let k = c; k <= n; k++) m[r]![k]! -= f * m[c]![k]!;
-    }
-  }
-  const x = new Array<number>(n).fill(0);
-  for (let r = n - 1; r >= 0; r--) {
-    let s = m[r]![n]!;
-    for (let k = r + 1; k < n; k++) s -= m[r]![k]! * x[k]!;
-    x[r] = s / m[r]![r]!;
-  }
-  return x;
-}
-
 /** Finite-difference steps per parameter (mm, rad, rad). */
 const STEPS: Params = [1e-3, 1e-3, 1e-3, 1e-7, 1e-7, 1e-7];
 
@@ -183,6 +161,7 @@ function levenbergMarquardt(
       const delta = solveLinear(
         A,
         Jtr.map((v) => -v),
+        1e-300,
       );
       if (!delta) {
         lambda *= 10;

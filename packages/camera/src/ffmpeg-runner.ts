@@ -7,19 +7,15 @@
  * next write to the closed pipe.
  */
 import { spawn, spawnSync, type ChildProcess } from 'node:child_process';
+import { backoffDelay, type Backoff } from '@armtwin/protocol';
 
-export interface BackoffOptions {
-  /** First delay before a restart, ms. */
-  initialMs: number;
-  /** Longest delay, ms. */
-  maxMs: number;
-  factor: number;
-  /** A run this long (with frames) resets the delay to `initialMs`, ms. */
+/** Restart delays (`backoffDelay`); a run of `healthyMs` with frames resets them to `minMs`. */
+export interface BackoffOptions extends Backoff {
   healthyMs: number;
 }
 
 export const DEFAULT_BACKOFF: BackoffOptions = {
-  initialMs: 500,
+  minMs: 500,
   maxMs: 10_000,
   factor: 2,
   healthyMs: 10_000,
@@ -215,9 +211,7 @@ export class FfmpegRunner {
     this.s.events[spawnFailed ? 'spawn-failed' : 'exit']++;
     this.o.onEvent(spawnFailed ? 'spawn-failed' : 'exit', reason);
     if (this.sawFrame && ranMs >= this.o.backoff.healthyMs) this.failures = 0;
-    const b = this.o.backoff;
-    const delay = Math.min(b.maxMs, b.initialMs * b.factor ** this.failures);
-    this.failures++;
+    const delay = backoffDelay(this.failures++, this.o.backoff);
     this.o.onExit(exit, delay);
     this.s.restartAt = this.o.now() + delay;
     this.restartTimer = setTimeout(() => {

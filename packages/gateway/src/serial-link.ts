@@ -1,24 +1,23 @@
 /**
  * A serial port that comes back: opens the port, and whenever it fails to open or closes
- * (unplugged, the pty's other side gone), tries again after a back-off that doubles from
- * `minBackoffMs` to `maxBackoffMs` and resets after a good open. The port factory is injected.
+ * (unplugged, the pty's other side gone), tries again after a back-off (`backoffDelay`: doubling
+ * from `backoff.minMs` to `backoff.maxMs`) that resets after a good open. The port factory is
+ * injected.
  */
+import { backoffDelay, type Backoff } from '@armtwin/protocol';
 import { SerialPort } from 'serialport';
 
 export interface SerialLinkOptions {
   /** Device path, e.g. /dev/ttyUSB0. */
   path: string;
   baudRate: number;
-  /** First retry delay, ms. */
-  minBackoffMs: number;
-  /** Longest retry delay, ms. */
-  maxBackoffMs: number;
+  /** Delays between tries to open the port. */
+  backoff: Backoff;
 }
 
 export const DEFAULT_SERIAL_LINK_OPTIONS: Omit<SerialLinkOptions, 'path'> = {
   baudRate: 115200,
-  minBackoffMs: 250,
-  maxBackoffMs: 5000,
+  backoff: { minMs: 250, maxMs: 5000 },
 };
 
 /** The part of `SerialPort` the link uses. */
@@ -46,7 +45,8 @@ export interface SerialLinkEvents {
 export class SerialLink {
   private port: PortLike | undefined;
   private timer: NodeJS.Timeout | undefined;
-  private backoff: number;
+  /** Failed opens (and closes) since the last good open. */
+  private failures = 0;
   private stopped = false;
   readonly counters = { opens: 0, openFailures: 0, closes: 0 };
   private readonly o: SerialLinkOptions;
@@ -57,7 +57,6 @@ export class SerialLink {
     private readonly openPort: OpenPort = openSerialPort,
   ) {
     this.o = { ...DEFAULT_SERIAL_LINK_OPTIONS, ...options };
-    this.backoff = this.o.minBackoffMs;
   }
 
   get isOpen(): boolean {
@@ -113,15 +112,14 @@ export class SerialLink {
         return this.retry(err.message);
       }
       this.counters.opens++;
-      this.backoff = this.o.minBackoffMs;
+      this.failures = 0;
       this.events.onOpen();
     });
   }
 
   private retry(_reason: string): void {
     if (this.stopped) return;
-    const delay = this.backoff;
-    this.backoff = Math.min(this.o.maxBackoffMs, this.backoff * 2);
+    const delay = backoffDelay(this.failures++, this.o.backoff);
     this.timer = setTimeout(() => this.tryOpen(), delay);
   }
 }

@@ -12,6 +12,7 @@
  * not fitted at all but kept from the prior.
  */
 import { DEFAULT_THERMAL_PARAMS, stepTemperature, type ThermalParams } from './thermal-model.ts';
+import { solveLinear } from './linear-solve.ts';
 
 /** One servo's history on a uniform time grid. */
 export interface ThermalTrace {
@@ -68,25 +69,6 @@ export interface ThermalFit {
   /** RMS error of the voltage model, V (NaN with no voltage). */
   voltRmseV: number;
   reason: string;
-}
-
-/** Solves A·x = b (n×n, row-major, copied) by Gaussian elimination; null when singular. */
-export function solveLinear(a: readonly number[][], b: readonly number[]): number[] | null {
-  const n = b.length;
-  const m = a.map((row, i) => [...row, b[i]!]);
-  for (let col = 0; col < n; col++) {
-    let pivot = col;
-    for (let r = col + 1; r < n; r++)
-      if (Math.abs(m[r]![col]!) > Math.abs(m[pivot]![col]!)) pivot = r;
-    if (!(Math.abs(m[pivot]![col]!) > 1e-12)) return null;
-    [m[col], m[pivot]] = [m[pivot]!, m[col]!];
-    for (let r = 0; r < n; r++) {
-      if (r === col) continue;
-      const f = m[r]![col]! / m[col]![col]!;
-      for (let c = col; c <= n; c++) m[r]![c]! -= f * m[col]![c]!;
-    }
-  }
-  return m.map((row, i) => row[n]! / row[i]!);
 }
 
 /** Ridge least squares: rows of x, targets y, pulled towards `prior` by `ridge`·diag(XᵀX). */

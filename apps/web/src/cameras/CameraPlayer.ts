@@ -4,19 +4,18 @@
  * Subclasses (./MjpegPlayer.ts, ./H264Player.ts) only open the stream; frames never touch React
  * state — the panel samples `stats` a few times a second.
  */
+import { backoffDelay, type Backoff } from '@armtwin/protocol';
 import type { CameraCredentials } from './streamUrl.ts';
 
 export interface CameraPlayerOptions {
-  /** First reconnect delay, ms; doubled after each failure up to `maxBackoffMs`. */
-  minBackoffMs: number;
-  maxBackoffMs: number;
+  /** Reconnect delays: `minMs`, doubled after each failure up to `maxMs`. */
+  backoff: Backoff;
   /** Most frames waiting to be decoded; older ones are dropped and counted. */
   maxQueued: number;
 }
 
 export const DEFAULT_CAMERA_PLAYER_OPTIONS: CameraPlayerOptions = {
-  minBackoffMs: 500,
-  maxBackoffMs: 10_000,
+  backoff: { minMs: 500, maxMs: 10_000 },
   maxQueued: 3,
 };
 
@@ -45,7 +44,8 @@ export abstract class CameraPlayer {
   };
   protected readonly opts: CameraPlayerOptions;
   protected readonly ctx: CanvasRenderingContext2D | null;
-  private backoff: number;
+  /** Failed connections since the last frame drawn. */
+  private failures = 0;
   private retry: ReturnType<typeof setTimeout> | undefined;
   private disposed = false;
   /** Bumped per connection: callbacks of an older one are ignored. */
@@ -59,7 +59,6 @@ export abstract class CameraPlayer {
     opts: Partial<CameraPlayerOptions> = {},
   ) {
     this.opts = { ...DEFAULT_CAMERA_PLAYER_OPTIONS, ...opts };
-    this.backoff = this.opts.minBackoffMs;
     this.ctx = canvas.getContext('2d');
   }
 
@@ -97,7 +96,7 @@ export abstract class CameraPlayer {
     this.stats.lastFrameAt = Date.now();
     this.stats.offlineSince = 0;
     this.stats.reason = '';
-    this.backoff = this.opts.minBackoffMs;
+    this.failures = 0;
   }
 
   /** The stream ended or failed: offline since now (or since before), retry after the back-off. */
@@ -108,7 +107,6 @@ export abstract class CameraPlayer {
     if (!this.stats.offlineSince) this.stats.offlineSince = Date.now();
     this.stats.reason = reason;
     clearTimeout(this.retry);
-    this.retry = setTimeout(() => this.connect(), this.backoff);
-    this.backoff = Math.min(this.backoff * 2, this.opts.maxBackoffMs);
+    this.retry = setTimeout(() => this.connect(), backoffDelay(this.failures++, this.opts.backoff));
   }
 }

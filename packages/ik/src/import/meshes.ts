@@ -3,6 +3,8 @@
  * resolving `package://` and relative paths in the source tree, rewriting them, and sizing them
  * (bytes and triangles) so that meshes too large for a page are warned about.
  */
+import type { Element } from '@xmldom/xmldom';
+import { attribute, childElements, parseUrdfXml, serializeUrdf } from '../numeric/urdf-xml.ts';
 import { ancestors, basename, dirname, join, normalize } from './paths.ts';
 
 /** The formats the HUD reads (apps/web/src/scene/meshLoaders.ts), by extension. */
@@ -18,23 +20,37 @@ export interface MeshRef {
   link: string;
 }
 
-/** Every `<mesh filename>` with its link and whether a visual uses it; one entry per filename. */
+/** The `<mesh>` elements of the robot's own links' visuals and collisions. */
+function meshElements(robot: Element): { mesh: Element; link: string; visual: boolean }[] {
+  return childElements(robot, 'link').flatMap((link) =>
+    (['visual', 'collision'] as const).flatMap((kind) =>
+      childElements(link, kind).flatMap((block) =>
+        childElements(block, 'geometry').flatMap((g) =>
+          childElements(g, 'mesh').map((mesh) => ({
+            mesh,
+            link: attribute(link, 'name') ?? '',
+            visual: kind === 'visual',
+          })),
+        ),
+      ),
+    ),
+  );
+}
+
+/**
+ * Every `<mesh filename>` of the robot's links, with its link and whether a visual uses it;
+ * one entry per filename. Text that is not a URDF has none (the profile's reader reports why).
+ */
 export function meshRefs(urdf: string): MeshRef[] {
-  const text = urdf.replace(/<!--[\s\S]*?-->/g, '');
+  const parsed = parseUrdfXml(urdf);
+  if (!parsed.ok) return [];
   const byName = new Map<string, MeshRef>();
-  for (const link of text.matchAll(
-    /<link\b[^>]*?name\s*=\s*["']([^"']*)["'][^>]*?(?:\/>|>([\s\S]*?)<\/link>)/g,
-  )) {
-    const body = link[2] ?? '';
-    for (const block of body.matchAll(/<(visual|collision)\b[\s\S]*?<\/\1>/g)) {
-      for (const m of block[0].matchAll(/<mesh\b[^>]*?filename\s*=\s*["']([^"']*)["']/g)) {
-        const filename = m[1]!;
-        const prev = byName.get(filename);
-        const visual = block[1] === 'visual';
-        if (prev) prev.visual ||= visual;
-        else byName.set(filename, { filename, visual, link: link[1]! });
-      }
-    }
+  for (const { mesh, link, visual } of meshElements(parsed.robot)) {
+    const filename = attribute(mesh, 'filename');
+    if (filename === undefined) continue;
+    const prev = byName.get(filename);
+    if (prev) prev.visual ||= visual;
+    else byName.set(filename, { filename, visual, link });
   }
   return [...byName.values()];
 }
@@ -78,18 +94,25 @@ export function resolveMeshPath(
   return has(p) ? p : null;
 }
 
-/** Replaces each mesh `filename` attribute by `rename(filename)` (unchanged where it gives null). */
+/**
+ * Replaces each link mesh's `filename` by `rename(filename)` (unchanged where it gives null);
+ * the text comes back re-serialised, or as it was when nothing changed or it is not a URDF.
+ */
 export function rewriteMeshPaths(
   urdf: string,
   rename: (filename: string) => string | null,
 ): string {
-  return urdf.replace(
-    /(<mesh\b[^>]*?filename\s*=\s*)(["'])([^"']*)\2/g,
-    (all, head: string, q: string, name: string) => {
-      const next = rename(name);
-      return next === null ? all : `${head}${q}${next}${q}`;
-    },
-  );
+  const parsed = parseUrdfXml(urdf);
+  if (!parsed.ok) return urdf;
+  let changed = false;
+  for (const { mesh } of meshElements(parsed.robot)) {
+    const name = attribute(mesh, 'filename');
+    const next = name === undefined ? null : rename(name);
+    if (next === null || next === name) continue;
+    mesh.setAttribute('filename', next);
+    changed = true;
+  }
+  return changed ? serializeUrdf(parsed.doc) : urdf;
 }
 
 /** Triangles in a mesh file (DAE: the counts its primitives declare), or NaN when unreadable. */

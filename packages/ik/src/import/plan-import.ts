@@ -13,6 +13,7 @@ import {
   resolveMeshPath,
   rewriteMeshPaths,
 } from './meshes.ts';
+import { attribute, parseUrdfXml } from '../numeric/urdf-xml.ts';
 import { commonDir, inside } from './paths.ts';
 
 export interface ImportSource {
@@ -50,7 +51,8 @@ export type ImportResult = { ok: true; plan: ImportPlan } | { ok: false; errors:
 
 export function planImport(source: ImportSource, opts: Partial<ImportOptions> = {}): ImportResult {
   const o = { ...DEFAULT_IMPORT_OPTIONS, ...opts };
-  const robotName = /<robot\b[^>]*?name\s*=\s*["']([^"']*)["']/.exec(source.urdfText)?.[1] ?? '';
+  const doc = parseUrdfXml(source.urdfText);
+  const robotName = (doc.ok && attribute(doc.robot, 'name')) || '';
   const name = o.name ?? profileNameFrom(robotName);
   const urdfFile = `${name}.urdf`;
   const errors: string[] = [];

@@ -1,10 +1,11 @@
 /**
- * A tiny, pure URDF reader: the `<joint>` elements (name, type, parent, child, origin xyz/rpy,
- * axis, limit, mimic) and the link names, from the XML text. No DOM: comments and
- * `<transmission>` blocks (whose `<joint>` children are references, not joints) are removed,
- * then elements are matched by pattern. Enough for the kinematic chain; visuals, inertia and
+ * A pure URDF reader: the `<robot>`'s own `<joint>` children (name, type, parent, child, origin
+ * xyz/rpy, axis, limit, mimic) and link names, read with an XML parser (./urdf-xml.ts), so the
+ * `<joint>` references inside `<ros2_control>`, `<transmission>` and `<gazebo>` blocks (and
+ * comments) are never taken for joints. Enough for the kinematic chain; visuals, inertia and
  * collisions are ignored. Its output is plain JSON, so a chain can also be given pre-extracted.
  */
+import { attribute, childElement, childElements, parseUrdfXml } from './urdf-xml.ts';
 
 export type UrdfJointType =
   'revolute' | 'continuous' | 'prismatic' | 'fixed' | 'floating' | 'planar';
@@ -41,19 +42,6 @@ const TYPES: readonly string[] = [
   'planar',
 ];
 
-function attrs(text: string): Record<string, string> {
-  const out: Record<string, string> = {};
-  for (const m of text.matchAll(/([A-Za-z_:][\w:.-]*)\s*=\s*(?:"([^"]*)"|'([^']*)')/g))
-    out[m[1]!] = m[2] ?? m[3] ?? '';
-  return out;
-}
-
-/** The attributes of the first `<tag …>` in `body`, or undefined. */
-function child(body: string, tag: string): Record<string, string> | undefined {
-  const m = new RegExp(`<${tag}\\b([^>]*?)/?>`).exec(body);
-  return m ? attrs(m[1]!) : undefined;
-}
-
 function vec3(
   text: string | undefined,
   fallback: [number, number, number],
@@ -74,25 +62,20 @@ function optNumber(text: string | undefined): number | undefined {
 /** Parse the joints and links of a URDF document. Never throws. */
 export function parseUrdfJoints(xml: string): ParseUrdfResult {
   const errors: string[] = [];
-  const text = xml
-    .replace(/<!--[\s\S]*?-->/g, '')
-    .replace(/<transmission\b[\s\S]*?<\/transmission>/g, '');
-  const robot = /<robot\b([^>]*)>/.exec(text);
-  if (!robot) return { ok: false, errors: ['no <robot> element'] };
-  const robotName = attrs(robot[1]!).name ?? '';
-  const links = [...text.matchAll(/<link\b([^>]*?)\/?>/g)].map((m) => attrs(m[1]!).name ?? '');
+  const parsed = parseUrdfXml(xml);
+  if (!parsed.ok) return parsed;
+  const robotName = attribute(parsed.robot, 'name') ?? '';
+  const links = childElements(parsed.robot, 'link').map((l) => attribute(l, 'name') ?? '');
   const joints: UrdfJoint[] = [];
-  for (const m of text.matchAll(/<joint\b([^>]*?)(?:\/>|>([\s\S]*?)<\/joint>)/g)) {
-    const a = attrs(m[1]!);
-    const body = m[2] ?? '';
+  for (const el of childElements(parsed.robot, 'joint')) {
+    const a = { name: attribute(el, 'name'), type: attribute(el, 'type') };
+    const child = (tag: string, attr: string) => attribute(childElement(el, tag), attr);
     const where = `joint "${a.name ?? '?'}"`;
-    const parent = child(body, 'parent')?.link;
-    const kid = child(body, 'child')?.link;
-    const origin = child(body, 'origin') ?? {};
-    const limit = child(body, 'limit') ?? {};
-    const xyz = vec3(origin.xyz, [0, 0, 0]);
-    const rpy = vec3(origin.rpy, [0, 0, 0]);
-    const axis = vec3(child(body, 'axis')?.xyz, [1, 0, 0]);
+    const parent = child('parent', 'link');
+    const kid = child('child', 'link');
+    const xyz = vec3(child('origin', 'xyz'), [0, 0, 0]);
+    const rpy = vec3(child('origin', 'rpy'), [0, 0, 0]);
+    const axis = vec3(child('axis', 'xyz'), [1, 0, 0]);
     const bad = [
       !a.name && 'has no name',
       !TYPES.includes(a.type ?? '') &&
@@ -115,15 +98,15 @@ export function parseUrdfJoints(xml: string): ParseUrdfResult {
       rpy: rpy!,
       axis: axis!,
     };
-    const lower = optNumber(limit.lower),
-      upper = optNumber(limit.upper),
-      velocity = optNumber(limit.velocity);
+    const lower = optNumber(child('limit', 'lower')),
+      upper = optNumber(child('limit', 'upper')),
+      velocity = optNumber(child('limit', 'velocity'));
     if (Number.isNaN(lower) || Number.isNaN(upper) || Number.isNaN(velocity))
       errors.push(`${where} <limit> has a value that is not a number`);
     if (lower !== undefined) j.lower = lower;
     if (upper !== undefined) j.upper = upper;
     if (velocity !== undefined) j.velocity = velocity;
-    const mimic = child(body, 'mimic')?.joint;
+    const mimic = child('mimic', 'joint');
     if (mimic !== undefined) j.mimic = mimic;
     joints.push(j);
   }
