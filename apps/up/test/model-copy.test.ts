@@ -6,7 +6,7 @@
 import { describe, expect, test } from 'vitest';
 import { FakeClock } from '@armtwin/protocol/fake-clock';
 import { IdleWatch } from '../src/model-idle.ts';
-import { parseModelPose } from '../src/model-pose.ts';
+import { parseModelPose } from '@armtwin/http-api';
 
 const SERVOS = [0, 1, 2, 3, 4, 5];
 

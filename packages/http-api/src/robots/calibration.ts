@@ -17,35 +17,16 @@ import {
   MAX_CALIBRATION_REQUEST_BYTES,
   parseCalibrationRequest,
 } from '@armtwin/ik';
-import { countedAnswer, readProfileFile, readRobotWrite } from './counted-answer.ts';
+import { countedAnswer, type RouteCounters } from '../counted-answer.ts';
 import { replaceProfileFile } from './profile-file.ts';
+import { readProfileFile, readRobotWrite, type RobotWriteOptions } from './robot-write.ts';
 
-const ROUTE = /^\/api\/robots\/([^/?]+)\/calibration(?:\?.*)?$/;
-
-/** Who may write: `ok`, or the status and reason to refuse with. */
-export type Authorize = (
-  req: http.IncomingMessage,
-) => Promise<{ ok: true } | { ok: false; status: 401 | 403; error: string }>;
-
-export interface CalibrationRouteOptions {
-  /** Models folders, searched in order. */
-  dirs: readonly string[];
-  authorize: Authorize;
-  /** Told once per kind of refusal or failure. */
-  onFirst(kind: string, message: string): void;
-}
-
-export const isCalibrationRequest = (req: http.IncomingMessage): boolean =>
-  ROUTE.test(req.url ?? '');
-
-/** Counts by outcome (`written`, `refused:<why>`). */
-export type CalibrationCounters = Record<string, number>;
-
-export function calibrationRoute(o: CalibrationRouteOptions) {
-  const counters: CalibrationCounters = {};
+export function calibrationRoute(o: RobotWriteOptions) {
+  /** Counts by outcome (`written`, `refused:<why>`). */
+  const counters: RouteCounters = {};
   const answer = countedAnswer('calibration', counters, o.onFirst);
-  const handle = async (req: http.IncomingMessage, res: http.ServerResponse) => {
-    const write = await readRobotWrite(req, res, o, ROUTE, MAX_CALIBRATION_REQUEST_BYTES, answer);
+  const handle = async (req: http.IncomingMessage, res: http.ServerResponse, name: string) => {
+    const write = await readRobotWrite(req, res, o, name, MAX_CALIBRATION_REQUEST_BYTES, answer);
     if (!write) return;
     const request = parseCalibrationRequest(write.json);
     if (!request.ok)

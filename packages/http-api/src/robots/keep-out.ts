@@ -13,32 +13,15 @@
  */
 import type http from 'node:http';
 import { applyKeepOut, MAX_KEEP_OUT_REQUEST_BYTES } from '@armtwin/ik';
-import type { Authorize } from './calibration-route.ts';
-import {
-  countedAnswer,
-  readProfileFile,
-  readRobotWrite,
-  type RouteCounters,
-} from './counted-answer.ts';
+import { countedAnswer, type RouteCounters } from '../counted-answer.ts';
 import { replaceProfileFile } from './profile-file.ts';
+import { readProfileFile, readRobotWrite, type RobotWriteOptions } from './robot-write.ts';
 
-const ROUTE = /^\/api\/robots\/([^/?]+)\/keep-out(?:\?.*)?$/;
-
-export interface KeepOutRouteOptions {
-  /** Models folders, searched in order. */
-  dirs: readonly string[];
-  authorize: Authorize;
-  /** Told once per kind of refusal or failure. */
-  onFirst(kind: string, message: string): void;
-}
-
-export const isKeepOutRequest = (req: http.IncomingMessage): boolean => ROUTE.test(req.url ?? '');
-
-export function keepOutRoute(o: KeepOutRouteOptions) {
+export function keepOutRoute(o: RobotWriteOptions) {
   const counters: RouteCounters = {};
   const answer = countedAnswer('keep-out', counters, o.onFirst);
-  const handle = async (req: http.IncomingMessage, res: http.ServerResponse) => {
-    const write = await readRobotWrite(req, res, o, ROUTE, MAX_KEEP_OUT_REQUEST_BYTES, answer);
+  const handle = async (req: http.IncomingMessage, res: http.ServerResponse, name: string) => {
+    const write = await readRobotWrite(req, res, o, name, MAX_KEEP_OUT_REQUEST_BYTES, answer);
     if (!write) return;
     const profile = readProfileFile(res, write.file, answer);
     if (!profile) return;

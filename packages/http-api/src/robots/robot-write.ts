@@ -1,32 +1,23 @@
 /**
- * What the robot-write routes (calibration, keep-out) share: a JSON answer counted by outcome
- * (`written`, `refused:<why>`), every refusal or failure told to `onFirst` under
- * `<label>:<kind>`; the checks before a write; reading the profile file.
+ * What the robot-write routes (calibration, keep-out) share: the checks before a write and
+ * reading the profile file.
  */
 import fs from 'node:fs';
 import type http from 'node:http';
 import path from 'node:path';
 import { PROFILE_NAME } from '@armtwin/motion/robot-folder';
-import type { Authorize } from './calibration-route.ts';
-import { readBody } from './read-body.ts';
+import { callerMay, methodIn, type Answer, type May } from '../counted-answer.ts';
+import { readBody } from '../read-body.ts';
 
-export type RouteCounters = Record<string, number>;
-
-export function countedAnswer(
-  label: string,
-  counters: RouteCounters,
-  onFirst: (kind: string, message: string) => void,
-) {
-  return (res: http.ServerResponse, status: number, body: unknown, kind: string): void => {
-    counters[kind] = (counters[kind] ?? 0) + 1;
-    if (status >= 400) onFirst(`${label}:${kind}`, `${label} ${kind}: ${JSON.stringify(body)}`);
-    res
-      .writeHead(status, { 'content-type': 'application/json', 'cache-control': 'no-store' })
-      .end(JSON.stringify(body));
-  };
+/** What a robot-write route is told. */
+export interface RobotWriteOptions {
+  /** Models folders, searched in order. */
+  dirs: readonly string[];
+  /** Who may write (operators; ./authorize.ts). */
+  may: May;
+  /** Told once per kind of refusal or failure. */
+  onFirst(kind: string, message: string): void;
 }
-
-type Answer = ReturnType<typeof countedAnswer>;
 
 /**
  * The start every robot write shares: PUT only, the caller's role, the robot's profile.json (the
@@ -36,21 +27,13 @@ type Answer = ReturnType<typeof countedAnswer>;
 export async function readRobotWrite(
   req: http.IncomingMessage,
   res: http.ServerResponse,
-  o: { dirs: readonly string[]; authorize: Authorize },
-  route: RegExp,
+  o: RobotWriteOptions,
+  name: string,
   maxBytes: number,
   answer: Answer,
 ): Promise<{ name: string; file: string; json: unknown } | null> {
-  if (req.method !== 'PUT') {
-    res.writeHead(405, { allow: 'PUT' }).end();
-    return null;
-  }
-  const name = decodeURIComponent(route.exec(req.url ?? '')![1]!);
-  const who = await o.authorize(req);
-  if (!who.ok) {
-    answer(res, who.status, { ok: false, errors: [who.error] }, 'refused:role');
-    return null;
-  }
+  if (!methodIn(req, res, ['PUT'])) return null;
+  if (!(await callerMay(o.may, req, res, answer))) return null;
   const file = PROFILE_NAME.test(name)
     ? o.dirs.map((d) => path.join(d, name, 'profile.json')).find((f) => fs.existsSync(f))
     : undefined;
