@@ -57,10 +57,8 @@ export function hasBearer(req: http.IncomingMessage, token: string): boolean {
 export function createAuthorize(o: AuthOptions): Authorize {
   return async (req) => {
     const header = req.headers.authorization ?? '';
-    if (/^Bearer /i.test(header))
-      return o.apiToken && hasBearer(req, o.apiToken)
-        ? { kind: 'token' }
-        : { kind: 'refused', lockedMs: 0 };
+    if (o.apiToken && /^Bearer /i.test(header))
+      return hasBearer(req, o.apiToken) ? { kind: 'token' } : { kind: 'refused', lockedMs: 0 };
     if (!o.logins || !/^Basic /i.test(header)) return { kind: 'anonymous' };
     const creds = basicCredentials(header);
     if (!creds) return { kind: 'refused', lockedMs: 0 };
