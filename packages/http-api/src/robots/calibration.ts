@@ -11,33 +11,24 @@
  * parser refuses; 401/403 for a missing or non-operator log-in; 404 for an unknown robot; 413
  * for a body over `MAX_CALIBRATION_REQUEST_BYTES`.
  */
-import type http from 'node:http';
 import {
   applyCalibration,
   MAX_CALIBRATION_REQUEST_BYTES,
   parseCalibrationRequest,
 } from '@armtwin/ik';
-import { countedAnswer, type RouteCounters } from '../counted-answer.ts';
-import { replaceProfileFile } from './profile-file.ts';
-import { readProfileFile, readRobotWrite, type RobotWriteOptions } from './robot-write.ts';
+import { profileWriteRoute, type RobotWriteOptions } from './robot-write.ts';
 
-export function calibrationRoute(o: RobotWriteOptions) {
-  /** Counts by outcome (`written`, `refused:<why>`). */
-  const counters: RouteCounters = {};
-  const answer = countedAnswer('calibration', counters, o.onFirst);
-  const handle = async (req: http.IncomingMessage, res: http.ServerResponse, name: string) => {
-    const write = await readRobotWrite(req, res, o, name, MAX_CALIBRATION_REQUEST_BYTES, answer);
-    if (!write) return;
-    const request = parseCalibrationRequest(write.json);
-    if (!request.ok)
-      return answer(res, 400, { ok: false, errors: request.errors }, 'refused:request');
-    const profile = readProfileFile(res, write.file, answer);
-    if (!profile) return;
-    const applied = applyCalibration(profile.raw, request.servos);
-    if (!applied.ok)
-      return answer(res, 400, { ok: false, errors: applied.errors }, 'refused:profile');
-    const backup = replaceProfileFile(write.file, applied.raw);
-    answer(res, 200, { ok: true, profile: applied.raw, backup }, 'written');
-  };
-  return { counters, handle };
-}
+export const calibrationRoute = (o: RobotWriteOptions) =>
+  profileWriteRoute(o, {
+    label: 'calibration',
+    maxBytes: MAX_CALIBRATION_REQUEST_BYTES,
+    request(json) {
+      const r = parseCalibrationRequest(json);
+      return r.ok ? { ok: true, value: r.servos } : r;
+    },
+    apply(raw, servos) {
+      const r = applyCalibration(raw, servos);
+      return r.ok ? { ok: true, value: { raw: r.raw, told: { profile: r.raw } } } : r;
+    },
+    refusedAs: 'profile',
+  });

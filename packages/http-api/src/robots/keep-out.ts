@@ -11,25 +11,17 @@
  * non-operator log-in; 404 for an unknown robot; 413 for a body over
  * `MAX_KEEP_OUT_REQUEST_BYTES`.
  */
-import type http from 'node:http';
 import { applyKeepOut, MAX_KEEP_OUT_REQUEST_BYTES } from '@armtwin/ik';
-import { countedAnswer, type RouteCounters } from '../counted-answer.ts';
-import { replaceProfileFile } from './profile-file.ts';
-import { readProfileFile, readRobotWrite, type RobotWriteOptions } from './robot-write.ts';
+import { profileWriteRoute, type RobotWriteOptions } from './robot-write.ts';
 
-export function keepOutRoute(o: RobotWriteOptions) {
-  const counters: RouteCounters = {};
-  const answer = countedAnswer('keep-out', counters, o.onFirst);
-  const handle = async (req: http.IncomingMessage, res: http.ServerResponse, name: string) => {
-    const write = await readRobotWrite(req, res, o, name, MAX_KEEP_OUT_REQUEST_BYTES, answer);
-    if (!write) return;
-    const profile = readProfileFile(res, write.file, answer);
-    if (!profile) return;
-    const applied = applyKeepOut(profile.raw, write.json);
-    if (!applied.ok)
-      return answer(res, 400, { ok: false, errors: applied.errors }, 'refused:zones');
-    const backup = replaceProfileFile(write.file, applied.raw);
-    answer(res, 200, { ok: true, keepOut: applied.keepOut, backup }, 'written');
-  };
-  return { counters, handle };
-}
+export const keepOutRoute = (o: RobotWriteOptions) =>
+  profileWriteRoute(o, {
+    label: 'keep-out',
+    maxBytes: MAX_KEEP_OUT_REQUEST_BYTES,
+    request: (json) => ({ ok: true, value: json }),
+    apply(raw, json) {
+      const r = applyKeepOut(raw, json);
+      return r.ok ? { ok: true, value: { raw: r.raw, told: { keepOut: r.keepOut } } } : r;
+    },
+    refusedAs: 'zones',
+  });

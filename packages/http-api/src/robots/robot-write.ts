@@ -1,13 +1,22 @@
 /**
- * What the robot-write routes (calibration, keep-out) share: the checks before a write and
- * reading the profile file.
+ * What the robot-write routes (calibration, keep-out) share: a change to a robot's profile.json,
+ * checked before and after it is applied, written with a backup of the old file; answered and
+ * counted by outcome (`written`, `refused:<why>`, `failed:read`).
  */
 import fs from 'node:fs';
 import type http from 'node:http';
 import path from 'node:path';
 import { PROFILE_NAME } from '@armtwin/motion/robot-folder';
-import { callerMay, methodIn, type Answer, type May } from '../counted-answer.ts';
+import {
+  callerMay,
+  countedAnswer,
+  methodIn,
+  type Answer,
+  type May,
+  type RouteCounters,
+} from '../counted-answer.ts';
 import { readBody } from '../read-body.ts';
+import { replaceProfileFile } from './profile-file.ts';
 
 /** What a robot-write route is told. */
 export interface RobotWriteOptions {
@@ -19,12 +28,51 @@ export interface RobotWriteOptions {
   onFirst(kind: string, message: string): void;
 }
 
+type Checked<T> = { ok: true; value: T } | { ok: false; errors: string[] };
+
+/** One kind of change to a robot's profile.json. */
+export interface ProfileChange<R> {
+  /** Counts and `onFirst` kinds are named `<label>:<outcome>`. */
+  label: string;
+  /** The largest request body. */
+  maxBytes: number;
+  /** The request's JSON checked before the profile is read (refused as `refused:request`). */
+  request(json: unknown): Checked<R>;
+  /**
+   * The profile (as on disk) with the change, and what the answer tells of it beside `ok` and
+   * `backup`; or why not (refused as `refused:<refusedAs>`).
+   */
+  apply(raw: unknown, request: R): Checked<{ raw: unknown; told: Record<string, unknown> }>;
+  refusedAs: string;
+}
+
+/** A `PUT /robots/{name}/…` route making `change` (answers: see ./calibration.ts, ./keep-out.ts). */
+export function profileWriteRoute<R>(o: RobotWriteOptions, change: ProfileChange<R>) {
+  const counters: RouteCounters = {};
+  const answer = countedAnswer(change.label, counters, o.onFirst);
+  const handle = async (req: http.IncomingMessage, res: http.ServerResponse, name: string) => {
+    const write = await readRobotWrite(req, res, o, name, change.maxBytes, answer);
+    if (!write) return;
+    const request = change.request(write.json);
+    if (!request.ok)
+      return answer(res, 400, { ok: false, errors: request.errors }, 'refused:request');
+    const profile = readProfileFile(res, write.file, answer);
+    if (!profile) return;
+    const applied = change.apply(profile.raw, request.value);
+    if (!applied.ok)
+      return answer(res, 400, { ok: false, errors: applied.errors }, `refused:${change.refusedAs}`);
+    const backup = replaceProfileFile(write.file, applied.value.raw);
+    answer(res, 200, { ok: true, ...applied.value.told, backup }, 'written');
+  };
+  return { counters, handle };
+}
+
 /**
  * The start every robot write shares: PUT only, the caller's role, the robot's profile.json (the
  * first models folder holding it), a JSON body of at most `maxBytes`. What the write needs, or
  * null once it has answered why not.
  */
-export async function readRobotWrite(
+async function readRobotWrite(
   req: http.IncomingMessage,
   res: http.ServerResponse,
   o: RobotWriteOptions,
@@ -55,7 +103,7 @@ export async function readRobotWrite(
 }
 
 /** The robot's profile.json as it is on disk, or null once it has answered (500) that it does not read. */
-export function readProfileFile(
+function readProfileFile(
   res: http.ServerResponse,
   file: string,
   answer: Answer,
