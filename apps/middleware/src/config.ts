@@ -79,6 +79,13 @@ export interface MiddlewareConfig {
    * then need a log-in even without API_TOKEN. Failed log-ins are throttled.
    */
   usersFile: string;
+  /**
+   * MODELS_DIR: the folder of robot folders (`<dir>/<name>/profile.json`) the HTTP API writes
+   * calibrations, keep-out zones and imported robots into, and the MCAP export reads; '' = the
+   * repository's `public/models`. Give it the folder the arms' controllers (`armtwin sim
+   * --models`, `armtwin gateway --bus --models`) and the HUD's `/models/` read.
+   */
+  modelsDir: string;
   /** MAX_PAYLOAD_BYTES: a bigger MQTT message is refused whole (counted as `oversize`). */
   maxPayloadBytes: number;
   /**
@@ -122,6 +129,7 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   host: '127.0.0.1',
   apiToken: '',
   usersFile: '',
+  modelsDir: '',
   maxPayloadBytes: MAX_PAYLOAD_BYTES,
   thermalWatch: true,
   thermalRefitMs: 5 * 60_000,
@@ -157,6 +165,7 @@ export const CONFIG_ENV: Record<keyof MiddlewareConfig, string> = {
   host: 'HOST',
   apiToken: 'API_TOKEN',
   usersFile: 'ARMTWIN_USERS',
+  modelsDir: 'MODELS_DIR',
   maxPayloadBytes: 'MAX_PAYLOAD_BYTES',
   thermalWatch: 'THERMAL_WATCH',
   thermalRefitMs: 'THERMAL_REFIT_MS',
@@ -212,6 +221,7 @@ const SCHEMA = z.object({
   host: z.string().min(1),
   apiToken: z.string().regex(/^[\x21-\x7e]*$/, 'printable ASCII, no spaces'),
   usersFile: z.string(),
+  modelsDir: z.string(),
   maxPayloadBytes: int(64, 268_435_455),
   thermalWatch: z.enum(['true', 'false', '1', '0']).transform((b) => b === 'true' || b === '1'),
   thermalRefitMs: int(1000, 86_400_000),

@@ -1,14 +1,14 @@
 /**
- * `/healthz` (JSON, 200 or 503) and `/metrics` (Prometheus text). Works at the root of its
- * own port and mounted under `/api` on another server (the `npm start` orchestrator).
- * `/history/…` is the history API (./history), present when storage is configured.
- * With an API token, everything but `/healthz` needs `Authorization: Bearer <token>` (401).
- * With a users file (`logins`), `/whoami` answers the HUD's log-in, and a user's HTTP Basic
- * log-in opens `/metrics` and `/history` too (which then always need one or the other).
+ * The middleware's HTTP side: what it lends armtwin's one HTTP API (`@armtwin/http-api`):
+ * `/healthz` (JSON, 200 or 503), `/metrics` (Prometheus text) and `/history/…` (./history,
+ * present when storage is configured); and the API as the middleware serves it on its own port,
+ * robot writes included (calibration, keep-out zones, imports into MODELS_DIR), so a deployment
+ * without `armtwin up` has them too. `armtwin up` mounts the same API with this `service`.
+ * Log-ins and the API token: `@armtwin/http-api`'s one authorize step (SECURITY.md).
  */
-import { createHash, timingSafeEqual } from 'node:crypto';
 import type { IncomingMessage, ServerResponse } from 'node:http';
-import { basicCredentials, whoamiAnswer, type LoginThrottle } from '@armtwin/auth';
+import type { LoginThrottle } from '@armtwin/auth';
+import { createApi, type ApiService } from '@armtwin/http-api';
 import type { HistoryHandler } from './history/index.ts';
 import { renderMetrics, type Metrics } from './metrics.ts';
 
@@ -34,104 +34,37 @@ export interface HttpSource {
   apiToken?: string;
   /** The users file behind the failed-log-in throttle, or null. */
   logins?: LoginThrottle | null;
+  /** Robot folders the robot writes go to (MODELS_DIR; none: robot writes answer 404). */
+  modelDirs?: readonly string[];
+  /** Told once per kind of refused or failed API request. */
+  onFirst?(kind: string, message: string): void;
 }
 
-const digest = (s: string) => createHash('sha256').update(s).digest();
-
-/** Whether the request carries `Authorization: Bearer <token>` (compared in constant time). */
-export function hasBearer(req: IncomingMessage, token: string): boolean {
-  const m = /^Bearer +(\S+) *$/i.exec(req.headers.authorization ?? '');
-  return m !== null && timingSafeEqual(digest(m[1]!), digest(token));
+/** What the middleware lends the API (`armtwin up` mounts the API with it). */
+export function apiService(mw: HttpSource): ApiService {
+  return {
+    health: () => mw.health(),
+    metrics: () => renderMetrics(mw.metrics),
+    history: mw.history ?? null,
+  };
 }
-
-function unauthorised(res: ServerResponse, users: boolean): true {
-  res.writeHead(401, {
-    'content-type': 'application/json',
-    'www-authenticate': users ? 'Basic realm="armtwin"' : 'Bearer realm="armtwin"',
-    'cache-control': 'no-store',
-  });
-  const how = users
-    ? 'a log-in (HTTP Basic) or Authorization: Bearer <API_TOKEN>'
-    : 'Authorization: Bearer <API_TOKEN>';
-  res.end(JSON.stringify({ error: `${users ? 'log-in' : 'API token'} required: ${how}` }));
-  return true;
-}
-
-const address = (req: IncomingMessage) => req.socket.remoteAddress ?? 'unknown';
 
 export type HttpHandler = (req: IncomingMessage, res: ServerResponse) => boolean;
 
-/** Serves the request if it is one of ours (returns true), else leaves it (returns false). */
+/** Serves the request if it is one of the API's (returns true), else leaves it (returns false). */
 export function createHttpHandler(mw: HttpSource): HttpHandler {
-  const logins = mw.logins ?? null;
-  const serve = (req: IncomingMessage, res: ServerResponse, path: string): boolean => {
-    const isHistory = path === '/history' || path.startsWith('/history/');
-    if (isHistory) {
-      if (!mw.history) {
-        res.writeHead(503, { 'content-type': 'application/json' });
-        res.end(JSON.stringify({ error: 'history needs storage: set INFLUX_URL' }));
-        return true;
-      }
-      req.url = req.url!.replace(/^\/api(?=\/)/, '');
-      mw.history(req, res).then(
-        (mine) =>
-          mine ||
-          res.writeHead(404, { 'content-type': 'application/json' }).end('{"error":"not found"}'),
-        () => res.headersSent || res.writeHead(500).end(),
-      );
-      return true;
-    }
-    if (req.method !== 'GET' && req.method !== 'HEAD') {
-      if (path !== '/healthz' && path !== '/metrics') return false;
-      res.writeHead(405, { allow: 'GET, HEAD' }).end();
-      return true;
-    }
-    if (path === '/healthz') {
-      const report = mw.health();
-      res.writeHead(report.ok ? 200 : 503, {
-        'content-type': 'application/json',
-        'cache-control': 'no-store',
-      });
-      res.end(JSON.stringify(report));
-      return true;
-    }
-    if (path === '/metrics') {
-      mw.health(); // refreshes the gauges
-      res.writeHead(200, { 'content-type': 'text/plain; version=0.0.4; charset=utf-8' });
-      res.end(renderMetrics(mw.metrics));
-      return true;
-    }
-    return false;
-  };
-  /** Checks an HTTP Basic log-in, then serves or refuses (401, or 429 while locked out). */
-  const afterLogIn = (req: IncomingMessage, res: ServerResponse, path: string, who: boolean) => {
-    const creds = basicCredentials(req.headers.authorization);
-    const check = creds
-      ? logins!.login(address(req), creds.name, creds.password)
-      : Promise.resolve({ ok: false as const, lockedMs: 0 });
-    check.then(
-      (r) => {
-        if (who) {
-          const a = whoamiAnswer(r);
-          res.writeHead(a.status, a.headers).end(a.body);
-        } else if (r.ok) serve(req, res, path);
-        else if (r.lockedMs > 0) {
-          const a = whoamiAnswer(r);
-          res.writeHead(a.status, a.headers).end(a.body);
-        } else unauthorised(res, true);
-      },
-      () => res.headersSent || res.writeHead(500).end(),
-    );
-    return true;
-  };
-  return (req, res) => {
-    const path = (req.url ?? '/').split('?')[0]!.replace(/^\/api(?=\/)/, '');
-    if (path === '/whoami' && logins) return afterLogIn(req, res, path, true);
-    const guarded =
-      (mw.apiToken || logins) &&
-      (path === '/metrics' || path === '/history' || path.startsWith('/history/'));
-    if (!guarded || (mw.apiToken && hasBearer(req, mw.apiToken))) return serve(req, res, path);
-    if (!logins) return unauthorised(res, false);
-    return afterLogIn(req, res, path, false);
-  };
+  const service = apiService(mw);
+  const api = createApi({
+    auth: {
+      logins: mw.logins ?? null,
+      apiToken: mw.apiToken ?? '',
+      // Without a users file, anonymous callers change robots from this machine only.
+      anonymous: 'loopback',
+    },
+    service: () => service,
+    modelDirs: mw.modelDirs ?? [],
+    modelCopies: null,
+    onFirst: mw.onFirst ?? (() => {}),
+  });
+  return api.handle;
 }

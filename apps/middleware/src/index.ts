@@ -2,19 +2,24 @@
  * `startMiddleware(config, deps?)`: MQTT → cleaner → durable spool → InfluxDB, plus the HTTP
  * endpoints. The orchestrator (`npm start`) and the tests call this; `main.ts` is the CLI.
  */
+import fs from 'node:fs';
 import http from 'node:http';
+import path from 'node:path';
+import { MODELS_DIR } from '@armtwin/motion/robot-folder';
 import { describeBroker, redactBrokerUrl, SYSTEM_CLOCK, type Clock } from '@armtwin/protocol';
 import { LoginThrottle, loadUsers } from '@armtwin/auth';
 import { ConfigError, influxSource, type MiddlewareConfig } from './config.ts';
 import { createHistoryHandler, type HistoryHandlerDeps } from './history/index.ts';
 import { historyReader } from './history/reader.ts';
-import { createHttpHandler, type HealthReport, type HttpHandler } from './http.ts';
+import { loadRecordingRobot } from './export/index.ts';
+import { apiService, createHttpHandler, type HealthReport, type HttpHandler } from './http.ts';
 import { createInfluxWriter, type InfluxWriter } from './influx.ts';
 import { Ingest } from './ingest.ts';
 import { createLogger, LogOnce, type Logger } from './log.ts';
 import { Metrics } from './metrics.ts';
 import { startMqtt, type ConnectFn } from './mqtt.ts';
 import { Storage } from './storage.ts';
+import type { ApiService } from '@armtwin/http-api';
 import { startThermalAlerts } from './thermal-alerts-run.ts';
 
 export {
@@ -25,7 +30,7 @@ export {
   influxSource,
   type MiddlewareConfig,
 } from './config.ts';
-export { createHttpHandler, type HealthReport, type HttpHandler } from './http.ts';
+export { apiService, createHttpHandler, type HealthReport, type HttpHandler } from './http.ts';
 export {
   historyReader,
   QUERY_LANGUAGES,
@@ -47,8 +52,13 @@ export interface MiddlewareDeps {
   now?: () => number;
   /** Open the HTTP port (default true). The orchestrator mounts `handler` instead. */
   listen?: boolean;
-  /** A profile's robot for the history API's MCAP export (default: `public/models`). */
+  /** A profile's robot for the history API's MCAP export (default: from `modelDirs`). */
   robotFor?: HistoryHandlerDeps['robotFor'];
+  /**
+   * The robot folders, searched in order (default: MODELS_DIR, else `public/models`): where the
+   * HTTP API's robot writes go and the MCAP export reads.
+   */
+  modelDirs?: readonly string[];
 }
 
 export interface Middleware {
@@ -56,7 +66,10 @@ export interface Middleware {
   readonly metrics: Metrics;
   /** Bound HTTP port, or null when not listening. */
   readonly httpPort: number | null;
+  /** The HTTP API as the middleware serves it on its own port. */
   readonly handler: HttpHandler;
+  /** What it lends the HTTP API (`armtwin up` mounts the API with it). */
+  readonly service: ApiService;
   health(): HealthReport;
   /** Seals the open batch and waits until the spool is empty or `timeoutMs` passes. */
   flush(timeoutMs?: number): Promise<boolean>;
@@ -218,10 +231,18 @@ export async function startMiddleware(
     };
   };
 
+  const modelDirs = deps.modelDirs ?? [config.modelsDir || MODELS_DIR];
+  const robotFor =
+    deps.robotFor ??
+    ((name: string) =>
+      loadRecordingRobot(
+        name,
+        modelDirs.find((d) => fs.existsSync(path.join(d, name, 'profile.json'))) ?? modelDirs[0],
+      ));
   const history = config.influxUrl
     ? createHistoryHandler({
         reader: historyReader(influxSource(config, 30_000), config.influxQueryLanguage),
-        ...(deps.robotFor ? { robotFor: deps.robotFor } : {}),
+        robotFor,
         onError: (err) =>
           once.warn(
             'history-query-failed',
@@ -230,12 +251,13 @@ export async function startMiddleware(
           ),
       })
     : null;
+  const source = { metrics, health, history };
   const handler = createHttpHandler({
-    metrics,
-    health,
-    history,
+    ...source,
     apiToken: config.apiToken,
     logins,
+    modelDirs,
+    onFirst: (kind, message) => once.warn(`api-${kind}`, {}, message),
   });
   let server: http.Server | null = null;
   let httpPort: number | null = null;
@@ -268,6 +290,7 @@ export async function startMiddleware(
       return httpPort;
     },
     handler,
+    service: apiService(source),
     health,
     flush: async (timeoutMs = 10_000) => (storage ? storage.flush(timeoutMs) : true),
     async stop(timeoutMs = 5000) {

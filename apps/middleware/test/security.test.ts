@@ -11,25 +11,9 @@ import { createHttpHandler, type HealthReport } from '../src/http.ts';
 import { Ingest } from '../src/ingest.ts';
 import { Metrics } from '../src/metrics.ts';
 
-function call(handler: ReturnType<typeof createHttpHandler>, url: string, auth?: string) {
-  const req = {
-    url,
-    method: 'GET',
-    headers: auth ? { authorization: auth } : {},
-  } as IncomingMessage;
-  const res = Object.assign(new EventEmitter(), {
-    status: 0,
-    headersSent: false,
-    writeHead(status: number) {
-      res.status = status;
-      return res;
-    },
-    end() {
-      return res;
-    },
-  });
-  handler(req, res as unknown as ServerResponse);
-  return res.status;
+/** The status the handler answers with (some answers come after an async log-in check). */
+async function call(handler: ReturnType<typeof createHttpHandler>, url: string, auth?: string) {
+  return (await answer(handler, url, auth)).status;
 }
 
 describe('API token', () => {
@@ -39,21 +23,21 @@ describe('API token', () => {
     true
   );
 
-  test('with API_TOKEN: /metrics and /history need the bearer token; /healthz stays open', () => {
+  test('with API_TOKEN: /metrics and /history need the bearer token; /healthz stays open', async () => {
     const h = createHttpHandler({ metrics: new Metrics(), health, history, apiToken: 's3cret' });
-    expect(call(h, '/healthz')).toBe(200);
-    expect(call(h, '/api/healthz')).toBe(200);
-    expect(call(h, '/metrics')).toBe(401);
-    expect(call(h, '/api/metrics', 'Bearer wrong')).toBe(401);
-    expect(call(h, '/api/metrics', 'Basic czNjcmV0')).toBe(401);
-    expect(call(h, '/history/series?arm=arm1')).toBe(401);
-    expect(call(h, '/metrics', 'Bearer s3cret')).toBe(200);
-    expect(call(h, '/api/history/series?arm=arm1', 'bearer s3cret')).toBe(200);
+    expect(await call(h, '/healthz')).toBe(200);
+    expect(await call(h, '/api/healthz')).toBe(200);
+    expect(await call(h, '/metrics')).toBe(401);
+    expect(await call(h, '/api/metrics', 'Bearer wrong')).toBe(401);
+    expect(await call(h, '/api/metrics', 'Basic czNjcmV0')).toBe(401);
+    expect(await call(h, '/history/series?arm=arm1')).toBe(401);
+    expect(await call(h, '/metrics', 'Bearer s3cret')).toBe(200);
+    expect(await call(h, '/api/history/series?arm=arm1', 'bearer s3cret')).toBe(200);
   });
 
-  test('without it the API is open (the local demo)', () => {
+  test('without it the API is open (the local demo)', async () => {
     const h = createHttpHandler({ metrics: new Metrics(), health, history });
-    expect(call(h, '/metrics')).toBe(200);
+    expect(await call(h, '/metrics')).toBe(200);
   });
 
   test('API_TOKEN and MAX_PAYLOAD_BYTES come from the environment', () => {
@@ -143,7 +127,7 @@ describe('users file (ARMTWIN_USERS): the HUD logs in against the middleware', (
   test('with users and no token, /history still needs a log-in; /healthz stays open', async () => {
     const h = handler();
     expect((await answer(h, '/history/series?arm=arm1')).status).toBe(401);
-    expect(call(h, '/healthz')).toBe(200);
+    expect(await call(h, '/healthz')).toBe(200);
   });
 
   test('failed log-ins lock the address out: 429 with Retry-After, even for the right password', async () => {

@@ -48,14 +48,12 @@ export function ensureWebBuild(say: Say): boolean {
 
 type ConnectFn = NonNullable<MiddlewareDeps['connect']>;
 
-/** How the middleware reaches the broker, and the token its HTTP API requires. */
+/** How the middleware reaches the broker, and where the robot folders are. */
 export interface MiddlewareLink {
   /** Shown in /healthz. */
   mqttUrl: string;
   /** Connects its MQTT client (in-process to the embedded broker). */
   connect: ConnectFn;
-  /** API_TOKEN ('' = open API). */
-  apiToken: string;
   /** The folders of robot profiles, searched in order (for the history API's MCAP export). */
   modelDirs: readonly string[];
 }
@@ -81,10 +79,9 @@ export async function startMiddlewarePart(
   let influx: LocalInflux | null = null;
   const overrides: Partial<MiddlewareConfig> = {
     mqttUrl: link.mqttUrl,
-    apiToken: link.apiToken,
     spoolDir: env.SPOOL_DIR || MIDDLEWARE_SPOOL,
-    // `armtwin up` checks log-ins itself (the broker's throttle, one lockout for MQTT and /api)
-    // and hands the middleware its token: a second users file and throttle would go unused.
+    // `armtwin up` serves the HTTP API itself (with the broker's throttle: one lockout for MQTT
+    // and /api) and lends it the middleware's `service`: a second users file would go unused.
     usersFile: '',
   };
   if (influxUrl) {
@@ -105,17 +102,10 @@ export async function startMiddlewarePart(
   }
   const config: MiddlewareConfig = { ...mod.loadConfig(env), ...overrides };
   try {
-    const { loadRecordingRobot } = await import('@armtwin/middleware/export');
-    const robotFor = (name: string) =>
-      loadRecordingRobot(
-        name,
-        link.modelDirs.find((d) => fs.existsSync(path.join(d, name, 'profile.json'))) ??
-          link.modelDirs[0],
-      );
     const middleware = await mod.startMiddleware(config, {
       listen: false,
       connect: link.connect,
-      robotFor,
+      modelDirs: link.modelDirs,
     });
     const storage = config.influxUrl
       ? `InfluxDB at ${config.influxUrl}${influx ? ` (local influxd, data in ${path.relative(REPO_ROOT, LOCAL_INFLUX_DATA)})` : ''}`

@@ -1,23 +1,24 @@
 /**
  * `armtwin up` (what `npm start` runs): the embedded broker, ONE HTTP(S) server (the HUD's
- * files, MQTT over WebSockets at /mqtt, the middleware under /api, and the operators' writes to
- * robot folders under /api/robots: ./calibration-route.ts, ./import-route.ts), the simulated
- * arm, and the middleware with its storage, each as far as it exists. The arm and the middleware connect to
+ * files, MQTT over WebSockets at /mqtt, and armtwin's one HTTP API under /api
+ * (`@armtwin/http-api`: the middleware's history and metrics, robot writes, model copies), the
+ * simulated arm, and the middleware with its storage, each as far as it exists. The arm and the middleware connect to
  * the broker in-process (no socket, no password) with the device and middleware roles.
  * `stop()` takes them down in order: the sim says offline, the middleware flushes, influxd
  * stops, the broker and server close.
  *
  * Security (SECURITY.md): without a users file this is the anonymous local demo and the broker
  * refuses any non-loopback host. With one, every MQTT client logs in, and /api (but /healthz)
- * needs either the API token as a bearer token or a user's name and password (HTTP Basic).
+ * needs a user's name and password (HTTP Basic) or, to read, the API token as a bearer token:
+ * the API's one log-in step, on the broker's log-ins and throttle.
  */
-import { randomBytes } from 'node:crypto';
 import fs from 'node:fs';
 import http from 'node:http';
 import https from 'node:https';
 import path from 'node:path';
 import type { Users } from '@armtwin/auth';
 import { startBroker, type Broker, type BrokerTls } from '@armtwin/broker';
+import { createApi } from '@armtwin/http-api';
 import { isModelArmId, linkOptions, MODEL_ARM_SUFFIX } from '@armtwin/protocol';
 import {
   DEFAULT_PROFILE,
@@ -29,10 +30,6 @@ import {
   type MqttSim,
 } from '@armtwin/sim';
 import { createCameraPart } from './camera-part.ts';
-import { anyLogIn, basicToBearer, operatorOnly, whoami } from './authorize.ts';
-import { calibrationRoute, isCalibrationRequest } from './calibration-route.ts';
-import { isKeepOutRequest, keepOutRoute } from './keep-out-route.ts';
-import { importRoute, isImportRequest } from './import-route.ts';
 import { ensureWebBuild, startMiddlewarePart, WEB_DIST, type StartedMiddleware } from './parts.ts';
 import { isModelRequest, modelFiles } from './model-files.ts';
 import type { ModelCopies } from './model-copies.ts';
@@ -68,7 +65,7 @@ export interface UpOptions {
   users: Users | null;
   /** HTTPS/WSS and MQTTS with this certificate (null = plain). */
   tls: BrokerTls | null;
-  /** API_TOKEN for /api ('' with users = a random one, so only log-ins reach /api). */
+  /** API_TOKEN: a bearer token that reads /api's history and metrics ('' = none). */
   apiToken: string;
   /**
    * An extra folder of robot profiles (`--models DIR`): served at /models/ before
@@ -106,12 +103,6 @@ export interface Up {
   stop(): Promise<void>;
 }
 
-const MIDDLEWARE_MISSING = JSON.stringify({
-  ok: false,
-  storage: false,
-  error: 'the middleware is not running',
-});
-
 export async function startUp(o: UpOptions): Promise<Up> {
   const armSpecs = o.arms?.length ? o.arms : [{ id: o.armId, profile: DEFAULT_PROFILE }];
   for (const a of armSpecs)
@@ -132,7 +123,6 @@ export async function startUp(o: UpOptions): Promise<Up> {
     onDenied: (what, detail) =>
       o.onFirst(`denied:${what}`, `${what} refused ${JSON.stringify(detail)}`),
   });
-  const apiToken = o.apiToken || (o.users ? randomBytes(32).toString('base64url') : '');
   if (broker.fellBack)
     o.say(`broker: port ${o.mqttPort} is taken; MQTT/TCP on ${broker.port} instead`);
 
@@ -142,16 +132,6 @@ export async function startUp(o: UpOptions): Promise<Up> {
     'The HUD is not built: run `npm run build -w @armtwin/web`.\n',
   );
   const models = modelFiles(modelDirs);
-  const calibration = calibrationRoute({
-    dirs: modelDirs,
-    authorize: operatorOnly(broker.logins),
-    onFirst: o.onFirst,
-  });
-  const keepOut = keepOutRoute({
-    dirs: modelDirs,
-    authorize: operatorOnly(broker.logins),
-    onFirst: o.onFirst,
-  });
   const model = createModelPart({
     broker,
     simulated: new Map(
@@ -163,36 +143,23 @@ export async function startUp(o: UpOptions): Promise<Up> {
     modelDirs,
     rate: o.rate,
     ...(o.modelIdleMs ? { idleMs: o.modelIdleMs } : {}),
-    mayDrive: operatorOnly(broker.logins),
-    mayRead: anyLogIn(broker.logins),
     onFirst: o.onFirst,
     say: o.say,
   });
-  const robotImport = importRoute({
-    modelsDir: modelDirs[0]!,
-    authorize: operatorOnly(broker.logins),
+  const api = createApi({
+    // Without a users file this is the local demo: the broker refuses any non-loopback host.
+    auth: { logins: broker.logins, apiToken: o.apiToken, anonymous: 'anywhere' },
+    service: () => mw?.middleware.service ?? null,
+    modelDirs,
+    modelCopies: model.copies,
     onFirst: o.onFirst,
   });
-  const api = async (req: http.IncomingMessage, res: http.ServerResponse) => {
-    if (req.url === '/api/whoami') return whoami(req, res, broker.logins);
-    if (isCalibrationRequest(req)) return calibration.handle(req, res);
-    if (isKeepOutRequest(req)) return keepOut.handle(req, res);
-    if (isImportRequest(req)) return robotImport.handle(req, res);
-    if (model.handles(req)) return model.handle(req, res);
-    if (broker.logins) await basicToBearer(req, broker.logins, apiToken);
-    if (mw?.middleware.handler(req, res)) return;
-    res.writeHead(mw ? 404 : 503, {
-      'content-type': 'application/json',
-      'cache-control': 'no-store',
-    });
-    res.end(mw ? JSON.stringify({ error: 'not found' }) : MIDDLEWARE_MISSING);
-  };
   const camera = o.camera
     ? createCameraPart({
         source: o.camera,
         armId: armSpecs[0]!.id,
         broker,
-        apiToken,
+        apiToken: o.apiToken,
         say: o.say,
         onFirst: o.onFirst,
       })
@@ -204,10 +171,10 @@ export async function startUp(o: UpOptions): Promise<Up> {
     for (const [name, value] of headers) res.setHeader(name, value);
     if (camera?.handleRequest(req, res)) return;
     if (req.url === '/api' || req.url?.startsWith('/api/')) {
-      api(req, res).catch((err: unknown) => {
-        o.onFirst('api', `api request failed: ${(err as Error).message}`);
-        if (!res.headersSent) res.writeHead(500).end();
-      });
+      if (!api.handle(req, res))
+        res
+          .writeHead(404, { 'content-type': 'application/json', 'cache-control': 'no-store' })
+          .end(JSON.stringify({ error: 'not found' }));
       return;
     }
     if (isModelRequest(req)) models(req, res);
@@ -278,7 +245,6 @@ export async function startUp(o: UpOptions): Promise<Up> {
           mqttUrl: broker.url,
           connect: (_url, opts) =>
             broker.connectInProcess({ name: 'middleware', role: 'middleware' }, opts),
-          apiToken,
           modelDirs,
         },
         o.influxUrl,

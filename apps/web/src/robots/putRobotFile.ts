@@ -1,6 +1,6 @@
 /**
  * A write to a robot's profile through `armtwin up` (`PUT <api>/robots/<name>/<what>`, an
- * operator's right: apps/up/src/calibration-route.ts, keep-out-route.ts), with the page's log-in.
+ * operator's right: packages/http-api/src/robots/calibration.ts, keep-out.ts), with the page's log-in.
  * The answer's JSON on success; otherwise the HTTP status and every error the server named.
  */
 import { authHeaders } from '../auth/whoami.ts';

@@ -1,6 +1,6 @@
 /**
  * Sends a calibration to `armtwin up` (`PUT <api>/robots/<name>/calibration`, an operator's
- * right, answered by apps/up/src/calibration-route.ts), with the page's log-in. The server
+ * right, answered by packages/http-api/src/robots/calibration.ts), with the page's log-in. The server
  * writes the robot's profile.json (keeping a backup); the bus gateway running it takes the new
  * calibration at once and announces it, and the twin follows the announcement.
  */

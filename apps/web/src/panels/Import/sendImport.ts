@@ -1,6 +1,6 @@
 /**
  * Sends a robot (one .zip) to `armtwin up` to import (`POST <api>/robots/import`, an operator's
- * right, answered by apps/up/src/import-route.ts) with the page's log-in. Too big is refused
+ * right, answered by packages/http-api/src/robots/import.ts) with the page's log-in. Too big is refused
  * here at once, before anything is sent.
  */
 import { MAX_IMPORT_BYTES } from '@armtwin/ik';

@@ -1,6 +1,6 @@
 /**
  * Sends a robot's keep-out zones to `armtwin up` (`PUT <api>/robots/<name>/keep-out`, an
- * operator's right, answered by apps/up/src/keep-out-route.ts), with the page's log-in. The
+ * operator's right, answered by packages/http-api/src/robots/keep-out.ts), with the page's log-in. The
  * server checks them (every problem named by zone and field) and writes them into the robot's
  * profile.json; the simulator and the bus gateway take them from the file at once and announce
  * the profile again, and this page draws and checks them from that announcement.

@@ -12,39 +12,31 @@
 import type http from 'node:http';
 import { IMPORT_NAME, MAX_IMPORT_BYTES, planImport } from '@armtwin/ik';
 import { RobotExistsError, writeRobotFolder, zipSource } from '@armtwin/ik/import-node';
-import { readBody } from './read-body.ts';
-import type { Authorize } from './calibration-route.ts';
-
-const ROUTE = /^\/api\/robots\/import(?:\?.*)?$/;
-
-export const isImportRequest = (req: http.IncomingMessage): boolean => ROUTE.test(req.url ?? '');
+import {
+  callerMay,
+  countedAnswer,
+  methodIn,
+  type May,
+  type RouteCounters,
+} from '../counted-answer.ts';
+import { readBody } from '../read-body.ts';
 
 export interface ImportRouteOptions {
   /** Where imported robots are written (the first models folder). */
   modelsDir: string;
-  authorize: Authorize;
+  /** Who may import (operators; ../authorize.ts). */
+  may: May;
   onFirst(kind: string, message: string): void;
 }
 
 export function importRoute(o: ImportRouteOptions) {
-  const counters: Record<string, number> = {};
-  const answer = (res: http.ServerResponse, status: number, body: unknown, kind: string) => {
-    counters[kind] = (counters[kind] ?? 0) + 1;
-    if (status !== 200)
-      o.onFirst(`import:${kind}`, `robot import ${kind}: ${JSON.stringify(body)}`);
-    res
-      .writeHead(status, { 'content-type': 'application/json', 'cache-control': 'no-store' })
-      .end(JSON.stringify(body));
-  };
+  const counters: RouteCounters = {};
+  const answer = countedAnswer('import', counters, o.onFirst);
   const refuse = (res: http.ServerResponse, status: number, errors: string[], kind: string) =>
     answer(res, status, { ok: false, errors }, `refused:${kind}`);
   const handle = async (req: http.IncomingMessage, res: http.ServerResponse) => {
-    if (req.method !== 'POST') {
-      res.writeHead(405, { allow: 'POST' }).end();
-      return;
-    }
-    const who = await o.authorize(req);
-    if (!who.ok) return refuse(res, who.status, [who.error], 'role');
+    if (!methodIn(req, res, ['POST'])) return;
+    if (!(await callerMay(o.may, req, res, answer))) return;
     const query = new URL(req.url ?? '', 'http://x').searchParams;
     const name = query.get('name') || undefined;
     if (name !== undefined && !IMPORT_NAME.test(name))

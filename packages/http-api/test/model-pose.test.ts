@@ -1,11 +1,8 @@
 /**
- * The pure parts of a model copy (docs/protocol.md § Modes): the pose a `POST` asks for, checked
- * against the arm's servos with every reason named, and the idle rule that stops a copy nobody
- * uses.
+ * The pose a model copy's `POST` asks for (docs/protocol.md § Modes), checked against the arm's
+ * servos with every reason named.
  */
 import { describe, expect, test } from 'vitest';
-import { FakeClock } from '@armtwin/protocol/fake-clock';
-import { IdleWatch } from '../src/model-idle.ts';
 import { parseModelPose } from '../src/model-pose.ts';
 
 const SERVOS = [0, 1, 2, 3, 4, 5];
@@ -53,36 +50,5 @@ describe('parseModelPose', () => {
       ok: false,
       errors: ['pulses.9: the arm has no servo 009 (it has 000, 001, 002, 003, 004, 005)'],
     });
-  });
-});
-
-describe('IdleWatch', () => {
-  test('fires once, idleMs after the last touch', () => {
-    const clock = new FakeClock();
-    let idle = 0;
-    new IdleWatch(clock, 10_000, () => idle++);
-    clock.advance(9_999);
-    expect(idle).toBe(0);
-    clock.advance(1);
-    expect(idle).toBe(1);
-    clock.advance(60_000);
-    expect(idle).toBe(1);
-  });
-
-  test('activity puts it off; stop() ends it', () => {
-    const clock = new FakeClock();
-    let idle = 0;
-    const w = new IdleWatch(clock, 10_000, () => idle++);
-    for (let i = 0; i < 5; i++) {
-      clock.advance(6_000);
-      w.touch();
-    }
-    expect(idle).toBe(0);
-    clock.advance(10_000);
-    expect(idle).toBe(1);
-    const w2 = new IdleWatch(clock, 10_000, () => idle++);
-    w2.stop();
-    clock.advance(20_000);
-    expect(idle).toBe(1);
   });
 });

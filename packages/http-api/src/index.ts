@@ -1,0 +1,21 @@
+/**
+ * @armtwin/http-api: armtwin's one HTTP API (./api.ts), served by the middleware and mounted by
+ * `armtwin up`. Node only; the answers' types the HUD reads are `@armtwin/api`'s.
+ */
+export { createApi, type Api, type ApiOptions } from './api.ts';
+export {
+  createAuthorize,
+  hasBearer,
+  isLoopback,
+  refusal,
+  type AuthOptions,
+  type Authorize,
+  type Caller,
+  type Refusal,
+  type Right,
+} from './authorize.ts';
+export type { RouteCounters } from './counted-answer.ts';
+export type { ModelCopyHost } from './model-copies.ts';
+export { MAX_MODEL_REQUEST_BYTES, parseModelPose, type ModelPose } from './model-pose.ts';
+export { replaceProfileFile } from './robots/profile-file.ts';
+export type { ApiService } from './service-routes.ts';

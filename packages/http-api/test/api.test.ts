@@ -1,0 +1,95 @@
+/**
+ * The one HTTP API on a real node:http server: the router's answers (with and without `/api`,
+ * 405 with the methods a route takes, paths it does not know left to the server), the
+ * middleware's routes while it is not running (503, saying so), and the parts a server may lack
+ * (no model-copy host: 501, saying why). Robot writes on disk: tests/integration.
+ */
+import fs from 'node:fs';
+import http from 'node:http';
+import type { AddressInfo } from 'node:net';
+import os from 'node:os';
+import path from 'node:path';
+import { afterAll, beforeAll, expect, test } from 'vitest';
+import { createApi, type ApiService } from '../src/index.ts';
+
+let server: http.Server;
+let base = '';
+let models = '';
+let service: ApiService | null = null;
+const onFirst: string[] = [];
+
+beforeAll(async () => {
+  models = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-api-'));
+  const api = createApi({
+    auth: { logins: null, apiToken: '', anonymous: 'loopback' },
+    service: () => service,
+    modelDirs: [models],
+    modelCopies: null,
+    onFirst: (kind) => onFirst.push(kind),
+  });
+  server = http.createServer((req, res) => {
+    if (!api.handle(req, res)) res.writeHead(418).end('not the API');
+  });
+  await new Promise<void>((r) => server.listen(0, '127.0.0.1', r));
+  base = `http://127.0.0.1:${(server.address() as AddressInfo).port}`;
+});
+
+afterAll(async () => {
+  await new Promise((r) => server.close(r));
+  fs.rmSync(models, { recursive: true, force: true });
+});
+
+const call = async (method: string, url: string, body?: string) => {
+  const res = await fetch(`${base}${url}`, { method, ...(body ? { body } : {}) });
+  const text = await res.text();
+  return { status: res.status, allow: res.headers.get('allow'), text };
+};
+
+test('paths answer with and without /api; other paths are left to the server', async () => {
+  expect((await call('PUT', '/api/robots/nosuch/keep-out', '{}')).status).toBe(404);
+  expect(JSON.parse((await call('PUT', '/robots/nosuch/calibration', '{}')).text)).toEqual({
+    ok: false,
+    errors: ['no robot "nosuch"'],
+  });
+  expect((await call('GET', '/api/robots')).status).toBe(418);
+  expect((await call('GET', '/index.html')).status).toBe(418);
+});
+
+test('a method a route does not take: 405 with the ones it does', async () => {
+  expect(await call('GET', '/api/robots/x/calibration')).toMatchObject({
+    status: 405,
+    allow: 'PUT',
+  });
+  expect(await call('GET', '/api/robots/import')).toMatchObject({ status: 405, allow: 'POST' });
+  expect(await call('POST', '/api/metrics')).toMatchObject({ status: 405, allow: 'GET, HEAD' });
+  expect(await call('PUT', '/api/arms/arm1/model')).toMatchObject({
+    status: 405,
+    allow: 'GET, POST, DELETE',
+  });
+});
+
+test('without the middleware its routes say so (503); with it they answer', async () => {
+  service = null;
+  for (const url of ['/api/healthz', '/api/metrics', '/api/history/series?arm=arm1']) {
+    const r = await call('GET', url);
+    expect(r.status).toBe(503);
+    expect(JSON.parse(r.text)).toMatchObject({ ok: false, error: 'the middleware is not running' });
+  }
+  service = { health: () => ({ ok: true }), metrics: () => 'up 1\n', history: null };
+  expect((await call('GET', '/healthz')).status).toBe(200);
+  expect((await call('GET', '/metrics')).text).toBe('up 1\n');
+  expect(JSON.parse((await call('GET', '/history/series')).text)).toEqual({
+    error: 'history needs storage: set INFLUX_URL',
+  });
+});
+
+test('without a users file /whoami has nothing to tell (404) where anonymous is not the demo', async () => {
+  expect((await call('GET', '/api/whoami')).status).toBe(404);
+});
+
+test('no model-copy host: 501, naming armtwin up, counted', async () => {
+  const r = await call('POST', '/api/arms/arm1/model');
+  expect(r.status).toBe(501);
+  expect(JSON.parse(r.text).errors[0]).toMatch(/armtwin up/);
+  expect(onFirst).toContain('model:refused:host');
+});
