@@ -5,11 +5,11 @@
 import './noEval.ts';
 import { StrictMode } from 'react';
 import { createRoot } from 'react-dom/client';
-import { createHud } from './hud/createHud.ts';
-import { HudContext, type Hud } from './hud/HudContext.ts';
-import { App } from './hud/App.tsx';
+import { createHud } from './ui/hud/createHud.ts';
+import { HudContext, type Hud } from './ui/hud/HudContext.ts';
+import { App } from './ui/hud/App.tsx';
 import 'uplot/dist/uPlot.min.css';
-import './styles.css';
+import './ui/styles.css';
 
 const root = createRoot(document.getElementById('hud')!);
 

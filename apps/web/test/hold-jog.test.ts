@@ -1,12 +1,12 @@
 import { describe, expect, it } from 'vitest';
 import { encodeGroup, encodePosition } from '@armtwin/protocol';
-import { ArmStore } from '../src/store/ArmStore.ts';
-import { ArmLink } from '../src/mqtt/ArmLink.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
+import { ArmLink } from '../src/core/link/ArmLink.ts';
 import { FakeMqttClient } from './support/FakeMqttClient.ts';
-import { defaultSettings } from '../src/config/settings.ts';
-import { robotSpec } from '../src/robots/robotSpec.ts';
-import { DEFAULT_PROFILE } from '../src/robots/defaultProfile.ts';
-import { HoldJog } from '../src/panels/Jog/HoldJog.ts';
+import { defaultSettings } from '../src/core/config/settings.ts';
+import { robotSpec } from '../src/core/robots/robotSpec.ts';
+import { DEFAULT_PROFILE } from '../src/core/robots/defaultProfile.ts';
+import { HoldJog } from '../src/core/jog/HoldJog.ts';
 import { createMotionRobot, tipPose } from '@armtwin/motion';
 import { solveIk } from '@armtwin/ik';
 import {
@@ -14,7 +14,7 @@ import {
   holdTarget,
   keyHold,
   DEFAULT_HOLD_KEYS,
-} from '../src/panels/Jog/holdJogMath.ts';
+} from '../src/core/jog/holdJogMath.ts';
 
 /** The control payloads published (no pings). */
 class FakeClient extends FakeMqttClient {

@@ -15,8 +15,8 @@ import { parseUrdf } from './support/parseUrdf.ts';
 import { DEMO_ARM, chainFromUrdf, parseProfile, type Profile } from '@armtwin/ik';
 import { createMotionRobot, tipPose } from '@armtwin/motion';
 import { angleFromPwm, pwmFromAngle } from '@armtwin/protocol';
-import { robotSpec, sliderSpecs, storeArmFor } from '../src/robots/robotSpec.ts';
-import { DEFAULT_PROFILE } from '../src/robots/defaultProfile.ts';
+import { robotSpec, sliderSpecs, storeArmFor } from '../src/core/robots/robotSpec.ts';
+import { DEFAULT_PROFILE } from '../src/core/robots/defaultProfile.ts';
 
 const MODELS = path.resolve(fileURLToPath(import.meta.url), '../../../../public/models');
 const read = (name: string, file: string) => fs.readFileSync(path.join(MODELS, name, file), 'utf8');

@@ -8,8 +8,8 @@ import type * as THREE from 'three';
 import type { URDFRobot } from 'urdf-loader';
 import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { ProfileKeepOut } from '@armtwin/ik';
-import type { JointMap } from '../robots/robotSpec.ts';
-import type { GhostSource } from '../robots/sceneHooks.ts';
+import type { JointMap } from '../core/robots/robotSpec.ts';
+import type { GhostSource } from './sceneHooks.ts';
 import type { MeshFailure } from './loadRobot.ts';
 
 /** Which of the drawn robots: the live arm, the ghost, the replay's sibling. */

@@ -3,7 +3,7 @@
  * records the handlers the link registers (a test fires them with `emit`), every publish, and
  * how it was ended. A unit test only; tests of the real thing use a real broker.
  */
-import type { MqttLike } from '../../src/mqtt/MqttLike.ts';
+import type { MqttLike } from '../../src/core/link/MqttLike.ts';
 
 export interface Published {
   topic: string;
