@@ -11,12 +11,12 @@ import type { ProfileKeepOut } from '@armtwin/ik';
 import type { JointMap } from '../core/robots/robotSpec.ts';
 import type { GhostSource } from './sceneHooks.ts';
 import type { MeshFailure } from './loadRobot.ts';
+import type { RenderThread } from '../core/config/renderThread.ts';
 
 /** Which of the drawn robots: the live arm, the ghost, the replay's sibling. */
 export type DrawnRobot = 'robot' | 'ghost' | 'sibling';
 
-/** Where the 3D view is drawn: 'main' (the page's thread) or 'worker' (OffscreenCanvas). */
-export type RenderThread = 'main' | 'worker';
+export type { RenderThread };
 
 export interface SceneView {
   readonly thread: RenderThread;

@@ -8,10 +8,7 @@
 import * as THREE from 'three';
 import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 
-/** Fills the ghost's servo angles (store degrees) at `now`; false = nothing to show. */
-export interface GhostSource {
-  sample(now: number, out: Float64Array): boolean;
-}
+export type { GhostSource } from '../core/store/viewSources.ts';
 
 interface Framed {
   scene: THREE.Scene;

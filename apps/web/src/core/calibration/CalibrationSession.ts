@@ -26,7 +26,7 @@ import {
   type ProfileServo,
 } from '@armtwin/ik';
 import { encodeAngleMove, encodeGroup, MOVE_MS_MAX } from '@armtwin/protocol';
-import type { GhostSource } from '../../scene/sceneHooks.ts';
+import type { GhostSource } from '../store/viewSources.ts';
 import type { ArmStore } from '../store/ArmStore.ts';
 
 export const CALIBRATION_STEPS = ['zero', 'direction', 'range', 'review'] as const;

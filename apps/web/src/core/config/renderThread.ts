@@ -7,7 +7,8 @@
  * drawing on the CPU never takes the machine's cores from the stop, MQTT and the rest;
  * `?frames=full` draws every frame anyway (a strong CPU without a GPU). Pure.
  */
-import type { RenderThread } from '../../scene/SceneView.ts';
+/** Where the 3D view is drawn: 'main' (the page's thread) or 'worker' (OffscreenCanvas). */
+export type RenderThread = 'main' | 'worker';
 
 export interface RenderThreadOptions {
   /** Used when the query does not say. */

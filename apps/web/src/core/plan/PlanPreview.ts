@@ -4,7 +4,7 @@
  */
 import { samplePlan, type Plan } from '@armtwin/motion';
 import { angleFromPwm } from '@armtwin/protocol';
-import type { GhostSource } from '../../scene/sceneHooks.ts';
+import type { GhostSource } from '../store/viewSources.ts';
 
 /** The ghost holds the end pose this long before the preview starts over, ms. */
 export const PREVIEW_HOLD_MS = 800;

@@ -5,7 +5,7 @@
  * on the replay's clock (play, pause, seek, speed: the History panel's controls). Plain object:
  * the ghost's `sample` runs in the frame loop without allocating.
  */
-import type { GhostSource } from '../../scene/sceneHooks.ts';
+import type { GhostSource } from '../store/viewSources.ts';
 import type { ReplayPlayer, ReplayRecord } from '../replay/ReplayPlayer.ts';
 import { traceAt, type RunTrace } from './compareRuns.ts';
 
