@@ -4,7 +4,15 @@ import reactHooks from 'eslint-plugin-react-hooks';
 import globals from 'globals';
 
 export default tseslint.config(
-  { ignores: ['**/node_modules/**', '**/dist/**', '.tools/**', 'test-results/**', 'playwright-report/**'] },
+  {
+    ignores: [
+      '**/node_modules/**',
+      '**/dist/**',
+      '.tools/**',
+      'test-results/**',
+      'playwright-report/**',
+    ],
+  },
   js.configs.recommended,
   ...tseslint.configs.recommended,
   {
@@ -27,7 +35,8 @@ export default tseslint.config(
           patterns: [
             {
               regex: '^\\.\\.?/(?:.*/)?(?:scene|ui)/',
-              message: 'apps/web/src/core imports neither scene/ nor ui/ (layers: core → scene → ui).',
+              message:
+                'apps/web/src/core imports neither scene/ nor ui/ (layers: core → scene → ui).',
             },
             {
               regex: '^(?:react|react-dom|three|urdf-loader|uplot)(?:/|$)',
@@ -60,7 +69,10 @@ export default tseslint.config(
   },
   {
     rules: {
-      '@typescript-eslint/no-unused-vars': ['error', { argsIgnorePattern: '^_', varsIgnorePattern: '^_' }],
+      '@typescript-eslint/no-unused-vars': [
+        'error',
+        { argsIgnorePattern: '^_', varsIgnorePattern: '^_' },
+      ],
     },
   },
 );

@@ -11,7 +11,9 @@
  * Timers are the main thread's on purpose: a stalled page sends no keep-alive, and the arm stops
  * at the end of the last short move.
  */
-import { checkKeepOutMove, type MotionRobot } from '@armtwin/motion';
+import type { MotionRobot } from '@armtwin/motion';
+import { angleFromPwm } from '@armtwin/protocol';
+import { jogRefusal } from './keepOut.ts';
 import type { ArmStore } from '../store/ArmStore.ts';
 import type { SliderSpec } from '../robots/robotSpec.ts';
 import { isTipAxis, tipHold, type TipAxis } from './tipHold.ts';
@@ -36,11 +38,13 @@ const isTyping = (t: EventTarget | null): boolean => {
   );
 };
 
-/** What hold-to-jog needs of the arm link (src/mqtt/ArmLink.ts). */
+/** What jogging needs of the arm link (../link/ArmLink.ts). */
 export interface HoldLink {
   readonly permissions: { readonly command: boolean };
   /** Whether this page may move the arm now (its role, and who holds control); else `command`. */
   readonly mayMove?: boolean;
+  /** A slider's move, coalesced by the link. */
+  jog(id: number, pwm: number): void;
   holdMoves(moves: ReadonlyArray<readonly [id: number, pwm: number]>, ms: number): boolean;
   stopServos(ids: readonly number[]): boolean;
 }
@@ -51,11 +55,19 @@ export interface HoldJogDeps {
   link(): HoldLink;
   /** The active robot's joints and planner model. */
   robot(): { sliders: readonly SliderSpec[]; motion: MotionRobot | null };
+  /** Where a refused slider move is shown: the ghost, in the pose it would have reached. */
+  ghost?: RefusedPose;
   timers?: {
     setInterval(fn: () => void, ms: number): unknown;
     clearInterval(h: unknown): void;
   };
   now?: () => number;
+}
+
+/** The ghost's side of a refused jog (../store/TargetPreview.ts). */
+export interface RefusedPose {
+  refuse(angles: ArrayLike<number>, joint: string): void;
+  clearRefused(): void;
 }
 
 /** What an input holds: a joint (its index in servo order) or an axis of the tool tip. */
@@ -139,6 +151,33 @@ export class HoldJog {
     }
     if (this.timer === undefined && this.inputs.size > 0)
       this.timer = this.timers.setInterval(() => this.tick(), this.opts.keepAliveMs);
+  }
+
+  /**
+   * A slider moved joint `index` to `pulse`: a hold of one target, checked as every keep-alive
+   * is (the one keep-out check, ./keepOut.ts) and sent through the link's coalescer. Returns
+   * '' when sent, else why not (the ghost then shows the refused pose, its colliding link red).
+   */
+  jogTo(index: number, pulse: number): string {
+    const spec = this.deps.robot().sliders[index];
+    if (!spec) return '';
+    const { store } = this.deps;
+    const from = Array.from(store.pwm);
+    const to = [...from];
+    to[index] = pulse;
+    const refused = jogRefusal(this.deps.robot().motion, from, to);
+    if (refused) {
+      const servos = store.opts.arm.servos;
+      if (refused.joint)
+        this.deps.ghost?.refuse(
+          to.map((p, k) => angleFromPwm(p, servos[k]?.polarity ?? 1)),
+          refused.joint,
+        );
+      return `Not sent: ${refused.message}.`;
+    }
+    this.deps.ghost?.clearRefused();
+    this.deps.link().jog(spec.id, pulse);
+    return '';
   }
 
   /** Input `name` lets go: a joint no input holds any more is stopped at once. */
@@ -273,10 +312,8 @@ export class HoldJog {
       this.moving.set(index, { id: spec.id, by: 'joint' });
     }
     if (moves.length === 0) return;
-    if (motion && from.length === motion.ids.length && from.every(Number.isFinite)) {
-      const c = checkKeepOutMove(motion, from, to);
-      if (!c.ok) return this.refuse(`Stopped: ${c.message}.`);
-    }
+    const refused = jogRefusal(motion, from, to);
+    if (refused) return this.refuse(`Stopped: ${refused.message}.`);
     if (!this.deps.link().holdMoves(moves, this.opts.horizonMs))
       this.refuse('Stopped: the move was not sent.');
   }

@@ -154,6 +154,7 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
     },
     link: () => hud.link,
     robot: () => ({ sliders: robots.active.spec.sliders, motion: robots.active.motion }),
+    ghost: target,
   });
   const gamepad = new GamepadJog(hold, () => hud.link.emergencyStop(), {
     getGamepads: () => navigator.getGamepads?.() ?? [],

@@ -3,14 +3,13 @@
  * in degrees (millimetres for a prismatic axis) within the joint's limits (so the HUD never sends
  * an out-of-limit pulse). Dragging or arrow keys
  * publish `#IIIPppppTtttt!` (`#IIIA±ddd.ddTtttt!` for a servo that speaks angles), coalesced by ArmLink to ≤ 20 per second per servo. Disabled while
- * the data is stale or the broker is not connected. A jog that would take the hand (or a joint)
- * below the floor, or a link into a keep-out zone, is not sent, and says so. Each slider follows the arm when not in use.
+ * the data is stale or the broker is not connected. A slider's move is a hold of one target
+ * (HoldJog.jogTo, core/jog/): one that would take the hand (or a joint) below the floor, or a
+ * link into a keep-out zone, is not sent, and says so. Each slider follows the arm when not in use.
  * Hold-to-jog: the − / + beside each slider, the hold keys and a gamepad move a joint only while
- * held, at the chosen speed (./HoldJog.ts, ./GamepadJog.ts).
+ * held, at the chosen speed (core/jog/HoldJog.ts, core/jog/GamepadJog.ts).
  */
 import { useState } from 'react';
-import { checkKeepOutMove } from '@armtwin/motion';
-import { angleFromPwm } from '@armtwin/protocol';
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { JogSlider } from './JogSlider.tsx';
@@ -20,10 +19,9 @@ import { DEFAULT_HOLD_KEYS, keyLabel } from '../../../core/jog/holdJogMath.ts';
 import { TIP_AXES } from '../../../core/jog/tipHold.ts';
 
 export function JogPanel() {
-  const { store, link, session, robots, target, jog: holdJog, modes } = useHud();
+  const { store, link, session, robots, jog: holdJog, modes } = useHud();
   // The arm the sliders drive and show: the model copy in Model mode, else the arm.
   const driven = () => modes.driven(store);
-  const polarity = (k: number) => store.opts.arm.servos[k]?.polarity ?? 1;
   const { hold, gamepad } = holdJog;
   const servos = robots.active.spec.sliders;
   const snap = useSampled(() => {
@@ -44,31 +42,6 @@ export function JogPanel() {
   const holding = useSampled(() => ({ held: hold.held(), refusal: hold.refusal }), 100);
   const [speed, setSpeed] = useState(hold.speed);
 
-  /**
-   * Servo i to `pwm`, unless that pose would take the hand or a joint below the floor, or its
-   * path a link into a keep-out zone or onto another link.
-   */
-  const jog = (i: number, id: number, pwm: number) => {
-    const motion = robots.active.motion;
-    const from = Array.from(driven().pwm);
-    if (motion && from.length === motion.ids.length && from.every(Number.isFinite)) {
-      const to = [...from];
-      to[i] = pwm;
-      const c = checkKeepOutMove(motion, from, to);
-      if (!c.ok) {
-        // The ghost shows where the jog would have gone, the colliding link red.
-        if (c.joint)
-          target.refuse(
-            to.map((p, k) => angleFromPwm(p, polarity(k))),
-            c.joint,
-          );
-        return setRefusal(`Not sent: ${c.message}.`);
-      }
-    }
-    target.clearRefused();
-    setRefusal('');
-    link.jog(id, pwm);
-  };
   return (
     <section className="panel jog" aria-labelledby="jog-title">
       <h2 id="jog-title">Jog</h2>
@@ -91,7 +64,7 @@ export function JogPanel() {
           spec={spec}
           live={snap.live[i] ?? NaN}
           disabled={!snap.enabled}
-          onJog={(pwm) => jog(i, spec.id, pwm)}
+          onJog={(pwm) => setRefusal(hold.jogTo(i, pwm))}
           hold={{
             minus: (
               <HoldButton
