@@ -15,7 +15,8 @@ async function restricted(file: string, code: string): Promise<string[]> {
   return result!.messages.filter((m) => m.ruleId === 'no-restricted-imports').map((m) => m.message);
 }
 
-describe('apps/web layers', () => {
+// The first lint loads the TypeScript parser: seconds on a busy machine.
+describe('apps/web layers', { timeout: 60_000 }, () => {
   it('core imports neither scene/, ui/, React nor three.js', async () => {
     const found = await restricted(
       'core/store/Probe.ts',

@@ -28,6 +28,7 @@ import {
 import { encodeAngleMove, encodeGroup, MOVE_MS_MAX } from '@armtwin/protocol';
 import type { GhostSource } from '../store/viewSources.ts';
 import type { ArmStore } from '../store/ArmStore.ts';
+import type { ArmCommands } from '../link/ArmCommands.ts';
 
 export const CALIBRATION_STEPS = ['zero', 'direction', 'range', 'review'] as const;
 export type CalibrationStep = (typeof CALIBRATION_STEPS)[number];
@@ -44,9 +45,7 @@ const RECORD_EVERY_MS = 50;
 const round2 = (v: number) => Math.round(v * 100) / 100 + 0;
 
 /** What sends the wizard's frames: the arm link (`sendGroup` is false when nothing was sent). */
-export interface CalibrationLink {
-  sendGroup(frame: string): boolean;
-}
+export type CalibrationLink = Pick<ArmCommands, 'sendGroup'>;
 
 export class CalibrationSession implements GhostSource {
   /** The wizard is open: its ghost is drawn. */

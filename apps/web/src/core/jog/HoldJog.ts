@@ -15,6 +15,7 @@ import type { MotionRobot } from '@armtwin/motion';
 import { angleFromPwm } from '@armtwin/protocol';
 import { jogRefusal } from './keepOut.ts';
 import type { ArmStore } from '../store/ArmStore.ts';
+import type { ArmCommands } from '../link/ArmCommands.ts';
 import type { SliderSpec } from '../robots/robotSpec.ts';
 import { isTipAxis, tipHold, type TipAxis } from './tipHold.ts';
 import {
@@ -38,16 +39,14 @@ const isTyping = (t: EventTarget | null): boolean => {
   );
 };
 
-/** What jogging needs of the arm link (../link/ArmLink.ts). */
-export interface HoldLink {
+/**
+ * What jogging needs of the arm link (../link/ArmLink.ts); without `mayMove`, `command` decides
+ * whether this page may move the arm.
+ */
+export type HoldLink = Pick<ArmCommands, 'jog' | 'holdMoves' | 'stopServos'> & {
   readonly permissions: { readonly command: boolean };
-  /** Whether this page may move the arm now (its role, and who holds control); else `command`. */
   readonly mayMove?: boolean;
-  /** A slider's move, coalesced by the link. */
-  jog(id: number, pwm: number): void;
-  holdMoves(moves: ReadonlyArray<readonly [id: number, pwm: number]>, ms: number): boolean;
-  stopServos(ids: readonly number[]): boolean;
-}
+};
 
 export interface HoldJogDeps {
   store: ArmStore;

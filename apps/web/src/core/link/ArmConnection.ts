@@ -1,5 +1,5 @@
 /**
- * The arm link's connection (ArmLink, ./ArmLink.ts, adds the commands): one mqtt.js client over
+ * The arm link's connection (ArmLink, ./ArmLink.ts, holds one and adds the commands): one mqtt.js client over
  * WebSockets, its events (./clientEvents.ts), what it reads (./LinkInbox.ts), the broker it is on
  * (./BrokerTracker.ts), the deadman it holds, and this page's claims on the arm and on its model
  * copy, kept across reconnects. The client factory is injected (./MqttLike.ts), so a unit test
@@ -33,9 +33,18 @@ export const UNCHECKED_PERMISSIONS: LinkPermissions = { command: true, stop: tru
 /** The link's clock for the store and its commands: ms, `performance.now()`. */
 export const now = () => performance.now();
 
-export abstract class ArmConnection {
+/** What the connection calls back into its owner (ArmLink): the ping, and pending moves dropped. */
+export interface ConnectionHooks {
+  /** Every settings.pingIntervalMs while started. */
+  ping(): void;
+  /** On release and stop: the moves waiting to go out are dropped. */
+  dropPending(): void;
+}
+
+export class ArmConnection {
   readonly topics: ArmTopics;
-  protected client: MqttLike | null = null;
+  /** The mqtt.js client while started (replaced at each start), else null. */
+  client: MqttLike | null = null;
   private pingTimer: ReturnType<typeof setInterval> | undefined;
   private beatTimer: number | undefined;
   lastPublishError = '';
@@ -44,27 +53,28 @@ export abstract class ArmConnection {
   /** What this page may publish; nothing until `start`. */
   permissions: LinkPermissions = NO_PERMISSIONS;
   private events: LinkEvents = {};
-  protected connected = false;
+  connected = false;
   /** Who holds the real arm, and this page's claims on it (docs/protocol.md § Control). */
-  protected armClaim: ControlClaim;
+  armClaim: ControlClaim;
   /** The arm's model copy `{id}-model`: read, claimed and held in Model mode (§ Modes). */
-  protected readonly copy: ModelCopySide;
+  readonly copy: ModelCopySide;
   /**
    * Model / Shadow / Twin (../modes/modes.ts): which arm this page's commands drive. Every
    * command leaves through ArmLink's `publish`, which routes it by this, so no panel can bypass it.
    */
-  protected armMode: ArmMode = 'twin';
+  armMode: ArmMode = 'twin';
   private readonly brokers = new BrokerTracker();
   private readonly inbox: LinkInbox;
   /** The callback of every publish: a failure is kept for the Status panel. */
-  protected readonly onPublished = (err?: Error) => {
+  readonly onPublished = (err?: Error) => {
     if (err) this.lastPublishError = err.message;
   };
 
   constructor(
-    protected readonly store: ArmStore,
+    readonly store: ArmStore,
     readonly settings: HudSettings,
     private readonly connect: MqttConnect,
+    private readonly hooks: ConnectionHooks,
     private readonly intervals: IntervalTimers = NATIVE_INTERVALS,
   ) {
     this.topics = armTopics(settings.armId);
@@ -88,11 +98,6 @@ export abstract class ArmConnection {
       now,
     );
   }
-
-  /** The link's ping (ArmLink): every settings.pingIntervalMs while started. */
-  protected abstract ping(): void;
-  /** Drops the moves waiting to go out (ArmLink's coalescer): on release and stop. */
-  protected abstract dropPending(): void;
 
   /**
    * "Broker 2 of 2: ws://…" while connected with a list of several brokers, '' with one
@@ -145,7 +150,7 @@ export abstract class ArmConnection {
       authRefused: (message) => this.events.authRefused?.(message),
       message: (topic, payload) => this.inbox.onMessage(topic, payload),
     });
-    this.pingTimer = setInterval(() => this.ping(), s.pingIntervalMs);
+    this.pingTimer = setInterval(() => this.hooks.ping(), s.pingIntervalMs);
     if (deadman)
       this.beatTimer = this.intervals.setInterval(() => {
         if (!this.connected || !current()) return;
@@ -215,7 +220,7 @@ export abstract class ArmConnection {
    */
   release(): void {
     this.stopTimers();
-    this.dropPending();
+    this.hooks.dropPending();
     const client = this.client;
     this.client = null;
     if (!client) return;
@@ -234,7 +239,7 @@ export abstract class ArmConnection {
   stop(): void {
     if (this.permissions.deadman && this.connected) return this.release();
     this.stopTimers();
-    this.dropPending();
+    this.hooks.dropPending();
     this.client?.end(true);
     this.client = null;
     this.store.connection = 'idle';

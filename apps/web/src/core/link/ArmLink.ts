@@ -2,7 +2,8 @@
  * The HUD's MQTT link to one arm. Status messages go straight into the store (no React);
  * commands go out on `arm/{id}/control` at QoS 1. This file holds the commands: their routing
  * by mode (./commandRoute.ts), the jogs' coalescing and frames (./moveFrames.ts) and the
- * emergency stop; the connection they leave on is ./ArmConnection.ts.
+ * emergency stop. The connection they leave on (./ArmConnection.ts) is a part it holds, not a
+ * base class: the page reads the connection's figures through the getters below.
  */
 import { armTopics, EMERGENCY_STOP, encodeKms, encodePing, encodeStop } from '@armtwin/protocol';
 import type { ArmStore } from '../store/ArmStore.ts';
@@ -13,29 +14,104 @@ import type { MqttConnect } from './MqttLike.ts';
 import type { ControlClaim } from './ControlClaim.ts';
 import { commandTopic, stopArms, type ArmMode } from '../modes/modes.ts';
 import type { IntervalTimers } from './intervalTimers.ts';
-import { ArmConnection, now } from './ArmConnection.ts';
+import type { ArmCommands } from './ArmCommands.ts';
+import { ArmConnection, now, type LinkEvents } from './ArmConnection.ts';
+import type { ControlIdentity } from './ControlClaim.ts';
+import type { LinkTap } from './LinkInbox.ts';
+import type { GapTracker } from './GapTracker.ts';
+import type { LinkPermissions } from '../auth/roles.ts';
+import type { MqttLike } from './MqttLike.ts';
 import { moveAllowed, moveFrame, movesFrame } from './moveFrames.ts';
 import { claimUser, routeCommand } from './commandRoute.ts';
 
-export type { IntervalTimers };
-export type { LinkTap } from './LinkInbox.ts';
-export { UNCHECKED_PERMISSIONS, type LinkEvents } from './ArmConnection.ts';
+export type { IntervalTimers, LinkTap, LinkEvents };
+export { UNCHECKED_PERMISSIONS } from './ArmConnection.ts';
 
-export class ArmLink extends ArmConnection {
+export class ArmLink implements ArmCommands {
   private readonly coalescer: MoveCoalescer;
+  /** The MQTT client, the deadman, the claims, what is read: ./ArmConnection.ts. */
+  private readonly conn: ArmConnection;
   /** Bumped by every `$KMS` sent, so the Cartesian panel can match the reply. */
   kmsSent = 0;
 
   constructor(
-    store: ArmStore,
-    settings: HudSettings,
+    private readonly store: ArmStore,
+    readonly settings: HudSettings,
     connect: MqttConnect,
     intervals?: IntervalTimers,
   ) {
-    super(store, settings, connect, intervals);
+    this.conn = new ArmConnection(
+      store,
+      settings,
+      connect,
+      { ping: () => this.ping(), dropPending: () => this.coalescer.cancelAll() },
+      intervals,
+    );
     this.coalescer = new MoveCoalescer((id, pwm) => this.sendMove(id, pwm), {
       intervalMs: settings.jogIntervalMs,
     });
+  }
+
+  /** Connects with what the role may publish (ArmConnection.start). */
+  start(permissions?: LinkPermissions, events?: LinkEvents, who?: ControlIdentity): void {
+    this.conn.start(permissions, events, who);
+  }
+
+  /** Lets go of the arm (the deadman's `0`) and disconnects: for pagehide. */
+  release(): void {
+    this.conn.release();
+  }
+
+  stop(): void {
+    this.conn.stop();
+  }
+
+  /** Adds a reader of this link's messages. */
+  tap(t: LinkTap): void {
+    this.conn.tap(t);
+  }
+
+  get topics() {
+    return this.conn.topics;
+  }
+
+  /** What this page may publish; nothing until `start`. */
+  get permissions(): LinkPermissions {
+    return this.conn.permissions;
+  }
+
+  /** Broker connection gaps (Status panel). */
+  get gap(): GapTracker {
+    return this.conn.gap;
+  }
+
+  get lastPublishError(): string {
+    return this.conn.lastPublishError;
+  }
+
+  get brokerInUse(): string {
+    return this.conn.brokerInUse;
+  }
+
+  get brokerMoves(): number {
+    return this.conn.brokerMoves;
+  }
+
+  /** The client while started (the debug hook's; a test plays a tampered page with it). */
+  get client(): MqttLike | null {
+    return this.conn.client;
+  }
+
+  private get armMode(): ArmMode {
+    return this.conn.armMode;
+  }
+
+  private get copy() {
+    return this.conn.copy;
+  }
+
+  private get onPublished() {
+    return this.conn.onPublished;
   }
 
   /**
@@ -72,7 +148,7 @@ export class ArmLink extends ArmConnection {
 
   /** Who holds the driven arm (the copy in Model mode), and this page's claims on it. */
   get control(): ControlClaim {
-    return this.armMode === 'model' ? this.copy.claim : this.armClaim;
+    return this.armMode === 'model' ? this.copy.claim : this.conn.armClaim;
   }
 
   get mode(): ArmMode {
@@ -95,9 +171,9 @@ export class ArmLink extends ArmConnection {
     this.coalescer.cancelAll();
     const client = this.client;
     const was = this.armMode;
-    this.armMode = mode;
+    this.conn.armMode = mode;
     this.copy.store = copy;
-    if (!client || !this.connected) return;
+    if (!client || !this.conn.connected) return;
     if (mode === 'model') this.copy.enter(client, this.permissions.deadman);
     else if (was === 'model') this.copy.leave(client, this.permissions.deadman);
   }
@@ -112,7 +188,7 @@ export class ArmLink extends ArmConnection {
     if (!client || !allowed) return false;
     const route = routeCommand(this.settings.armId, this.armMode, this.control, payload, isCommand);
     if (route.to === null) {
-      this.lastPublishError = route.refused;
+      this.conn.lastPublishError = route.refused;
       return false;
     }
     if (isCommand) this.store.counters.published++;
@@ -191,7 +267,7 @@ export class ArmLink extends ArmConnection {
     if (!client || !this.permissions.stop) return false;
     // The stop wins over every mode: the real arm always, and the copy too in Model mode.
     for (const arm of stopArms(this.settings.armId, this.armMode)) {
-      const claim = arm === this.settings.armId ? this.armClaim : this.copy.claim;
+      const claim = arm === this.settings.armId ? this.conn.armClaim : this.copy.claim;
       const to = commandTopic(arm, 'twin', claimUser(claim));
       this.store.counters.published++;
       if (arm === this.settings.armId) this.store.noteControl(EMERGENCY_STOP, now());
@@ -201,16 +277,13 @@ export class ArmLink extends ArmConnection {
     return true;
   }
 
-  protected ping(): void {
+  /** A `$PNG` (ArmConnection's timer calls it). */
+  private ping(): void {
     if (this.store.connection !== 'connected' || !this.client || !this.permissions.command) return;
     // Pings measure the real arm's round trip: none in Model (the arm's control topics stay
     // silent while rehearsing) or Shadow (no commands at all).
     if (this.armMode !== 'twin') return;
     const seq = this.store.ping.send(now());
     this.publish(encodePing(seq), false);
-  }
-
-  protected dropPending(): void {
-    this.coalescer.cancelAll();
   }
 }

@@ -15,7 +15,7 @@ import {
   type Plan,
 } from '@armtwin/motion';
 import { encodeGroup, encodeStop } from '@armtwin/protocol';
-import type { ArmLink } from '../link/ArmLink.ts';
+import type { ArmCommands } from '../link/ArmCommands.ts';
 import type { ArmStore } from '../store/ArmStore.ts';
 import { hudExecuteOptions } from './executeOptions.ts';
 
@@ -23,6 +23,9 @@ export type RunState = 'idle' | 'running' | 'paused' | 'done' | 'failed' | 'stop
 
 /** How often the loop looks at the arm, ms (the plan streams every `stepMs`, 100). */
 export const RUN_TICK_MS = 10;
+
+/** What a run needs of the arm link: its groups out, and the emergency stop's call. */
+export type PlanLink = Pick<ArmCommands, 'sendGroup' | 'stopListeners'>;
 
 export class PlanRunner {
   state: RunState = 'idle';
@@ -37,7 +40,7 @@ export class PlanRunner {
   pauses = 0;
   private exec: PlanExecution | null = null;
   private timer: ReturnType<typeof setInterval> | undefined;
-  private link: ArmLink | null = null;
+  private link: PlanLink | null = null;
   private lastSent: number[] = [];
   private readonly onStop = () => this.cancel('stopped: emergency stop');
   private readonly listeners = new Set<(plan: Plan) => void>();
@@ -60,7 +63,7 @@ export class PlanRunner {
     return this.state === 'running' || this.state === 'paused';
   }
 
-  start(link: ArmLink, store: ArmStore, robot: MotionRobot, plan: Plan, spec: MotionSpec): void {
+  start(link: PlanLink, store: ArmStore, robot: MotionRobot, plan: Plan, spec: MotionSpec): void {
     this.cancel('');
     const options = hudExecuteOptions(robot, plan, store.expectedStateIntervalMs);
     this.exec = new PlanExecution(robot, plan, spec, options);
