@@ -5,9 +5,9 @@
 import './noEval.ts';
 import { StrictMode } from 'react';
 import { createRoot } from 'react-dom/client';
-import { createHud } from './ui/hud/createHud.ts';
+import { createHud } from './ui/app/createHud.ts';
 import { HudContext, type Hud } from './ui/hud/HudContext.ts';
-import { App } from './ui/hud/App.tsx';
+import { App } from './ui/app/App.tsx';
 import 'uplot/dist/uPlot.min.css';
 import './ui/styles.css';
 

@@ -21,13 +21,13 @@ import { PlanPanel } from '../panels/Plan/PlanPanel.tsx';
 import { CameraPanel } from '../panels/Camera/CameraPanel.tsx';
 import { CalibrationPanel } from '../panels/Calibration/CalibrationPanel.tsx';
 import { ImportPanel } from '../panels/Import/ImportPanel.tsx';
-import { PanelTabs } from './PanelTabs.tsx';
-import { SheetHandle } from './SheetHandle.tsx';
-import type { PanelTab } from './sheetTabs.ts';
+import { PanelTabs } from '../hud/PanelTabs.tsx';
+import { SheetHandle } from '../hud/SheetHandle.tsx';
+import type { PanelTab } from '../hud/sheetTabs.ts';
 import { ModeBar } from '../modes/ModeBar.tsx';
 import { SHADOW_REASON } from '../../core/modes/modes.ts';
-import { useHud } from './HudContext.ts';
-import { useSampled } from './useSampled.ts';
+import { useHud } from '../hud/HudContext.ts';
+import { useSampled } from '../hud/useSampled.ts';
 import './layout.css';
 
 const SHEET_ID = 'hud-sheet';

@@ -40,7 +40,7 @@ import { CameraScreens } from '../../scene/CameraScreens.ts';
 import { CalibrationSession } from '../../core/calibration/CalibrationSession.ts';
 import { HoldJog } from '../../core/jog/HoldJog.ts';
 import { GamepadJog } from '../../core/jog/GamepadJog.ts';
-import type { Hud, PlanTools } from './HudContext.ts';
+import type { Hud, PlanTools } from '../hud/HudContext.ts';
 import { installDebugHook } from './debugHook.ts';
 import { ModeSwitch } from '../../core/modes/ModeSwitch.ts';
 import { SiblingFeed } from '../../core/modes/SiblingFeed.ts';

@@ -12,7 +12,7 @@ import type { Session } from '../../core/auth/Session.ts';
 import type { ActiveRobot } from '../../core/robots/ActiveRobot.ts';
 import type { FleetLink } from '../../core/robots/FleetLink.ts';
 import { historyProbe } from '../panels/History/probe.ts';
-import type { Hud } from './HudContext.ts';
+import type { Hud } from '../hud/HudContext.ts';
 import { FallbackSceneView } from '../../scene/render/FallbackSceneView.ts';
 
 export interface DebugHook {
