@@ -7,6 +7,9 @@
 import { ROLES, type Role } from '@armtwin/auth/roles';
 import { CONTROL_USER_PATTERN } from '@armtwin/protocol';
 import { guestName, type ControlIdentity } from '../link/ControlClaim.ts';
+import type { LinkPermissions } from '../link/permissions.ts';
+
+export { NO_PERMISSIONS, type LinkPermissions } from '../link/permissions.ts';
 
 /**
  * Where the role came from: `server` = `/api/whoami` with our credentials; `demo` = the
@@ -23,16 +26,6 @@ export interface Access {
   name: string;
 }
 
-/** What the page may do, as ArmLink applies it. */
-export interface LinkPermissions {
-  /** Publish on `arm/{id}/control`: jog, Move, `$PNG` pings. */
-  command: boolean;
-  /** Publish `#255PDST!`. */
-  stop: boolean;
-  /** Hold `arm/{id}/operator` (retained `1`, last will `0`, short keep-alive). */
-  deadman: boolean;
-}
-
 export interface Permissions extends LinkPermissions {
   /** Stop is offered although nobody confirmed this account may publish. */
   stopUnconfirmed: boolean;
@@ -41,9 +34,6 @@ export interface Permissions extends LinkPermissions {
   /** The emergency stop button's text when `stop` is false. */
   stopRefusal: string;
 }
-
-/** Before the role is known nothing publishes. */
-export const NO_PERMISSIONS: LinkPermissions = { command: false, stop: false, deadman: false };
 
 export const VIEWER_REASON =
   'Signed in as viewer: controls are disabled. Ask for an operator account to move the arm.';

@@ -9,7 +9,7 @@ import { armTopics, OPERATOR_BEAT_MS, type ArmTopics } from '@armtwin/protocol';
 import type { ArmStore } from '../store/ArmStore.ts';
 import type { HudSettings } from '../config/settings.ts';
 import { GapTracker } from './GapTracker.ts';
-import { NO_PERMISSIONS, type LinkPermissions } from '../auth/roles.ts';
+import { NO_PERMISSIONS, type LinkPermissions } from './permissions.ts';
 import { connectOptions } from './connectOptions.ts';
 import type { MqttConnect, MqttLike } from './MqttLike.ts';
 import { ControlClaim, guestName, type ControlIdentity } from './ControlClaim.ts';

@@ -19,7 +19,7 @@ import { ArmConnection, now, type LinkEvents } from './ArmConnection.ts';
 import type { ControlIdentity } from './ControlClaim.ts';
 import type { LinkTap } from './LinkInbox.ts';
 import type { GapTracker } from './GapTracker.ts';
-import type { LinkPermissions } from '../auth/roles.ts';
+import type { LinkPermissions } from './permissions.ts';
 import type { MqttLike } from './MqttLike.ts';
 import { moveAllowed, moveFrame, movesFrame } from './moveFrames.ts';
 import { claimUser, routeCommand } from './commandRoute.ts';

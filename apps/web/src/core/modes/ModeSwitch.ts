@@ -2,12 +2,12 @@
  * The page's Model / Shadow / Twin state (./modes.ts) as a plain object: the mode of each arm
  * (kept in the URL's `?mode=` for the selected arm and in sessionStorage per arm), the model
  * copy's store (its status, drawn beside the arm), and the switch itself: it tells the arm link
- * (which routes every command by it, ../mqtt/ArmLink.ts) and, into Model, asks `armtwin up` to
+ * (which routes every command by it, ../link/ArmLink.ts) and, into Model, asks `armtwin up` to
  * start the copy at the real arm's pose. Leaving Model leaves the copy running: the server stops
  * it once idle (docs/protocol.md § Modes). Panels sample `mode`, `note`.
  */
-import type { ArmLink } from '../link/ArmLink.ts';
 import { ArmStore } from '../store/ArmStore.ts';
+import type { HudSettings } from '../config/settings.ts';
 import { defaultMode, modelArmId, parseMode, type ArmMode } from './modes.ts';
 import { poseBody, startModelCopy, type ModelCopyResult } from './modelCopy.ts';
 
@@ -17,6 +17,13 @@ export interface ModeSwitchDeps {
   replaceUrl(url: string): void;
   storage: Pick<Storage, 'getItem' | 'setItem'> | null;
   startCopy?: typeof startModelCopy;
+}
+
+/** What the switch needs of the arm link (../link/ArmLink.ts), which routes commands by the mode. */
+export interface ModeLink {
+  readonly settings: HudSettings;
+  readonly permissions: { readonly command: boolean };
+  setMode(mode: ArmMode, copy: ArmStore | null): void;
 }
 
 const storageKey = (armId: string) => `armtwin.mode.${armId}`;
@@ -38,7 +45,7 @@ export class ModeSwitch {
   noteBad = false;
   /** Bumped at every switch (the Plan panel keeps a rehearsal only for the mode it ran in). */
   version = 0;
-  private link: ArmLink | null = null;
+  private link: ModeLink | null = null;
   private store: ArmStore | null = null;
   constructor(private readonly deps: ModeSwitchDeps) {}
 
@@ -57,7 +64,7 @@ export class ModeSwitch {
    * A new arm link (page start, another arm, a reconnect), once the role is known: the arm's
    * mode is applied to it.
    */
-  attach(link: ArmLink, store: ArmStore): void {
+  attach(link: ModeLink, store: ArmStore): void {
     this.link = link;
     this.store = store;
     this.mode = null;
@@ -94,7 +101,7 @@ export class ModeSwitch {
   }
 
   /** The copy at the real arm's last reported pose (retried while none is known yet, ≤ 5 s). */
-  private async startCopy(link: ArmLink, store: ArmStore): Promise<void> {
+  private async startCopy(link: ModeLink, store: ArmStore): Promise<void> {
     const ids = store.opts.arm.servos.map((s) => s.id);
     let pulses = poseBody(ids, store.pwm);
     for (let i = 0; i < 25 && !pulses && this.link === link; i++) {
