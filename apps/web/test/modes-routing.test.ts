@@ -11,7 +11,7 @@ import {
   modelArmId,
   parseMode,
   stopArms,
-} from '../src/core/modes/modes.ts';
+} from '../src/core/link/modes.ts';
 import { poseBody } from '../src/core/modes/modelCopy.ts';
 import { queryWithMode } from '../src/core/modes/ModeSwitch.ts';
 import { ArmStore } from '../src/core/store/ArmStore.ts';

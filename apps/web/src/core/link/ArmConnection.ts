@@ -14,7 +14,7 @@ import { connectOptions } from './connectOptions.ts';
 import type { MqttConnect, MqttLike } from './MqttLike.ts';
 import { ControlClaim, guestName, type ControlIdentity } from './ControlClaim.ts';
 import { ModelCopySide } from './ModelCopySide.ts';
-import { modelArmId, type ArmMode } from '../modes/modes.ts';
+import { modelArmId, type ArmMode } from './modes.ts';
 import { NATIVE_INTERVALS, type IntervalTimers } from './intervalTimers.ts';
 import { BrokerTracker } from './BrokerTracker.ts';
 import { wireClient } from './clientEvents.ts';

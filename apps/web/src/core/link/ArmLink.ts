@@ -12,7 +12,7 @@ import { MoveCoalescer } from './MoveCoalescer.ts';
 import { flushNow } from './flushNow.ts';
 import type { MqttConnect } from './MqttLike.ts';
 import type { ControlClaim } from './ControlClaim.ts';
-import { commandTopic, stopArms, type ArmMode } from '../modes/modes.ts';
+import { commandTopic, stopArms, type ArmMode } from './modes.ts';
 import type { IntervalTimers } from './intervalTimers.ts';
 import type { ArmCommands } from './ArmCommands.ts';
 import { ArmConnection, now, type LinkEvents } from './ArmConnection.ts';

@@ -6,7 +6,7 @@
  */
 import { armTopics, auditTopic, holderTopic } from '@armtwin/protocol';
 import type { ArmStore } from '../store/ArmStore.ts';
-import { modelArmId } from '../modes/modes.ts';
+import { modelArmId } from './modes.ts';
 import type { ControlClaim } from './ControlClaim.ts';
 import type { MqttLike } from './MqttLike.ts';
 

@@ -4,7 +4,7 @@
  * and only while nobody else holds the driven arm, unless it is stops only. Pure: ArmLink
  * (./ArmLink.ts) publishes what this allows and says why it did not.
  */
-import { commandTopic, type ArmMode } from '../modes/modes.ts';
+import { commandTopic, type ArmMode } from './modes.ts';
 import type { ControlClaim } from './ControlClaim.ts';
 
 /** A payload of stops only: sent whoever holds the arm (the e-stop wins over everything). */

@@ -8,7 +8,7 @@
  */
 import { ArmStore } from '../store/ArmStore.ts';
 import type { HudSettings } from '../config/settings.ts';
-import { defaultMode, modelArmId, parseMode, type ArmMode } from './modes.ts';
+import { defaultMode, modelArmId, parseMode, type ArmMode } from '../link/modes.ts';
 import { poseBody, startModelCopy, type ModelCopyResult } from './modelCopy.ts';
 
 export interface ModeSwitchDeps {

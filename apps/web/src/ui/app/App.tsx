@@ -25,7 +25,7 @@ import { PanelTabs } from '../hud/PanelTabs.tsx';
 import { SheetHandle } from '../hud/SheetHandle.tsx';
 import type { PanelTab } from '../hud/sheetTabs.ts';
 import { ModeBar } from '../modes/ModeBar.tsx';
-import { SHADOW_REASON } from '../../core/modes/modes.ts';
+import { SHADOW_REASON } from '../../core/link/modes.ts';
 import { useHud } from '../hud/HudContext.ts';
 import { useSampled } from '../hud/useSampled.ts';
 import './layout.css';

@@ -6,7 +6,7 @@
  */
 import { useHud } from '../hud/HudContext.ts';
 import { useSampled } from '../hud/useSampled.ts';
-import { ARM_MODES, modelArmId, SHADOW_REASON } from '../../core/modes/modes.ts';
+import { ARM_MODES, modelArmId, SHADOW_REASON } from '../../core/link/modes.ts';
 
 const NO_COPY = 'This arm cannot have a model copy (a copy itself, or an id over 26 characters)';
 import './modes.css';

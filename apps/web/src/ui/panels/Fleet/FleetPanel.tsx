@@ -10,7 +10,7 @@ import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { fleetList, healthSummary, type FleetArm } from '../../../core/robots/fleet.ts';
 import { ControlBar } from './ControlBar.tsx';
-import { isModelArmId, MODEL_ARM_SUFFIX } from '../../../core/modes/modes.ts';
+import { isModelArmId, MODEL_ARM_SUFFIX } from '../../../core/link/modes.ts';
 
 const onlineWord = (o: boolean | null) =>
   o === true ? 'online' : o === false ? 'offline' : 'unknown';
