@@ -1,5 +1,5 @@
 /**
- * Mounts the HUD: the page's objects come from ./hud/createHud.ts (the one composition root);
+ * Mounts the HUD: the page's objects come from ./ui/app/createHud.ts (the one composition root);
  * React draws the panels over the 3D view, re-mounting them when the robot changes.
  */
 import './noEval.ts';

@@ -1,5 +1,5 @@
 /**
- * The fleet list's state (src/robots/fleet.ts), the retained profile announcement, motion
+ * The fleet list's state (src/core/robots/fleet.ts), the retained profile announcement, motion
  * feedback as untrusted input, the arm switch's URL, and the HUD's pose-checking thresholds.
  */
 import fs from 'node:fs';

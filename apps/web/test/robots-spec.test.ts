@@ -1,5 +1,5 @@
 /**
- * Profile → what the HUD needs (src/robots/robotSpec.ts): the store's arm, the jog sliders and
+ * Profile → what the HUD needs (src/core/robots/robotSpec.ts): the store's arm, the jog sliders and
  * the servo → URDF joint map, for armtwin5 (must equal the HUD's old hard-wired DEMO_ARM
  * behaviour) and track6 (7 axes, a prismatic track, an offset, a −1 polarity). The joint map
  * is checked end to end: URDF joints set through it (urdf-loader) put track6's `tcp` link where

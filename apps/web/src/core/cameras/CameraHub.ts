@@ -4,7 +4,7 @@
  * § Cameras), read on the arm link's client (the link is rebuilt for each arm and log-in, so the
  * list follows the selected arm and the page's credentials). Plain state, no React: panels
  * sample `list`, `version` and `rejected`. Its decoders (./CameraDecoders.ts) play each camera
- * only while it is shown. Built and wired in src/hud/createHud.ts.
+ * only while it is shown. Built and wired in src/ui/app/createHud.ts.
  */
 import {
   ANNOUNCEMENT_REJECTIONS,

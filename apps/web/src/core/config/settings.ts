@@ -42,7 +42,7 @@ export interface HudSettings {
   deadmanKeepAliveS: number;
   /**
    * What the user says their role is, used only when `/api/whoami` cannot answer (a Mosquitto
-   * deployment without `npm start`); '' = unknown, treated as viewer (src/auth/roles.ts).
+   * deployment without `npm start`); '' = unknown, treated as viewer (src/core/auth/roles.ts).
    */
   roleHint: '' | 'viewer' | 'operator';
 }

@@ -1,7 +1,7 @@
 /**
  * Hold-to-jog of the tool tip along x, y or z of the arm's base frame (pure): one keep-alive's
  * pose, the tip's position now plus rate × speed (mm/s) × the horizon on each held axis, its
- * pitch kept, solved through the IK as the Cartesian panel does (../Cartesian/solveTarget.ts:
+ * pitch kept, solved through the IK as the Cartesian panel does (../cartesian/solveTarget.ts:
  * the §4 solver on the 5-axis arm, the planner's numeric IK otherwise, then the floor and the
  * keep-out zones). The page sends the solution as timed joint moves; docs/protocol.md § Hold-to-jog.
  */

@@ -20,7 +20,7 @@ import { BrokerTracker } from './BrokerTracker.ts';
 import { wireClient } from './clientEvents.ts';
 import { LinkInbox, type LinkTap } from './LinkInbox.ts';
 
-/** What the page hears from the link besides data (src/auth/Session.ts listens). */
+/** What the page hears from the link besides data (src/core/auth/Session.ts listens). */
 export interface LinkEvents {
   connected?(): void;
   /** CONNACK 4/5: the broker refused these credentials (or none); reconnecting has stopped. */
@@ -59,7 +59,7 @@ export class ArmConnection {
   /** The arm's model copy `{id}-model`: read, claimed and held in Model mode (§ Modes). */
   readonly copy: ModelCopySide;
   /**
-   * Model / Shadow / Twin (../modes/modes.ts): which arm this page's commands drive. Every
+   * Model / Shadow / Twin (./modes.ts): which arm this page's commands drive. Every
    * command leaves through ArmLink's `publish`, which routes it by this, so no panel can bypass it.
    */
   armMode: ArmMode = 'twin';
@@ -113,7 +113,7 @@ export class ArmConnection {
   }
 
   /**
-   * Connects. `permissions` (from the page's role, src/auth/roles.ts) decide what may be
+   * Connects. `permissions` (from the page's role, src/core/auth/roles.ts) decide what may be
    * published; with `deadman` the page holds `arm/{id}/operator`: a short keep-alive
    * (settings.deadmanKeepAliveS), a retained `1` at every connect and every OPERATOR_BEAT_MS
    * after (the lease a controller watches, docs/protocol.md), and a last will `0`.

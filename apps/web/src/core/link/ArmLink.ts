@@ -116,7 +116,7 @@ export class ArmLink implements ArmCommands {
 
   /**
    * A retained message at QoS 1 on a topic an operator may write besides the arm's control (a
-   * camera's calibration, src/cameras/CameraHub.ts); false when not sent (no client, or a role
+   * camera's calibration, src/core/cameras/CameraHub.ts); false when not sent (no client, or a role
    * that may not command).
    */
   publishRetained(topic: string, payload: string): boolean {

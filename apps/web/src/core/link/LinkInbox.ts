@@ -11,7 +11,7 @@ import type { ModelCopySide } from './ModelCopySide.ts';
 import type { MqttLike } from './MqttLike.ts';
 
 /**
- * Another reader of this link's client (the cameras of the arm, src/cameras/CameraHub.ts): its
+ * Another reader of this link's client (the cameras of the arm, src/core/cameras/CameraHub.ts): its
  * filter is subscribed at every connect, with the link's log-in; matching messages go to it.
  */
 export interface LinkTap {

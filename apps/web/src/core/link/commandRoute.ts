@@ -1,6 +1,6 @@
 /**
  * Where a command from the page goes (docs/protocol.md § Modes, § Control): routed by the mode
- * (../modes/modes.ts `commandTopic`): to the arm in Twin, to its copy in Model, nowhere in Shadow;
+ * (./modes.ts `commandTopic`): to the arm in Twin, to its copy in Model, nowhere in Shadow;
  * and only while nobody else holds the driven arm, unless it is stops only. Pure: ArmLink
  * (./ArmLink.ts) publishes what this allows and says why it did not.
  */

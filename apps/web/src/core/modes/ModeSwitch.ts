@@ -1,5 +1,5 @@
 /**
- * The page's Model / Shadow / Twin state (./modes.ts) as a plain object: the mode of each arm
+ * The page's Model / Shadow / Twin state (../link/modes.ts) as a plain object: the mode of each arm
  * (kept in the URL's `?mode=` for the selected arm and in sessionStorage per arm), the model
  * copy's store (its status, drawn beside the arm), and the switch itself: it tells the arm link
  * (which routes every command by it, ../link/ArmLink.ts) and, into Model, asks `armtwin up` to

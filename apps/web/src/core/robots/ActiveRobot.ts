@@ -12,7 +12,7 @@ import type { ArmStore } from '../store/ArmStore.ts';
 import { DEFAULT_PROFILE, PROFILE_WAIT_MS } from './defaultProfile.ts';
 import { robotSpec, type RobotSpec } from './robotSpec.ts';
 
-/** Where a robot is shown: the 3D view and the replay (wired in src/hud/createHud.ts). */
+/** Where a robot is shown: the 3D view and the replay (wired in src/ui/app/createHud.ts). */
 export interface RobotView {
   /**
    * Shows `spec`'s robot, replacing the one shown: its URDF (`urdfUrl`, absolute), posed

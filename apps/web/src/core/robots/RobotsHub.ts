@@ -3,7 +3,7 @@
  * requests and feedback) and the active robot (the selected arm's profile → store, view,
  * planner). `switched` follows the Connection panel, the log-in and the fleet list when the page
  * moves to another arm or broker: a new broker or user gets a new fleet link, and the feedback
- * listeners carry over to it. Built and wired in src/hud/createHud.ts.
+ * listeners carry over to it. Built and wired in src/ui/app/createHud.ts.
  */
 import type { HudSettings } from '../config/settings.ts';
 import type { ArmStore } from '../store/ArmStore.ts';

@@ -3,7 +3,7 @@
  * (the stop in the header, the panels in asides, the phone's tab bar in a nav). On a wide screen
  * the panels stand in three columns; on a phone or a narrow tablet (./layout.css) the 3D view keeps
  * the top of the screen, the stop stays on it, and the panels fold into a bottom sheet raised one
- * tab at a time from the tab bar (./sheetTabs.ts).
+ * tab at a time from the tab bar (../hud/sheetTabs.ts).
  */
 import { useEffect, useState, type ReactNode } from 'react';
 import { JogPanel } from '../panels/Jog/JogPanel.tsx';

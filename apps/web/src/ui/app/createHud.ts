@@ -21,7 +21,11 @@ import { Viewer } from '../../scene/Viewer.ts';
 import { WorkerViewer } from '../../scene/render/WorkerViewer.ts';
 import type { SceneView } from '../../scene/SceneView.ts';
 import { FallbackSceneView } from '../../scene/render/FallbackSceneView.ts';
-import { canRenderOffscreen, chooseRenderThread, fallbackChoice } from '../../core/config/renderThread.ts';
+import {
+  canRenderOffscreen,
+  chooseRenderThread,
+  fallbackChoice,
+} from '../../core/config/renderThread.ts';
 import { ReplayPlayer } from '../../core/replay/ReplayPlayer.ts';
 import { Session } from '../../core/auth/Session.ts';
 import { fetchWhoami } from '../../core/auth/whoami.ts';
@@ -59,7 +63,7 @@ export interface HudPage {
 
 /**
  * mqtt.js for both of the page's clients (the arm link and the fleet link), over the settings'
- * broker list (../mqtt/brokerConnect.ts).
+ * broker list (../../core/link/brokerConnect.ts).
  */
 const connect = (url: string, opts: ConnectOptions) => brokerConnect(url, opts);
 

@@ -1,4 +1,4 @@
-/** The plain objects every panel reads: built once in ./createHud.ts, handed down by context. */
+/** The plain objects every panel reads: built once in ../app/createHud.ts, handed down by context. */
 import { createContext, useContext } from 'react';
 import type { ArmStore } from '../../core/store/ArmStore.ts';
 import type { TargetPreview } from '../../core/store/TargetPreview.ts';

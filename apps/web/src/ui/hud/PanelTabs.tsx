@@ -1,5 +1,5 @@
 /**
- * The tab bar of the phone and narrow-tablet layout (hidden on a wide screen, ./layout.css): one
+ * The tab bar of the phone and narrow-tablet layout (hidden on a wide screen, ../app/layout.css): one
  * button per tab of ./sheetTabs.ts raises the bottom sheet on that tab's panels, or lowers it when
  * that tab is already open; a swipe up on the bar raises the sheet, a swipe down lowers it.
  */

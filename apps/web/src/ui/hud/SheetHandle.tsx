@@ -1,5 +1,5 @@
 /**
- * The bottom sheet's grab handle (phone and narrow-tablet layout only, ./layout.css): a tap or a
+ * The bottom sheet's grab handle (phone and narrow-tablet layout only, ../app/layout.css): a tap or a
  * swipe down lowers the sheet, giving the 3D view the screen; a swipe up keeps it raised.
  */
 import { swipeSheet, type PanelTab } from './sheetTabs.ts';

@@ -2,7 +2,7 @@
  * The phone and narrow-tablet layout's tab bar (./PanelTabs.tsx): which tab shows which panels in
  * the bottom sheet, one tab open at a time, and what a swipe on the sheet's handle or the tab bar
  * means. Pure: no DOM, no React. On a wide screen every panel is shown and the tab bar is hidden
- * (./layout.css).
+ * (../app/layout.css).
  */
 
 /** The tabs, in the bar's order: `id` keys the panels' slots, `label` is the button's name. */

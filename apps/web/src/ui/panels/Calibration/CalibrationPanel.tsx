@@ -1,8 +1,8 @@
 /**
  * Calibrate: a folded panel, shown only for an arm with bus servos (profile `units: "angle"`),
- * holding the bus arm's torque switch and the calibration wizard (./CalibrationSession.ts) for
+ * holding the bus arm's torque switch and the calibration wizard (../../../core/calibration/CalibrationSession.ts) for
  * one joint at a time: zero, direction, travel, then the result saved to the robot's profile
- * through `armtwin up` (./saveCalibration.ts). The ghost shows each step's pose while the panel
+ * through `armtwin up` (../../../core/calibration/saveCalibration.ts). The ghost shows each step's pose while the panel
  * is open. An operator's right; the emergency stop stays where it is and wins over any jog.
  */
 import { useEffect, useState } from 'react';

@@ -1,8 +1,8 @@
 /**
- * Cameras: every camera announced for the selected arm (PROTOCOL.md §7, src/cameras/CameraHub.ts),
+ * Cameras: every camera announced for the selected arm (PROTOCOL.md §7, src/core/cameras/CameraHub.ts),
  * each a `Camera <label>` region showing the canvas its decoder draws into (outside React). Folds
  * away like the Connection panel; folded, a camera decodes only where the 3D view still shows it
- * (src/cameras/CameraDecoders.ts).
+ * (src/core/cameras/CameraDecoders.ts).
  */
 import './camera.css';
 import { useHud } from '../../hud/HudContext.ts';

@@ -1,6 +1,6 @@
 /**
  * One camera: a region named `Camera <label>` (the label is text only), the canvas its decoder
- * draws into (src/cameras/CameraDecoders.ts, outside React; this view only hosts it), and a line
+ * draws into (src/core/cameras/CameraDecoders.ts, outside React; this view only hosts it), and a line
  * sampled four times a second: the age of the last frame, or "camera offline since HH:MM:SS"
  * while the stream is gone. For an operator, the calibration below it (./Calibration.tsx).
  */

@@ -9,7 +9,11 @@
 import { useEffect, useRef, useState } from 'react';
 import type { ThermalModelAnswer } from '@armtwin/api';
 import { authHeaders } from '../../../core/auth/whoami.ts';
-import { applyThermalFit, resetThermalFit, THERMAL_FIT_START } from '../../../core/store/thermalFit.ts';
+import {
+  applyThermalFit,
+  resetThermalFit,
+  THERMAL_FIT_START,
+} from '../../../core/store/thermalFit.ts';
 import { HistoryApi } from '../History/historyApi.ts';
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';

@@ -1,7 +1,7 @@
 /**
  * The Jog panel's folded gamepad section: which gamepad is in use, whether its enabling button
  * is held, and the mapping (sticks → joints, enabling button, stop button), editable and saved in
- * localStorage (./gamepadMapping.ts).
+ * localStorage (../../../core/jog/gamepadMapping.ts).
  */
 import { useState } from 'react';
 import { useSampled } from '../../hud/useSampled.ts';

@@ -1,6 +1,6 @@
 /**
  * A hold-to-move button (− or + of one joint): the joint moves while a pointer or finger holds
- * it down, and stops when it is lifted, cancelled or leaves the button (./HoldJog.ts). At least
+ * it down, and stops when it is lifted, cancelled or leaves the button (../../../core/jog/HoldJog.ts). At least
  * 44 px square, for a finger.
  */
 import type { HoldJog, JogTarget } from '../../../core/jog/HoldJog.ts';

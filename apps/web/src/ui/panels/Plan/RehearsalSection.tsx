@@ -3,7 +3,7 @@
  * in Model mode on the arm's copy, its trajectory is kept as the rehearsal and `Run on arm`
  * switches to Twin and runs the same waypoints on the real arm (the control claim holds as for
  * any move); once that run ends, predicted vs actual: each servo's largest and mean tracking
- * error against the rehearsal. Samples the recorder (./RunRecorder.ts); no high-rate state.
+ * error against the rehearsal. Samples the recorder (../../../core/plan/RunRecorder.ts); no high-rate state.
  */
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';

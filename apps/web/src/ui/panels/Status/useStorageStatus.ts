@@ -25,7 +25,7 @@ export function useStorageStatus(): StorageStatus {
   useEffect(() => {
     let alive = true;
     // Only a change reaches React: an unchanged setState still queues an update on a component
-    // that does not re-render (see src/hud/changedOnly.ts), every 30 s for as long as the page is open.
+    // that does not re-render (see src/ui/hud/changedOnly.ts), every 30 s for as long as the page is open.
     const offer = changedOnly<StorageStatus>('checking', setStatus, (a, b) => a === b);
     const check = () => {
       fetchStorageStatus()
