@@ -16,6 +16,49 @@ export default tseslint.config(
     plugins: { 'react-hooks': reactHooks },
     rules: reactHooks.configs.recommended.rules,
   },
+  // apps/web in layers (apps/web/README.md § Layers): core → scene → ui. An import may point
+  // down or sideways, never up; core draws nothing (no React, no three.js), scene renders no HUD.
+  {
+    files: ['apps/web/src/core/**/*.{ts,tsx}'],
+    rules: {
+      'no-restricted-imports': [
+        'error',
+        {
+          patterns: [
+            {
+              regex: '^\\.\\.?/(?:.*/)?(?:scene|ui)/',
+              message:
+                'apps/web/src/core imports neither scene/ nor ui/ (layers: core → scene → ui).',
+            },
+            {
+              regex: '^(?:react|react-dom|three|urdf-loader|uplot)(?:/|$)',
+              message: 'apps/web/src/core is plain logic: no React, three.js or charts.',
+            },
+          ],
+        },
+      ],
+    },
+  },
+  {
+    files: ['apps/web/src/scene/**/*.{ts,tsx}'],
+    rules: {
+      'no-restricted-imports': [
+        'error',
+        {
+          patterns: [
+            {
+              regex: '^\\.\\.?/(?:.*/)?ui/',
+              message: 'apps/web/src/scene does not import ui/ (layers: core → scene → ui).',
+            },
+            {
+              regex: '^(?:react|react-dom)(?:/|$)',
+              message: 'apps/web/src/scene draws the 3D view; React belongs in ui/.',
+            },
+          ],
+        },
+      ],
+    },
+  },
   {
     // Type-aware rules: each TypeScript file is checked with its own tsconfig (projectService).
     files: ['**/*.{ts,tsx,mts,cts}'],
@@ -36,7 +79,10 @@ export default tseslint.config(
   },
   {
     rules: {
-      '@typescript-eslint/no-unused-vars': ['error', { argsIgnorePattern: '^_', varsIgnorePattern: '^_' }],
+      '@typescript-eslint/no-unused-vars': [
+        'error',
+        { argsIgnorePattern: '^_', varsIgnorePattern: '^_' },
+      ],
     },
   },
 );

@@ -14,8 +14,8 @@ import { MODELS_DIR } from '@armtwin/sim';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
 import { select, waitForValue } from '../../apps/middleware/test/support/harness.ts';
-import { ArmStore } from '../../apps/web/src/store/ArmStore.ts';
-import { robotSpec } from '../../apps/web/src/robots/robotSpec.ts';
+import { ArmStore } from '../../apps/web/src/core/store/ArmStore.ts';
+import { robotSpec } from '../../apps/web/src/core/robots/robotSpec.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
 
 const broker = useMosquitto();

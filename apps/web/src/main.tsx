@@ -1,15 +1,15 @@
 /**
- * Mounts the HUD: the page's objects come from ./hud/createHud.ts (the one composition root);
+ * Mounts the HUD: the page's objects come from ./ui/app/createHud.ts (the one composition root);
  * React draws the panels over the 3D view, re-mounting them when the robot changes.
  */
 import './noEval.ts';
 import { StrictMode } from 'react';
 import { createRoot } from 'react-dom/client';
-import { createHud } from './hud/createHud.ts';
-import { HudContext, type Hud } from './hud/HudContext.ts';
-import { App } from './hud/App.tsx';
+import { createHud } from './ui/app/createHud.ts';
+import { HudContext, type Hud } from './ui/hud/HudContext.ts';
+import { App } from './ui/app/App.tsx';
 import 'uplot/dist/uPlot.min.css';
-import './styles.css';
+import './ui/styles.css';
 
 const root = createRoot(document.getElementById('hud')!);
 

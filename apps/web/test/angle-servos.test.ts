@@ -10,10 +10,10 @@ import { fileURLToPath } from 'node:url';
 import { afterEach, beforeEach, describe, expect, it, vi } from 'vitest';
 import { parseProfile, type Profile } from '@armtwin/ik';
 import { encodeGroup, encodePosition } from '@armtwin/protocol';
-import { ArmStore } from '../src/store/ArmStore.ts';
-import { ArmLink } from '../src/mqtt/ArmLink.ts';
-import { robotSpec } from '../src/robots/robotSpec.ts';
-import { defaultSettings } from '../src/config/settings.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
+import { ArmLink } from '../src/core/link/ArmLink.ts';
+import { robotSpec } from '../src/core/robots/robotSpec.ts';
+import { defaultSettings } from '../src/core/config/settings.ts';
 import { FakeMqttClient } from './support/FakeMqttClient.ts';
 
 const MODELS = path.resolve(fileURLToPath(import.meta.url), '../../../../public/models');

@@ -1,10 +1,10 @@
 import { afterEach, beforeEach, describe, expect, it, vi } from 'vitest';
 import { encodeGroup, encodePosition, pwmFromAngle } from '@armtwin/protocol';
-import { ArmStore } from '../src/store/ArmStore.ts';
-import { ArmLink } from '../src/mqtt/ArmLink.ts';
-import type { ConnectOptions } from '../src/mqtt/connectOptions.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
+import { ArmLink } from '../src/core/link/ArmLink.ts';
+import type { ConnectOptions } from '../src/core/link/connectOptions.ts';
 import { FakeMqttClient as FakeClient } from './support/FakeMqttClient.ts';
-import { defaultSettings } from '../src/config/settings.ts';
+import { defaultSettings } from '../src/core/config/settings.ts';
 
 function setup() {
   const store = new ArmStore();

@@ -5,13 +5,13 @@
  */
 import { afterEach, beforeEach, describe, expect, it, vi } from 'vitest';
 import { OPERATOR_BEAT_MS } from '@armtwin/protocol';
-import { ArmStore } from '../src/store/ArmStore.ts';
-import { ArmLink } from '../src/mqtt/ArmLink.ts';
-import type { ConnectOptions } from '../src/mqtt/connectOptions.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
+import { ArmLink } from '../src/core/link/ArmLink.ts';
+import type { ConnectOptions } from '../src/core/link/connectOptions.ts';
 import { FakeMqttClient as FakeClient } from './support/FakeMqttClient.ts';
-import { defaultSettings, type HudSettings } from '../src/config/settings.ts';
-import { Session } from '../src/auth/Session.ts';
-import type { Whoami } from '../src/auth/whoami.ts';
+import { defaultSettings, type HudSettings } from '../src/core/config/settings.ts';
+import { Session } from '../src/core/auth/Session.ts';
+import type { Whoami } from '../src/core/auth/whoami.ts';
 
 function setup(who: Whoami, over: Partial<HudSettings> = {}) {
   const store = new ArmStore();

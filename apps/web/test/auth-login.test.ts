@@ -5,8 +5,8 @@ import {
   loginReducer,
   type LoginEvent,
   type LoginState,
-} from '../src/auth/loginMachine.ts';
-import type { Access } from '../src/auth/roles.ts';
+} from '../src/core/auth/loginMachine.ts';
+import type { Access } from '../src/core/auth/roles.ts';
 
 const viewer: Access = { role: 'viewer', source: 'server', name: 'viewer' };
 const run = (events: LoginEvent[], from: LoginState = INITIAL_LOGIN) =>

@@ -4,10 +4,10 @@ import {
   STOP_NEEDS_OPERATOR,
   VIEWER_REASON,
   type Access,
-} from '../src/auth/roles.ts';
-import { basicAuth, parseWhoami, resolveAccess, type Whoami } from '../src/auth/whoami.ts';
-import { armQueryProblem } from '../src/config/queryProblems.ts';
-import { applyQuery, defaultSettings } from '../src/config/settings.ts';
+} from '../src/core/auth/roles.ts';
+import { basicAuth, parseWhoami, resolveAccess, type Whoami } from '../src/core/auth/whoami.ts';
+import { armQueryProblem } from '../src/core/config/queryProblems.ts';
+import { applyQuery, defaultSettings } from '../src/core/config/settings.ts';
 
 const access = (role: Access['role'], source: Access['source']): Access => ({
   role,

@@ -5,15 +5,15 @@
  */
 import { describe, expect, it } from 'vitest';
 import type { BrokerChoice } from '@armtwin/protocol';
-import { ArmStore } from '../src/store/ArmStore.ts';
-import { ArmLink } from '../src/mqtt/ArmLink.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
+import { ArmLink } from '../src/core/link/ArmLink.ts';
 import { FakeMqttClient } from './support/FakeMqttClient.ts';
 import {
   applyQuery,
   brokerListProblem,
   defaultSettings,
   validateSettings,
-} from '../src/config/settings.ts';
+} from '../src/core/config/settings.ts';
 
 const base = defaultSettings({ protocol: 'http:', host: 'h' });
 

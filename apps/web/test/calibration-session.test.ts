@@ -9,9 +9,9 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect, test, vi } from 'vitest';
 import { parseProfile, type Profile } from '@armtwin/ik';
-import { ArmStore } from '../src/store/ArmStore.ts';
-import { robotSpec } from '../src/robots/robotSpec.ts';
-import { CalibrationSession } from '../src/panels/Calibration/CalibrationSession.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
+import { robotSpec } from '../src/core/robots/robotSpec.ts';
+import { CalibrationSession } from '../src/core/calibration/CalibrationSession.ts';
 
 const MODELS = path.resolve(fileURLToPath(import.meta.url), '../../../../public/models');
 

@@ -1,11 +1,11 @@
 import { describe, expect, test } from 'vitest';
-import { CameraHub, placementOf } from '../src/cameras/CameraHub.ts';
-import { CameraDecoders } from '../src/cameras/CameraDecoders.ts';
-import type { CameraPlayer } from '../src/cameras/CameraPlayer.ts';
-import type { LinkTap } from '../src/mqtt/ArmLink.ts';
+import { CameraHub, placementOf } from '../src/core/cameras/CameraHub.ts';
+import { CameraDecoders } from '../src/core/cameras/CameraDecoders.ts';
+import type { CameraPlayer } from '../src/core/cameras/CameraPlayer.ts';
+import type { LinkTap } from '../src/core/link/ArmLink.ts';
 import type { CameraPose } from '@armtwin/camera/client';
-import type { HudSettings } from '../src/config/settings.ts';
-import { draftFromPlacement, placementFromDraft } from '../src/panels/Camera/draft.ts';
+import type { HudSettings } from '../src/core/config/settings.ts';
+import { draftFromPlacement, placementFromDraft } from '../src/ui/panels/Camera/draft.ts';
 
 const enc = (o: object | string) =>
   new TextEncoder().encode(typeof o === 'string' ? o : JSON.stringify(o));

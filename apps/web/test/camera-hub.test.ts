@@ -1,8 +1,8 @@
 import { describe, expect, test } from 'vitest';
-import { CameraHub } from '../src/cameras/CameraHub.ts';
-import type { LinkTap } from '../src/mqtt/ArmLink.ts';
-import { pickStream, usableUrl, withQueryAuth } from '../src/cameras/streamUrl.ts';
-import type { HudSettings } from '../src/config/settings.ts';
+import { CameraHub } from '../src/core/cameras/CameraHub.ts';
+import type { LinkTap } from '../src/core/link/ArmLink.ts';
+import { pickStream, usableUrl, withQueryAuth } from '../src/core/cameras/streamUrl.ts';
+import type { HudSettings } from '../src/core/config/settings.ts';
 
 function fakeLink(armId: string) {
   const taps: LinkTap[] = [];

@@ -7,7 +7,7 @@ import { describe, expect, test } from 'vitest';
 import { DEMO_ARM } from '@armtwin/ik';
 import { createMotionRobot, type MotionRobot } from '@armtwin/motion';
 import { readRobotFolder } from '@armtwin/motion/robot-folder';
-import { solveTarget, startFields } from '../src/panels/Cartesian/solveTarget.ts';
+import { solveTarget, startFields } from '../src/core/cartesian/solveTarget.ts';
 
 const MODELS = new URL('../../../public/models', import.meta.url).pathname;
 const load = (name: string): MotionRobot => readRobotFolder(name, MODELS).robot;

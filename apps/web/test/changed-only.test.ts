@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { changedOnly } from '../src/hud/changedOnly.ts';
+import { changedOnly } from '../src/ui/hud/changedOnly.ts';
 
 /** What a panel samples: fresh objects each time, equal when the store has not moved. */
 const sample = (temp: number) => [{ id: 0, t: temp, mv: NaN }];

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { MoveCoalescer, type CoalescerClock } from '../src/mqtt/MoveCoalescer.ts';
+import { MoveCoalescer, type CoalescerClock } from '../src/core/link/MoveCoalescer.ts';
 
 /** A hand-driven clock: `advance(ms)` runs the timers that fall due, in order. */
 function fakeClock(): CoalescerClock & { advance(ms: number): void } {

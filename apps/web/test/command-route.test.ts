@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
-import { routeCommand } from '../src/mqtt/commandRoute.ts';
-import { BrokerTracker } from '../src/mqtt/BrokerTracker.ts';
-import { ControlClaim } from '../src/mqtt/ControlClaim.ts';
+import { routeCommand } from '../src/core/link/commandRoute.ts';
+import { BrokerTracker } from '../src/core/link/BrokerTracker.ts';
+import { ControlClaim } from '../src/core/link/ControlClaim.ts';
 
 const enc = (s: string) => new TextEncoder().encode(s);
 

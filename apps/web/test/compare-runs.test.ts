@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { compareRuns, traceAt, type RunTrace } from '../src/panels/Plan/compareRuns.ts';
+import { compareRuns, traceAt, type RunTrace } from '../src/core/plan/compareRuns.ts';
 
 const trace = (rows: [number, number[]][]): RunTrace => ({
   t: rows.map((r) => r[0]),
@@ -71,7 +71,7 @@ describe('runs lined up where they first move', () => {
 
 describe('Replay run', () => {
   it('a run becomes a replay record (ids by slot, angles at polarity 1, times from the start)', async () => {
-    const { traceRecord } = await import('../src/panels/Plan/RunReplay.ts');
+    const { traceRecord } = await import('../src/core/plan/RunReplay.ts');
     const r = traceRecord(
       trace([
         [0, [10, 20]],
@@ -90,8 +90,8 @@ describe('Replay run', () => {
   });
 
   it('plays the actual run as the sibling and the rehearsal as the ghost on the replay clock', async () => {
-    const { RunReplay } = await import('../src/panels/Plan/RunReplay.ts');
-    const { ReplayPlayer } = await import('../src/replay/ReplayPlayer.ts');
+    const { RunReplay } = await import('../src/core/plan/RunReplay.ts');
+    const { ReplayPlayer } = await import('../src/core/replay/ReplayPlayer.ts');
     const player = new ReplayPlayer([1, 1]);
     const replay = new RunReplay(player);
     const out = new Float64Array(2);

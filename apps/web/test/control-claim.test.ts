@@ -1,9 +1,9 @@
 import { afterEach, beforeEach, describe, expect, it, vi } from 'vitest';
-import { ArmStore } from '../src/store/ArmStore.ts';
-import { ArmLink, UNCHECKED_PERMISSIONS } from '../src/mqtt/ArmLink.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
+import { ArmLink, UNCHECKED_PERMISSIONS } from '../src/core/link/ArmLink.ts';
 import { FakeMqttClient as FakeClient } from './support/FakeMqttClient.ts';
-import { defaultSettings } from '../src/config/settings.ts';
-import type { ControlIdentity } from '../src/mqtt/ControlClaim.ts';
+import { defaultSettings } from '../src/core/config/settings.ts';
+import type { ControlIdentity } from '../src/core/link/ControlClaim.ts';
 
 const enc = (s: string) => new TextEncoder().encode(s);
 

@@ -11,9 +11,9 @@ import {
   MQTT_KEEPALIVE_S,
   MQTT_RECONNECT_MS,
 } from '@armtwin/protocol';
-import { FleetLink, type FleetMqtt } from '../src/robots/FleetLink.ts';
-import type { ConnectOptions } from '../src/mqtt/connectOptions.ts';
-import { defaultSettings } from '../src/config/settings.ts';
+import { FleetLink, type FleetMqtt } from '../src/core/robots/FleetLink.ts';
+import type { ConnectOptions } from '../src/core/link/connectOptions.ts';
+import { defaultSettings } from '../src/core/config/settings.ts';
 
 class FakeClient implements FleetMqtt {
   handlers = new Map<string, ((...args: never[]) => void)[]>();

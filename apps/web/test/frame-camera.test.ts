@@ -7,7 +7,7 @@
 import { describe, expect, test } from 'vitest';
 import * as THREE from 'three';
 import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import { frameCamera } from '../src/robots/sceneHooks.ts';
+import { frameCamera } from '../src/scene/sceneHooks.ts';
 
 /** The Viewer's default camera and orbit target, and a scene. */
 function view() {

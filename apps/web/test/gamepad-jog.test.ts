@@ -1,13 +1,13 @@
 import { describe, expect, it } from 'vitest';
-import { GamepadJog, type GamepadEnv } from '../src/panels/Jog/GamepadJog.ts';
-import type { HoldJog } from '../src/panels/Jog/HoldJog.ts';
+import { GamepadJog, type GamepadEnv } from '../src/core/jog/GamepadJog.ts';
+import type { HoldJog } from '../src/core/jog/HoldJog.ts';
 import {
   DEFAULT_GAMEPAD_MAPPING,
   GAMEPAD_MAPPING_KEY,
   loadGamepadMapping,
   parseGamepadMapping,
   stickRate,
-} from '../src/panels/Jog/gamepadMapping.ts';
+} from '../src/core/jog/gamepadMapping.ts';
 
 /** Records what the gamepad asks of hold-to-jog. */
 class FakeHold {

@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { GapTracker, gapWords } from '../src/mqtt/GapTracker.ts';
-import { HealthHistory } from '../src/store/HealthHistory.ts';
+import { GapTracker, gapWords } from '../src/core/link/GapTracker.ts';
+import { HealthHistory } from '../src/core/store/HealthHistory.ts';
 
 describe('GapTracker', () => {
   it('the first connection is not a gap', () => {

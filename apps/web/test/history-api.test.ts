@@ -1,5 +1,10 @@
 import { describe, expect, it } from 'vitest';
-import { errorText, HistoryApi, historyUrl, type Fetch } from '../src/panels/History/historyApi.ts';
+import {
+  errorText,
+  HistoryApi,
+  historyUrl,
+  type Fetch,
+} from '../src/ui/panels/History/historyApi.ts';
 
 describe('history API client', () => {
   it('builds URLs with repeated ids and trims the base', () => {

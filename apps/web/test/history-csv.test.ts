@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { alignSeries, holdUntil, pointCounts } from '../src/panels/History/align.ts';
+import { alignSeries, holdUntil, pointCounts } from '../src/ui/panels/History/align.ts';
 import {
   alarmsCsv,
   csvCell,
@@ -7,7 +7,7 @@ import {
   seriesCsv,
   toCsv,
   trackingCsv,
-} from '../src/panels/History/csv.ts';
+} from '../src/ui/panels/History/csv.ts';
 
 const name = (id: string) => ({ '000': 'Base', '002': 'Elbow' })[id] ?? `servo ${id}`;
 

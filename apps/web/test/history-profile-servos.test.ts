@@ -3,8 +3,8 @@
  * alarms of servos stored under the same arm id by an earlier profile are left out and named.
  */
 import { describe, expect, test } from 'vitest';
-import type { OverviewViews } from '../src/panels/History/loadHistory.ts';
-import { onlyProfileServos } from '../src/panels/History/profileServos.ts';
+import type { OverviewViews } from '../src/ui/panels/History/loadHistory.ts';
+import { onlyProfileServos } from '../src/ui/panels/History/profileServos.ts';
 
 const echo = { arm: 'arm1', start: 0, stop: 1000 };
 const series = (id: string) => ({ id, times: [0], values: [30] });

@@ -5,8 +5,8 @@ import {
   resolveRange,
   toLocalInput,
   type RangeChoice,
-} from '../src/panels/History/range.ts';
-import { applyQuery, defaultSettings } from '../src/config/settings.ts';
+} from '../src/ui/panels/History/range.ts';
+import { applyQuery, defaultSettings } from '../src/core/config/settings.ts';
 
 const NOW = Date.UTC(2024, 4, 1, 12, 0, 0);
 const choice = (c: Partial<RangeChoice>): RangeChoice => ({

@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
-import { ReplayClock } from '../src/replay/ReplayClock.ts';
-import { frameIndex, poseAt, slotsFor } from '../src/replay/poseAt.ts';
-import { ReplayPlayer } from '../src/replay/ReplayPlayer.ts';
+import { ReplayClock } from '../src/core/replay/ReplayClock.ts';
+import { frameIndex, poseAt, slotsFor } from '../src/core/replay/poseAt.ts';
+import { ReplayPlayer } from '../src/core/replay/ReplayPlayer.ts';
 
 describe('ReplayClock', () => {
   it('advances by wall time × speed from the tick after play', () => {

@@ -5,13 +5,13 @@
  */
 import { describe, expect, test } from 'vitest';
 import type { AuditRecord, ThermalModelAnswer } from '@armtwin/api';
-import { alignSeries } from '../src/panels/History/align.ts';
+import { alignSeries } from '../src/ui/panels/History/align.ts';
 import {
   powerSeries,
   predictedSeries,
   warningMarkers,
   WARNING_MARKER_COLOUR,
-} from '../src/panels/History/thermalSeries.ts';
+} from '../src/ui/panels/History/thermalSeries.ts';
 
 const names: Record<string, string> = { '000': 'Base', '001': 'Shoulder' };
 const name = (id: string) => names[id] ?? id;

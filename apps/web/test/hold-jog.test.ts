@@ -1,20 +1,22 @@
 import { describe, expect, it } from 'vitest';
 import { encodeGroup, encodePosition } from '@armtwin/protocol';
-import { ArmStore } from '../src/store/ArmStore.ts';
-import { ArmLink } from '../src/mqtt/ArmLink.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
+import { ArmLink } from '../src/core/link/ArmLink.ts';
 import { FakeMqttClient } from './support/FakeMqttClient.ts';
-import { defaultSettings } from '../src/config/settings.ts';
-import { robotSpec } from '../src/robots/robotSpec.ts';
-import { DEFAULT_PROFILE } from '../src/robots/defaultProfile.ts';
-import { HoldJog } from '../src/panels/Jog/HoldJog.ts';
+import { defaultSettings } from '../src/core/config/settings.ts';
+import { robotSpec } from '../src/core/robots/robotSpec.ts';
+import { DEFAULT_PROFILE } from '../src/core/robots/defaultProfile.ts';
+import { HoldJog } from '../src/core/jog/HoldJog.ts';
 import { createMotionRobot, tipPose } from '@armtwin/motion';
-import { solveIk } from '@armtwin/ik';
+import { parseProfile, solveIk } from '@armtwin/ik';
+import { TargetPreview } from '../src/core/store/TargetPreview.ts';
+import armtwin5 from '../../../public/models/armtwin5/profile.json';
 import {
   combinedRate,
   holdTarget,
   keyHold,
   DEFAULT_HOLD_KEYS,
-} from '../src/panels/Jog/holdJogMath.ts';
+} from '../src/core/jog/holdJogMath.ts';
 
 /** The control payloads published (no pings). */
 class FakeClient extends FakeMqttClient {
@@ -26,7 +28,7 @@ class FakeClient extends FakeMqttClient {
 }
 
 /** A connected link to the 5-axis demo arm at home (1500 µs), a HoldJog whose ticks the test runs. */
-function setup(withMotion = false) {
+function setup(withMotion = false, motion = createMotionRobot(DEFAULT_PROFILE)) {
   const store = new ArmStore();
   const client = new FakeClient();
   const link = new ArmLink(store, defaultSettings({ protocol: 'http:', host: 'h' }), () => client);
@@ -40,19 +42,31 @@ function setup(withMotion = false) {
     );
   report([1500, 1500, 1500, 1500, 1500, 1500]);
   const spec = robotSpec(DEFAULT_PROFILE);
-  const motion = createMotionRobot(DEFAULT_PROFILE);
+  const ghost = new TargetPreview();
   let tickFn: (() => void) | null = null;
   const hold = new HoldJog({
     store,
     link: () => link,
     robot: () => ({ sliders: spec.sliders, motion: withMotion ? motion : null }),
+    ghost,
     timers: {
       setInterval: (fn) => ((tickFn = fn), 1),
       clearInterval: () => (tickFn = null),
     },
   });
   const tick = () => tickFn?.();
-  return { store, client, link, hold, report, tick, motion, ticking: () => tickFn !== null };
+  return {
+    store,
+    client,
+    link,
+    hold,
+    report,
+    tick,
+    motion,
+    spec,
+    ghost,
+    ticking: () => tickFn !== null,
+  };
 }
 
 describe('hold-to-jog arithmetic', () => {
@@ -167,5 +181,61 @@ describe('HoldJog', () => {
     hold.press('t', 'z', 1);
     expect(hold.refusal).toMatch(/^Stopped: moving the tip would turn Elbow \d+° at once/);
     expect(client.controls.filter((p) => !p.includes('PDST'))).toEqual([]);
+  });
+});
+
+/** A table in front of the arm, its top 30 mm above the floor (tests/e2e/keep-out-zones.spec.ts). */
+const TABLE = { name: 'table', shape: 'box', min: [150, -150, -20], max: [400, 150, 30] };
+
+function withTable() {
+  const parsed = parseProfile({ ...armtwin5, keepOut: { zones: [TABLE] } });
+  if (!parsed.ok) throw new Error(parsed.errors.join('\n'));
+  const s = setup(true, createMotionRobot(parsed.profile));
+  const joint = (name: string) => s.spec.sliders.findIndex((j) => j.name === name);
+  // Upper arm at 45°, forearm level: clear of the table.
+  const at = [1500, 1500, 1500, 1500, 1500, 1500];
+  for (const name of ['Shoulder', 'Elbow'])
+    at[joint(name)] = s.spec.sliders[joint(name)]!.pwmFromValue(-45);
+  s.report(at);
+  return { ...s, joint };
+}
+
+describe('a slider move: a hold of one target', () => {
+  it('is sent through the link (coalesced to one move per servo), the ghost cleared', () => {
+    const { client, hold, joint, spec, ghost, store } = withTable();
+    ghost.refuse([0, 0, 0, 0, 0], 'wrist_pitch');
+    const i = joint('Wrist pitch');
+    expect(hold.jogTo(i, spec.sliders[i]!.pwmFromValue(-10))).toBe('');
+    expect(ghost.refused).toBe(false);
+    expect(store.commandedPwm[spec.sliders[i]!.id]).toBe(spec.sliders[i]!.pwmFromValue(-10));
+    expect(client.controls.at(-1)).toMatch(/^#003P\d{4}T\d{4}!$/);
+  });
+
+  it('into a keep-out zone is not sent, says why, and the ghost shows it with the hand red', () => {
+    const { client, hold, joint, spec, ghost } = withTable();
+    const sent = client.controls.length;
+    const i = joint('Wrist pitch');
+    // The hand pointing down from there would go into the table.
+    expect(hold.jogTo(i, spec.sliders[i]!.pwmFromValue(-90))).toMatch(
+      /^Not sent: hand \d+\.\d mm into zone "table"\.$/,
+    );
+    expect(client.controls).toHaveLength(sent);
+    expect(ghost.refused).toBe(true);
+    expect(ghost.refusedJoint).toBe('wrist_pitch');
+  });
+
+  it('and a held joint meet the same check: the hold stops short of the table', () => {
+    const { client, hold, joint, spec, report, store } = withTable();
+    const i = joint('Wrist pitch');
+    const near = Array.from(store.pwm);
+    near[i] = spec.sliders[i]!.pwmFromValue(-85);
+    report(near);
+    expect(hold.jogTo(i, near[i]!)).toBe(''); // clear where it is
+    const sent = client.controls.length;
+    hold.speed = 60;
+    hold.press('k', i, -1);
+    // No move towards the table went out, only the stop of the joint it held.
+    expect(client.controls.slice(sent)).toEqual(['#003PDST!']);
+    expect(hold.refusal).toMatch(/^Stopped: hand \d+\.\d mm into zone "table"\.$/);
   });
 });

@@ -1,5 +1,10 @@
 import { describe, expect, it } from 'vitest';
-import { IntervalEstimator, JointTween, clamp01, progress } from '../src/store/interpolation.ts';
+import {
+  IntervalEstimator,
+  JointTween,
+  clamp01,
+  progress,
+} from '../src/core/store/interpolation.ts';
 
 describe('progress: t = clamp01((now − start)·α / duration)', () => {
   it('is 0 at the start, 1 at the end, linear between, clamped outside', () => {

@@ -11,13 +11,13 @@ import {
   modelArmId,
   parseMode,
   stopArms,
-} from '../src/modes/modes.ts';
-import { poseBody } from '../src/modes/modelCopy.ts';
-import { queryWithMode } from '../src/modes/ModeSwitch.ts';
-import { ArmStore } from '../src/store/ArmStore.ts';
-import { ArmLink } from '../src/mqtt/ArmLink.ts';
+} from '../src/core/link/modes.ts';
+import { poseBody } from '../src/core/modes/modelCopy.ts';
+import { queryWithMode } from '../src/core/modes/ModeSwitch.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
+import { ArmLink } from '../src/core/link/ArmLink.ts';
 import { FakeMqttClient } from './support/FakeMqttClient.ts';
-import { defaultSettings } from '../src/config/settings.ts';
+import { defaultSettings } from '../src/core/config/settings.ts';
 
 describe('mode → topic (pure)', () => {
   it('Twin drives the arm, Model its copy, Shadow nothing', () => {

@@ -10,7 +10,7 @@ import path from 'node:path';
 import { expect, test } from 'vitest';
 import { zipSync } from 'fflate';
 import { readZip } from '@armtwin/ik/import-node';
-import { packZip } from '../src/panels/Import/packZip.ts';
+import { packZip } from '../src/ui/panels/Import/packZip.ts';
 
 const entries = [
   { path: 'robot/robot.urdf', data: new TextEncoder().encode('<robot name="r"/>') },

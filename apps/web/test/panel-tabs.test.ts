@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { DEFAULT_SWIPE_OPTIONS, PANEL_TABS, swipeSheet, tapTab } from '../src/hud/sheetTabs.ts';
+import { DEFAULT_SWIPE_OPTIONS, PANEL_TABS, swipeSheet, tapTab } from '../src/ui/hud/sheetTabs.ts';
 
 describe('the phone layout tab bar', () => {
   it('has a distinct id and label per tab', () => {

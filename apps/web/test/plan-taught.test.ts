@@ -14,13 +14,13 @@ import {
 } from '@armtwin/motion';
 import { readRobotFolder } from '@armtwin/motion/robot-folder';
 import { angleFromPwm } from '@armtwin/protocol';
-import { Waypoints } from '../src/panels/Plan/Waypoints.ts';
+import { Waypoints } from '../src/core/plan/Waypoints.ts';
 import {
   isTaught,
   planTargets,
   recordingFromPose,
   waypointsFromTaught,
-} from '../src/panels/Plan/taught.ts';
+} from '../src/core/plan/taught.ts';
 
 const MODELS = new URL('../../../public/models', import.meta.url).pathname;
 const robot: MotionRobot = readRobotFolder('armtwin5', MODELS).robot;

@@ -5,7 +5,7 @@ import {
   PoseCourse,
   courseAfter,
 } from '../src/scene/render/PoseCourse.ts';
-import { TwinPredictor } from '../src/store/TwinPredictor.ts';
+import { TwinPredictor } from '../src/core/store/TwinPredictor.ts';
 import { FrameMirror } from '../src/scene/render/FrameMirror.ts';
 
 const EPOCH = 1_700_000_000_000;

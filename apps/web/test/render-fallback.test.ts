@@ -4,7 +4,7 @@
  */
 import { describe, expect, it } from 'vitest';
 import * as THREE from 'three';
-import { fallbackChoice } from '../src/config/renderThread.ts';
+import { fallbackChoice } from '../src/core/config/renderThread.ts';
 import { FallbackSceneView, type FailingView } from '../src/scene/render/FallbackSceneView.ts';
 import type { RenderThread, SceneView } from '../src/scene/SceneView.ts';
 

@@ -1,10 +1,10 @@
 /** Where the 3D view is drawn (`?render=`), and what the page sends its render worker. */
 import { describe, expect, it } from 'vitest';
 import { Writable } from 'node:stream';
-import { chooseRenderThread } from '../src/config/renderThread.ts';
+import { chooseRenderThread } from '../src/core/config/renderThread.ts';
 import { sameValues, targetDiffers } from '../src/scene/render/frameDiff.ts';
 import type { TargetState } from '../src/scene/render/messages.ts';
-import { flushNow } from '../src/mqtt/flushNow.ts';
+import { flushNow } from '../src/core/link/flushNow.ts';
 
 describe('chooseRenderThread', () => {
   it('draws in a worker by default where possible, on the main thread when asked', () => {

@@ -1,5 +1,5 @@
 /**
- * The fleet list's state (src/robots/fleet.ts), the retained profile announcement, motion
+ * The fleet list's state (src/core/robots/fleet.ts), the retained profile announcement, motion
  * feedback as untrusted input, the arm switch's URL, and the HUD's pose-checking thresholds.
  */
 import fs from 'node:fs';
@@ -15,11 +15,11 @@ import {
   reduceFleet,
   sameSummary,
   type FleetState,
-} from '../src/robots/fleet.ts';
-import { parseAnnouncement } from '../src/robots/announcement.ts';
-import { feedbackWords, parseFeedback } from '../src/robots/feedback.ts';
-import { queryWithArm } from '../src/robots/selectArm.ts';
-import { hudExecuteOptions, planPeakSpeeds } from '../src/panels/Plan/executeOptions.ts';
+} from '../src/core/robots/fleet.ts';
+import { parseAnnouncement } from '../src/core/robots/announcement.ts';
+import { feedbackWords, parseFeedback } from '../src/core/robots/feedback.ts';
+import { queryWithArm } from '../src/core/robots/selectArm.ts';
+import { hudExecuteOptions, planPeakSpeeds } from '../src/core/plan/executeOptions.ts';
 
 const MODELS = path.resolve(fileURLToPath(import.meta.url), '../../../../public/models');
 const profileText = (name: string) =>

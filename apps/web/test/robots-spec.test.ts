@@ -1,5 +1,5 @@
 /**
- * Profile → what the HUD needs (src/robots/robotSpec.ts): the store's arm, the jog sliders and
+ * Profile → what the HUD needs (src/core/robots/robotSpec.ts): the store's arm, the jog sliders and
  * the servo → URDF joint map, for armtwin5 (must equal the HUD's old hard-wired DEMO_ARM
  * behaviour) and track6 (7 axes, a prismatic track, an offset, a −1 polarity). The joint map
  * is checked end to end: URDF joints set through it (urdf-loader) put track6's `tcp` link where
@@ -15,8 +15,8 @@ import { parseUrdf } from './support/parseUrdf.ts';
 import { DEMO_ARM, chainFromUrdf, parseProfile, type Profile } from '@armtwin/ik';
 import { createMotionRobot, tipPose } from '@armtwin/motion';
 import { angleFromPwm, pwmFromAngle } from '@armtwin/protocol';
-import { robotSpec, sliderSpecs, storeArmFor } from '../src/robots/robotSpec.ts';
-import { DEFAULT_PROFILE } from '../src/robots/defaultProfile.ts';
+import { robotSpec, sliderSpecs, storeArmFor } from '../src/core/robots/robotSpec.ts';
+import { DEFAULT_PROFILE } from '../src/core/robots/defaultProfile.ts';
 
 const MODELS = path.resolve(fileURLToPath(import.meta.url), '../../../../public/models');
 const read = (name: string, file: string) => fs.readFileSync(path.join(MODELS, name, file), 'utf8');

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { sampleEqual } from '../src/hud/sampleEqual.ts';
+import { sampleEqual } from '../src/ui/hud/sampleEqual.ts';
 
 /** What the Health panel samples: one row object per servo, built afresh each time. */
 const healthRows = (temp: number) =>

@@ -1,10 +1,10 @@
 import { describe, expect, it } from 'vitest';
 import { angleFromPwm, encodeGroup, encodeHealth, encodePosition } from '@armtwin/protocol';
 import { DEMO_ARM } from '@armtwin/ik';
-import { ArmStore } from '../src/store/ArmStore.ts';
-import { RingBuffer } from '../src/store/RingBuffer.ts';
-import { RateMeter } from '../src/store/RateMeter.ts';
-import { PingTracker } from '../src/store/PingTracker.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
+import { RingBuffer } from '../src/core/store/RingBuffer.ts';
+import { RateMeter } from '../src/core/store/RateMeter.ts';
+import { PingTracker } from '../src/core/store/PingTracker.ts';
 
 const state = (pwms: number[]) => encodeGroup(pwms.map((p, i) => encodePosition(i, p)));
 

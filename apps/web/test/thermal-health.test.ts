@@ -14,9 +14,9 @@ import {
   encodePosition,
   encodeTime,
 } from '@armtwin/protocol';
-import { ArmStore } from '../src/store/ArmStore.ts';
-import { thermalWarningWords } from '../src/store/healthWords.ts';
-import { applyThermalFit, resetThermalFit } from '../src/store/thermalFit.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
+import { thermalWarningWords } from '../src/core/store/healthWords.ts';
+import { applyThermalFit, resetThermalFit } from '../src/core/store/thermalFit.ts';
 
 const T0 = 1_700_000_000_000;
 const PARAMS = { tauS: 20, restC: 34, gainCPerDegS: 0.06, volt0V: 7.3, sagVPerDegS: 0.0007 };

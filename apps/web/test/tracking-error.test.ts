@@ -4,8 +4,8 @@ import {
   TrackingErrors,
   trackingColour,
   trackingLevel,
-} from '../src/store/trackingError.ts';
-import { ArmStore } from '../src/store/ArmStore.ts';
+} from '../src/core/store/trackingError.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
 
 const EPOCH = 1_700_000_000_000;
 const state = (pwm: number[]) => `{${pwm.map((p, i) => `#00${i}P${p}!`).join('')}}`;

@@ -1,10 +1,10 @@
 import { describe, expect, it } from 'vitest';
 import fc from 'fast-check';
-import { ClockOffset } from '../src/store/ClockOffset.ts';
-import { JointPredictor } from '../src/store/JointPredictor.ts';
-import { TwinPredictor } from '../src/store/TwinPredictor.ts';
-import { ArmStore } from '../src/store/ArmStore.ts';
-import { applyQuery, defaultSettings } from '../src/config/settings.ts';
+import { ClockOffset } from '../src/core/store/ClockOffset.ts';
+import { JointPredictor } from '../src/core/store/JointPredictor.ts';
+import { TwinPredictor } from '../src/core/store/TwinPredictor.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
+import { applyQuery, defaultSettings } from '../src/core/config/settings.ts';
 import { DEMO_ARM } from '@armtwin/ik';
 import { angleFromPwm } from '@armtwin/protocol';
 

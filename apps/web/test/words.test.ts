@@ -1,9 +1,9 @@
 import { describe, expect, it } from 'vitest';
-import { servoHealth } from '../src/store/healthWords.ts';
-import { renderWords } from '../src/panels/Status/words.ts';
-import { applyQuery, defaultSettings, validateSettings } from '../src/config/settings.ts';
-import { parseTarget } from '../src/panels/Cartesian/parseTarget.ts';
-import { ghostPose } from '../src/store/ghostPose.ts';
+import { servoHealth } from '../src/core/store/healthWords.ts';
+import { renderWords } from '../src/ui/panels/Status/words.ts';
+import { applyQuery, defaultSettings, validateSettings } from '../src/core/config/settings.ts';
+import { parseTarget } from '../src/core/cartesian/parseTarget.ts';
+import { ghostPose } from '../src/core/store/ghostPose.ts';
 import { DEMO_ARM } from '@armtwin/ik';
 
 describe('servoHealth: thresholds of §5 → level and words', () => {

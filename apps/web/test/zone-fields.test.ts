@@ -3,7 +3,7 @@
  * the profile declares; a blank or non-number field is named, and nothing is built.
  */
 import { describe, expect, test } from 'vitest';
-import { describeZone, zoneFromFields } from '../src/panels/Zones/zoneFields.ts';
+import { describeZone, zoneFromFields } from '../src/core/zones/zoneFields.ts';
 
 describe('zone form', () => {
   test('box, cylinder and plane from their fields', () => {

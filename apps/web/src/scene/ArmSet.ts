@@ -5,7 +5,7 @@
  * (./render/WorkerScene.ts).
  */
 import type * as THREE from 'three';
-import type { JointMap } from '../robots/robotSpec.ts';
+import type { JointMap } from '../core/robots/robotSpec.ts';
 import { Ghost, ghostMaterial, type GhostStore, type GhostTarget } from './Ghost.ts';
 import { PosedRobot } from './PosedRobot.ts';
 import { ReplaySibling, siblingMaterial, type SiblingSource } from './ReplaySibling.ts';

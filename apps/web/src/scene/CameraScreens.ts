@@ -13,8 +13,8 @@
  */
 import * as THREE from 'three';
 import type { CameraPose } from '@armtwin/camera/client';
-import { placementOf, type ArmCamera, type CameraPlacement } from '../cameras/CameraHub.ts';
-import type { CameraDecoders } from '../cameras/CameraDecoders.ts';
+import { placementOf, type ArmCamera, type CameraPlacement } from '../core/cameras/CameraHub.ts';
+import type { CameraDecoders } from '../core/cameras/CameraDecoders.ts';
 import { TranslucentTwin } from './TranslucentTwin.ts';
 import { twinPoints, type TwinPoint } from './twinPoints.ts';
 import type { SceneView } from './SceneView.ts';

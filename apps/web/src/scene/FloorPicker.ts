@@ -3,7 +3,7 @@
  * (`TargetPreview.place`, in mm of the arm's frame). Pointer events on the canvas only.
  */
 import * as THREE from 'three';
-import type { TargetPreview } from '../store/TargetPreview.ts';
+import type { TargetPreview } from '../core/store/TargetPreview.ts';
 import type { Stage } from './stage.ts';
 
 const MM = 0.001;

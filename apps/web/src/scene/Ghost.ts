@@ -8,10 +8,10 @@
  */
 import * as THREE from 'three';
 import type { URDFRobot } from 'urdf-loader';
-import type { ArmStore } from '../store/ArmStore.ts';
-import type { TargetPreview } from '../store/TargetPreview.ts';
-import { ghostPose, type GhostInputs } from '../store/ghostPose.ts';
-import type { GhostSource } from '../robots/sceneHooks.ts';
+import type { ArmStore } from '../core/store/ArmStore.ts';
+import type { TargetPreview } from '../core/store/TargetPreview.ts';
+import { ghostPose, type GhostInputs } from '../core/store/ghostPose.ts';
+import type { GhostSource } from './sceneHooks.ts';
 import type { MaterialFactory } from './loadRobot.ts';
 import type { PosedRobot } from './PosedRobot.ts';
 

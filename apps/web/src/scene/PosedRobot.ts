@@ -10,7 +10,7 @@
  * where commands are made and again at the controller, not by hiding a pose in the drawing.
  */
 import type { URDFJoint, URDFRobot } from 'urdf-loader';
-import type { JointMap } from '../robots/robotSpec.ts';
+import type { JointMap } from '../core/robots/robotSpec.ts';
 
 export class PosedRobot {
   /** Servo i's URDF joint (undefined if the URDF has no joint of that name). */

@@ -10,6 +10,7 @@ import * as THREE from 'three';
 import type { URDFRobot } from 'urdf-loader';
 import type { MaterialFactory } from './loadRobot.ts';
 import type { PosedRobot } from './PosedRobot.ts';
+import type { SiblingSource } from '../core/store/viewSources.ts';
 
 /**
  * Where the sibling stands relative to the live arm, in the arm's frame, metres: half a metre
@@ -32,14 +33,7 @@ export const siblingMaterial: MaterialFactory = () =>
     roughness: 0.45,
   });
 
-/** What the sibling reads of the replay (the page's ReplayPlayer, or the render worker's copy). */
-export interface SiblingSource {
-  update(now: number): boolean;
-  readonly active: boolean;
-  /** Shown only while there is one (any non-null value). */
-  readonly record: unknown;
-  readonly angles: Float64Array;
-}
+export type { SiblingSource };
 
 export class ReplaySibling {
   constructor(

@@ -8,15 +8,15 @@ import type * as THREE from 'three';
 import type { URDFRobot } from 'urdf-loader';
 import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { ProfileKeepOut } from '@armtwin/ik';
-import type { JointMap } from '../robots/robotSpec.ts';
-import type { GhostSource } from '../robots/sceneHooks.ts';
+import type { JointMap } from '../core/robots/robotSpec.ts';
+import type { GhostSource } from './sceneHooks.ts';
 import type { MeshFailure } from './loadRobot.ts';
+import type { RenderThread } from '../core/config/renderThread.ts';
 
 /** Which of the drawn robots: the live arm, the ghost, the replay's sibling. */
 export type DrawnRobot = 'robot' | 'ghost' | 'sibling';
 
-/** Where the 3D view is drawn: 'main' (the page's thread) or 'worker' (OffscreenCanvas). */
-export type RenderThread = 'main' | 'worker';
+export type { RenderThread };
 
 export interface SceneView {
   readonly thread: RenderThread;

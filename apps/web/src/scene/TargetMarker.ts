@@ -3,7 +3,7 @@
  * TargetPreview, green when the local IK reaches it, red when not. Checked every frame by the
  * Viewer's loop; the marker changes only when the target does.
  */
-import type { TargetPreview } from '../store/TargetPreview.ts';
+import type { TargetPreview } from '../core/store/TargetPreview.ts';
 import type { Stage } from './stage.ts';
 
 const MM = 0.001;

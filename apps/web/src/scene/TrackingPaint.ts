@@ -6,7 +6,7 @@
  */
 import * as THREE from 'three';
 import type { URDFRobot } from 'urdf-loader';
-import type { TrackingErrors, TrackingLevel } from '../store/trackingError.ts';
+import type { TrackingErrors, TrackingLevel } from '../core/store/trackingError.ts';
 
 export class TrackingPaint {
   /** Servo i's link meshes and their own materials. */

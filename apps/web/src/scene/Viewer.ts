@@ -8,10 +8,10 @@
 import * as THREE from 'three';
 import type { URDFRobot } from 'urdf-loader';
 import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import type { ArmStore } from '../store/ArmStore.ts';
-import type { TargetPreview } from '../store/TargetPreview.ts';
-import type { JointMap } from '../robots/robotSpec.ts';
-import { frameCamera, type GhostSource } from '../robots/sceneHooks.ts';
+import type { ArmStore } from '../core/store/ArmStore.ts';
+import type { TargetPreview } from '../core/store/TargetPreview.ts';
+import type { JointMap } from '../core/robots/robotSpec.ts';
+import { frameCamera, type GhostSource } from './sceneHooks.ts';
 import type { SiblingSource } from './ReplaySibling.ts';
 import type { MeshFailure } from './loadRobot.ts';
 import { MeshFailureNote } from './MeshFailureNote.ts';

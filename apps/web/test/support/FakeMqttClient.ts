@@ -1,9 +1,9 @@
 /**
- * A fake mqtt.js client for unit tests of the page's links (../../src/mqtt/MqttLike.ts): it
+ * A fake mqtt.js client for unit tests of the page's links (../../src/core/link/MqttLike.ts): it
  * records the handlers the link registers (a test fires them with `emit`), every publish, and
  * how it was ended. A unit test only; tests of the real thing use a real broker.
  */
-import type { MqttLike } from '../../src/mqtt/MqttLike.ts';
+import type { MqttLike } from '../../src/core/link/MqttLike.ts';
 
 export interface Published {
   topic: string;

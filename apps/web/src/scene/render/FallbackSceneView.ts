@@ -11,8 +11,8 @@
  */
 import type * as THREE from 'three';
 import type { ProfileKeepOut } from '@armtwin/ik';
-import type { JointMap } from '../../robots/robotSpec.ts';
-import type { GhostSource } from '../../robots/sceneHooks.ts';
+import type { JointMap } from '../../core/robots/robotSpec.ts';
+import type { GhostSource } from '../sceneHooks.ts';
 import type { DrawnRobot, RenderThread, SceneView } from '../SceneView.ts';
 
 /** The worker view as this needs it: a SceneView that says when it failed. */

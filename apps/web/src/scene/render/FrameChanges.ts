@@ -5,9 +5,9 @@
  * into the frame's `FrameInput` only when it differs from what was last sent (everything with
  * `full`). Copies, never the page's live arrays: a posted message must not change afterwards.
  */
-import type { ArmStore } from '../../store/ArmStore.ts';
-import type { TargetPreview } from '../../store/TargetPreview.ts';
-import type { GhostSource } from '../../robots/sceneHooks.ts';
+import type { ArmStore } from '../../core/store/ArmStore.ts';
+import type { TargetPreview } from '../../core/store/TargetPreview.ts';
+import type { GhostSource } from '../sceneHooks.ts';
 import type { SiblingSource } from '../ReplaySibling.ts';
 import type { FrameInput, TargetState } from './messages.ts';
 import { sameValues, targetDiffers } from './frameDiff.ts';

@@ -4,7 +4,7 @@
  * refreshed from the page's `FrameInput` messages, so those classes run unchanged in the worker.
  */
 import { DEMO_ARM } from '@armtwin/ik';
-import { TargetPreview } from '../../store/TargetPreview.ts';
+import { TargetPreview } from '../../core/store/TargetPreview.ts';
 import type { GhostStore } from '../Ghost.ts';
 import type { SiblingSource } from '../ReplaySibling.ts';
 import type { FrameInput } from './messages.ts';

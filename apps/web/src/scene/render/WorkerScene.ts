@@ -10,8 +10,8 @@
  * WebGL it paces its frames to the budget there (`SOFTWARE_PACING`).
  */
 import * as THREE from 'three';
-import { frameCamera } from '../../robots/sceneHooks.ts';
-import type { JointMap } from '../../robots/robotSpec.ts';
+import { frameCamera } from '../sceneHooks.ts';
+import type { JointMap } from '../../core/robots/robotSpec.ts';
 import { createStage, type Stage } from '../stage.ts';
 import type { MeshFailure } from '../loadRobot.ts';
 import { FramePacer, SOFTWARE_PACING } from '../FramePacer.ts';

@@ -12,11 +12,11 @@
 import * as THREE from 'three';
 import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { ProfileKeepOut } from '@armtwin/ik';
-import type { ArmStore } from '../../store/ArmStore.ts';
-import type { TargetPreview } from '../../store/TargetPreview.ts';
+import type { ArmStore } from '../../core/store/ArmStore.ts';
+import type { TargetPreview } from '../../core/store/TargetPreview.ts';
 import type { SiblingSource } from '../ReplaySibling.ts';
-import type { JointMap } from '../../robots/robotSpec.ts';
-import type { GhostSource } from '../../robots/sceneHooks.ts';
+import type { JointMap } from '../../core/robots/robotSpec.ts';
+import type { GhostSource } from '../sceneHooks.ts';
 import { createStage, type Stage } from '../stage.ts';
 import { FloorPicker } from '../FloorPicker.ts';
 import { MeshFailureNote } from '../MeshFailureNote.ts';

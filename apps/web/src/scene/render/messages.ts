@@ -5,9 +5,9 @@
  */
 import type { ArmProfile, ProfileKeepOut } from '@armtwin/ik';
 import type { PoseCourseInput } from './PoseCourse.ts';
-import type { JointMap } from '../../robots/robotSpec.ts';
+import type { JointMap } from '../../core/robots/robotSpec.ts';
 import type { MeshFailure } from '../loadRobot.ts';
-import type { TrackingErrors } from '../../store/trackingError.ts';
+import type { TrackingErrors } from '../../core/store/trackingError.ts';
 
 /** The orbit camera as the page holds it (three's y-up scene coordinates). */
 export interface CameraState {

@@ -3,7 +3,7 @@
  * typed arrays, safe to post, no longer tied to the page's live objects.
  */
 import type * as THREE from 'three';
-import type { TargetPreview } from '../../store/TargetPreview.ts';
+import type { TargetPreview } from '../../core/store/TargetPreview.ts';
 import type { CameraState, TargetState } from './messages.ts';
 
 export function cameraState(c: THREE.PerspectiveCamera): CameraState {

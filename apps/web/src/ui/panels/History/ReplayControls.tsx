@@ -1,0 +1,138 @@
+/**
+ * Replay of the recorded pose over the selected range: load it (`/history/pose`), then play,
+ * pause, pick a speed (0.25×–8×) and scrub. The amber sibling arm beside the live one follows;
+ * its pose is read by the 3D view's frame loop from the ReplayPlayer, and this panel only
+ * samples the position ten times a second.
+ */
+import { useState } from 'react';
+import { useSampled } from '../../hud/useSampled.ts';
+import type { ReplayPlayer } from '../../../core/replay/ReplayPlayer.ts';
+import { REPLAY_SPEEDS, type ReplaySpeed } from '../../../core/replay/ReplayClock.ts';
+import { clockTime, fixed } from './format.ts';
+import type { HistoryApi } from './historyApi.ts';
+import type { TimeRange } from './range.ts';
+import type { PoseAnswer } from '@armtwin/api';
+import { ViewError } from './ViewHeader.tsx';
+import { MakePlan } from './MakePlan.tsx';
+
+const SCRUB_SAMPLE_MS = 100;
+
+export interface ReplayJoint {
+  name: string;
+  unit: 'deg' | 'mm';
+  /** The joint value (deg, or mm for a prismatic axis) of a store angle (degrees). */
+  value(storeAngle: number): number;
+}
+
+/** `45.0°`, `1500.0 mm`, or `—` while the record has no sample for the servo. */
+function jointWords(j: ReplayJoint | undefined, angle: number): string {
+  if (Number.isNaN(angle)) return '—';
+  if (!j) return `${fixed(angle, 1)}°`;
+  return j.unit === 'mm' ? `${fixed(j.value(angle), 1)} mm` : `${fixed(j.value(angle), 1)}°`;
+}
+
+export function ReplayControls(props: {
+  api: HistoryApi;
+  arm: string;
+  range: TimeRange | null;
+  player: ReplayPlayer;
+  /** Per servo of the active robot: its name and the replay's store angle in joint units. */
+  joints: readonly ReplayJoint[];
+}) {
+  const { player, range } = props;
+  const [error, setError] = useState<string | null>(null);
+  const [busy, setBusy] = useState(false);
+  const [frames, setFrames] = useState<number | null>(null);
+  const s = useSampled(
+    () => ({
+      loaded: player.record !== null,
+      playing: player.clock.playing,
+      position: player.clock.position,
+      start: player.clock.start,
+      stop: player.clock.stop,
+      speed: player.clock.speed,
+      angles: Array.from(player.angles, (a, i) => jointWords(props.joints[i], a)),
+    }),
+    SCRUB_SAMPLE_MS,
+  );
+
+  const load = () => {
+    if (!range) return;
+    setBusy(true);
+    setError(null);
+    props.api
+      .get<PoseAnswer>('pose', { arm: props.arm, start: range.start, stop: range.stop })
+      .then((r) => {
+        setBusy(false);
+        if (!r.ok) return setError(r.error);
+        setFrames(r.data.times.length);
+        if (r.data.times.length === 0) return player.close();
+        player.load({ ...r.data, start: r.data.start, stop: r.data.stop });
+      })
+      .catch((err: unknown) => {
+        setBusy(false);
+        setError(String(err));
+      });
+  };
+
+  return (
+    <div className="history-replay">
+      <p className="dim small-print">
+        <span className="sibling-swatch" aria-hidden="true" /> The amber arm beside the live one
+        replays the record.
+      </p>
+      <div className="replay-row">
+        <button type="button" onClick={load} disabled={!range || busy}>
+          {busy ? 'Loading…' : s.loaded ? 'Reload replay' : 'Load replay'}
+        </button>
+        <button
+          type="button"
+          disabled={!s.loaded}
+          onClick={() => (s.playing ? player.pause() : player.play())}
+        >
+          {s.playing ? 'Pause' : 'Play'}
+        </button>
+        <label>
+          Speed{' '}
+          <select
+            aria-label="Replay speed"
+            value={String(s.speed)}
+            onChange={(e) => player.setSpeed(Number(e.currentTarget.value) as ReplaySpeed)}
+          >
+            {REPLAY_SPEEDS.map((v) => (
+              <option key={v} value={String(v)}>{`${v}×`}</option>
+            ))}
+          </select>
+        </label>
+        <button type="button" disabled={!s.loaded} onClick={() => player.close()}>
+          Close
+        </button>
+      </div>
+      {error && <ViewError error={error} />}
+      {frames === 0 && <p className="dim">No pose recorded in this range.</p>}
+      <input
+        type="range"
+        className="replay-scrubber"
+        aria-label="Replay position"
+        aria-valuetext={s.loaded ? clockTime(s.position) : 'no record loaded'}
+        min={s.start}
+        max={s.stop}
+        step={1}
+        value={s.position}
+        disabled={!s.loaded}
+        onChange={(e) => player.seek(Number(e.currentTarget.value))}
+      />
+      <div className="replay-times dim">
+        <span>{s.loaded ? clockTime(s.start) : '—'}</span>
+        <span data-testid="replay-position">{s.loaded ? clockTime(s.position) : '—'}</span>
+        <span>{s.loaded ? clockTime(s.stop) : '—'}</span>
+      </div>
+      {s.loaded && (
+        <p className="replay-angles" data-testid="replay-angles">
+          {props.joints.map((j, i) => `${j.name} ${s.angles[i]}`).join(' · ')}
+        </p>
+      )}
+      <MakePlan player={player} loaded={s.loaded} />
+    </div>
+  );
+}
