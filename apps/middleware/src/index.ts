@@ -298,6 +298,8 @@ export async function startMiddleware(
       stopped = true;
       if (pingTimer) clearInterval(pingTimer);
       heat?.stop();
+      // The samples the broker already sent (an arm stopped just before) go in the last batch.
+      if (storage?.gate() == null) await client.settle(2000);
       await new Promise<void>((resolve) => {
         const t = setTimeout(resolve, 2000);
         client.end(storage?.gate() != null, {}, () => (clearTimeout(t), resolve()));

@@ -107,13 +107,23 @@ export async function startLocalInflux(options: LocalInfluxOptions): Promise<Loc
   const confFile = path.join(dataDir, 'influxd.conf');
   fs.writeFileSync(confFile, influxdConf(dataDir, o.port, o.port + 2));
   const logFd = fs.openSync(path.join(dataDir, 'influxd.log'), 'a');
+  // A process group of its own: a terminal's Ctrl-C (SIGINT to the whole foreground group)
+  // reaches armtwin only, which stops influxd itself after the middleware's last flush.
   const child: ChildProcess = spawn(LOCAL_INFLUXD, ['run', '-config', confFile], {
     stdio: ['ignore', logFd, logFd],
+    detached: true,
   });
   fs.closeSync(logFd);
+  // Out of the group, it would outlive a parent that exits without calling stop().
+  const stopOnExit = () => child.kill('SIGTERM');
+  process.once('exit', stopOnExit);
   let exited = false;
   const exit = new Promise<void>((resolve) =>
-    child.once('exit', () => ((exited = true), resolve())),
+    child.once('exit', () => {
+      exited = true;
+      process.removeListener('exit', stopOnExit);
+      resolve();
+    }),
   );
   const url = `http://127.0.0.1:${o.port}`;
   const deadline = Date.now() + o.startTimeoutMs;

@@ -71,6 +71,12 @@ export interface MqttEdge {
   readonly brokers: { readonly choice: BrokerChoice };
   /** Publishes through the broker in use (queued by its client while it is down). */
   publish(topic: string, payload: string | Buffer, opts: IClientPublishOptions): void;
+  /**
+   * Resolves once every connected broker has answered a subscription to the same filters (or
+   * after `timeoutMs`): a broker answers in order, so what it sent before (the last samples of
+   * an arm that has just stopped) has been handled by then. Asking again changes nothing else.
+   */
+  settle(timeoutMs: number): Promise<void>;
   /** Ends every connection; `cb` once all have ended. */
   end(force: boolean, opts: object, cb: () => void): void;
 }
@@ -150,6 +156,15 @@ export function startMqtt(
     },
     publish: (topic, payload, opts) =>
       void clients[current >= 0 ? current : Math.max(used, 0)]!.publish(topic, payload, opts),
+    async settle(timeoutMs) {
+      let timer: NodeJS.Timeout | undefined;
+      const late = new Promise<void>((resolve) => (timer = setTimeout(resolve, timeoutMs)));
+      const answered = clients
+        .filter((c) => c.connected)
+        .map((c) => c.subscribeAsync(topics, { qos: o.qos }).catch(() => {}));
+      await Promise.race([Promise.all(answered), late]);
+      clearTimeout(timer);
+    },
     end(force, opts, cb) {
       let left = clients.length;
       for (const c of clients) c.end(force, opts, () => --left === 0 && cb());

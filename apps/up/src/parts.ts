@@ -65,9 +65,19 @@ export interface StartedMiddleware {
   storage: string;
 }
 
+/** ARMTWIN_INFLUX_PORT: the local influxd's HTTP port (its RPC port is 2 above); unset: 8086. */
+export function localInfluxPort(text: string | undefined): number | undefined {
+  if (!text) return undefined;
+  const n = Number(text);
+  if (!Number.isInteger(n) || n < 1 || n > 65533)
+    throw new Error(`ARMTWIN_INFLUX_PORT=${JSON.stringify(text)}: expected a port 1–65533`);
+  return n;
+}
+
 /**
  * Starts the middleware on the broker of `link`: storage is INFLUX_URL if given, else a local
- * influxd under .armtwin/influx if one can be started, else none. Throws when it fails to start.
+ * influxd under .armtwin/influx (ARMTWIN_INFLUX_DATA, on ARMTWIN_INFLUX_PORT) if one can be
+ * started, else none. Throws when it fails to start.
  */
 export async function startMiddlewarePart(
   link: MiddlewareLink,
@@ -77,6 +87,7 @@ export async function startMiddlewarePart(
 ): Promise<StartedMiddleware> {
   const mod = await import('@armtwin/middleware');
   let influx: LocalInflux | null = null;
+  const dataDir = env.ARMTWIN_INFLUX_DATA || LOCAL_INFLUX_DATA;
   const overrides: Partial<MiddlewareConfig> = {
     mqttUrl: link.mqttUrl,
     spoolDir: env.SPOOL_DIR || MIDDLEWARE_SPOOL,
@@ -87,9 +98,11 @@ export async function startMiddlewarePart(
   if (influxUrl) {
     overrides.influxUrl = influxUrl;
   } else {
-    fs.mkdirSync(LOCAL_INFLUX_DATA, { recursive: true });
+    const port = localInfluxPort(env.ARMTWIN_INFLUX_PORT);
+    fs.mkdirSync(dataDir, { recursive: true });
     influx = await mod.startLocalInflux({
-      dataDir: LOCAL_INFLUX_DATA,
+      dataDir,
+      ...(port === undefined ? {} : { port }),
       log: (m) => say(`influxd: ${m}`),
     });
     if (influx)
@@ -108,7 +121,7 @@ export async function startMiddlewarePart(
       modelDirs: link.modelDirs,
     });
     const storage = config.influxUrl
-      ? `InfluxDB at ${config.influxUrl}${influx ? ` (local influxd, data in ${path.relative(REPO_ROOT, LOCAL_INFLUX_DATA)})` : ''}`
+      ? `InfluxDB at ${config.influxUrl}${influx ? ` (local influxd, data in ${path.relative(REPO_ROOT, dataDir)})` : ''}`
       : 'NONE: no INFLUX_URL and no local influxd could be started, so nothing is stored';
     return { middleware, influx, storage };
   } catch (err) {
