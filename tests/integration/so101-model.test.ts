@@ -115,30 +115,29 @@ describe('the simulated SO-101: a Cartesian move leaves the gripper alone', () =
     await w?.close();
   });
 
-  const latest = (id: number, from: number) => w.positions(id, from).at(-1)?.[1];
+  const latest = (id: number, from: number) => w.angles(id, from).at(-1)?.[1];
 
   test('jog the gripper open, then $KMS: the arm goes, the gripper stays', async () => {
     let from = w.items.length;
-    await w.send('#006P1800T0200!');
-    await w.until(() => (latest(6, from) === 1800 ? true : undefined), 5000, 'gripper at 1800');
+    await w.send('#006A+030.00T0200!');
+    await w.until(() => (latest(6, from) === 30 ? true : undefined), 5000, 'gripper at 30°');
     // A reachable point: the tool centre of a pose inside the limits.
-    const q = Float64Array.from([0.4, -0.3, 0.5, 0.6, 0]);
-    const tip = chainFk(chain, q);
+    const tip = chainFk(chain, Float64Array.from([0.4, -0.3, 0.5, 0.6, 0]));
     from = w.items.length;
     const pan = latest(1, 0);
     await w.send(`$KMS:${tip[12]!.toFixed(1)},${tip[13]!.toFixed(1)},${tip[14]!.toFixed(1)},0500!`);
     const r = await w.frame((f) => f.type === 'kmsResult', from);
     expect(r.frame).toMatchObject({ code: 0 });
     await w.until(
-      () => (w.positions(1, from).some(([, p]) => p !== pan) ? true : undefined),
+      () => (w.angles(1, from).some(([, d]) => d !== pan) ? true : undefined),
       5000,
       'the shoulder pan to move',
     );
     await w.until(
-      () => (w.positions(1, from).length > 80 ? true : undefined),
+      () => (w.angles(1, from).length > 80 ? true : undefined),
       5000,
       'the move to end',
     );
-    expect(new Set(w.positions(6, from).map(([, p]) => p))).toEqual(new Set([1800]));
+    expect(new Set(w.angles(6, from).map(([, d]) => d))).toEqual(new Set([30]));
   });
 });

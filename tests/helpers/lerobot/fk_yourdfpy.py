@@ -4,6 +4,7 @@ prints [[16 numbers, column-major, metres], ...] (one 4x4 base->tip transform pe
 import json
 import sys
 
+import numpy as np
 import yourdfpy
 
 req = json.load(sys.stdin)
@@ -11,7 +12,7 @@ robot = yourdfpy.URDF.load(req["urdf"], load_meshes=False, build_collision_scene
                            load_collision_meshes=False)
 out = []
 for cfg in req["samples"]:
-    robot.update_cfg(cfg)
+    robot.update_cfg({name: np.float64(value) for name, value in cfg.items()})
     m = robot.get_transform(frame_to=req["tip"], frame_from=req["base"])
     out.append([float(m[r][c]) for c in range(4) for r in range(4)])
 json.dump(out, sys.stdout)
