@@ -107,6 +107,11 @@ else
   say "python venv: ready ($PYENV_DIR)"
 fi
 
+# --- Python 3.12 venv for the SO-101 / LeRobot tests --------------------------------------
+# lerobot 0.6.1 (with its torch), example-robot-data (the SO-100/SO-101 descriptions) and yourdfpy
+# (an independent FK), cached beside the venv above: scripts/pyenv-lerobot.sh says what and why.
+bash "$ROOT/scripts/pyenv-lerobot.sh"
+
 # --- node_modules ----------------------------------------------------------------------
 if [ ! -d node_modules ] || [ ! -f node_modules/.package-lock.json ] \
   || [ package-lock.json -nt node_modules/.package-lock.json ]; then

@@ -192,6 +192,18 @@ export class StatusWatcher {
     return out;
   }
 
+  /** Angle samples (state groups, §8 angle frames) of servo `id` after index `from`: [time, deg]. */
+  angleSamples(id: number, from = 0): [number, number][] {
+    const out: [number, number][] = [];
+    for (let i = from; i < this.items.length; i++) {
+      const it = this.items[i]!;
+      if (!('group' in it)) continue;
+      const f = it.group.frames.find((x) => x.type === 'angle' && x.id === id);
+      if (f?.type === 'angle') out.push([it.time ?? NaN, f.deg]);
+    }
+    return out;
+  }
+
   /** Latest health of servo `id`. */
   health(id: number): { temp: number; mv: number } | undefined {
     for (let i = this.items.length - 1; i >= 0; i--) {

@@ -19,3 +19,5 @@ export * from './client/results.ts';
 export * from './client/layout.ts';
 export * from './client/requests.ts';
 export * from './client/bus-client.ts';
+export * from './lerobot-calibration.ts';
+export * from './doctor/index.ts';

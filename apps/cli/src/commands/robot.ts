@@ -2,6 +2,7 @@ import { InvalidArgumentError, type Command } from 'commander';
 import { IMPORT_NAME, planImport } from '@armtwin/ik';
 import { importSource, RobotExistsError, writeRobotFolder } from '@armtwin/ik/import-node';
 import { MODELS_DIR } from '@armtwin/sim';
+import { registerRobotCalibration } from './robot-calibration.ts';
 
 interface ImportFlags {
   name?: string;
@@ -15,7 +16,10 @@ function profileName(value: string): string {
 }
 
 export function registerRobot(program: Command): void {
-  const robot = program.command('robot').description('robot profiles: import a URDF');
+  const robot = program
+    .command('robot')
+    .description('robot profiles: import a URDF, LeRobot calibrations in and out');
+  registerRobotCalibration(robot);
   robot
     .command('import')
     .description(

@@ -2,11 +2,14 @@
  * A `profile.json` derived from a URDF alone (`armtwin robot import`). The rules, documented in
  * docs/robots.md ("Import your robot"):
  * - the chain runs from the root link to the tool-centre link: a link named like a tool centre
- *   (`tcp`, `tool0`, `flange`, `ee_link`, `end_effector`, …; the deepest such), else the
- *   new `tcp` link (fixed, at the frame of the deepest link: most movable joints from the root,
- *   then most joints, then first written) added to the URDF, where the TCP offset can be set;
+ *   (`tcp`, `tool0`, `flange`, `ee_link`, `end_effector`, …; the deepest such), else a tool
+ *   frame (a fixed link named like `gripper_frame_link`, tool-rules.ts), else the new `tcp` link
+ *   (fixed, at the frame of the deepest link: most movable joints from the root, then most
+ *   joints, then first written) added to the URDF, where the TCP offset can be set; links moved
+ *   by a tool joint (a jaw or finger at the end of a chain, tool-rules.ts) are never the tip;
  * - servos: the chain's movable joints in order from the root, then every other movable joint
- *   that is not a mimic (gripper fingers), ids 000, 001, … in that order;
+ *   that is not a mimic (gripper fingers, tool joints), ids from the URDF's numbered
+ *   `<transmission>` actuators when each has one, else 000, 001, … in that order;
  * - mimic joints are not servos: urdf-loader moves them with their leader; they are listed in
  *   the profile's `$import.mimic`;
  * - limits: revolute radians → degrees, prismatic metres → millimetres (rounded inwards to 0.01);
@@ -21,6 +24,13 @@
 import { parseProfile } from '../profile/parse.ts';
 import { chainFromUrdf } from '../numeric/target.ts';
 import { parseUrdfJoints, type UrdfJoint } from '../numeric/urdf.ts';
+import {
+  TOOL_FRAME_NAMES,
+  isToolFrame,
+  linksBeyond,
+  toolJoints,
+  transmissionIds,
+} from './tool-rules.ts';
 
 /** A profile name: a folder name. */
 export const IMPORT_NAME = /^[a-z0-9_-]{1,32}$/;
@@ -114,14 +124,27 @@ export function deriveProfile(urdf: string, name: string, urdfFile: string): Der
       db = depth(b);
     return da.moving !== db.moving ? da.moving > db.moving : da.all > db.all;
   };
-  const reachable = links.filter((l) => l === root || pathTo(l).length > 0);
+  const tools = toolJoints(joints);
+  const onTool = linksBeyond(tools, joints);
+  const all = links.filter((l) => l === root || pathTo(l).length > 0);
+  // Links moved by a jaw or finger are never the tool centre (unless nothing else moves).
+  const offTool = all.filter((l) => !onTool.has(l));
+  const reachable = offTool.some((l) => depth(l).moving > 0) ? offTool : all;
   let tip = reachable.reduce((best, l) => (deeper(l, best) ? l : best), root);
   let tipWhy = `the deepest link (no link is named like a tool centre)`;
-  for (const re of TCP_NAMES) {
-    const named = reachable.filter((l) => re.test(l) && depth(l).moving > 0);
+  const rules = [
+    ...TCP_NAMES.map((re) => ({ re, ok: (l: string) => re.test(l), what: 'a tool centre' })),
+    ...TOOL_FRAME_NAMES.map((re) => ({
+      re,
+      ok: (l: string) => isToolFrame(l, joints, re),
+      what: 'a tool frame, on a fixed joint',
+    })),
+  ];
+  for (const { re, ok, what } of rules) {
+    const named = reachable.filter((l) => ok(l) && depth(l).moving > 0);
     if (named.length === 0) continue;
     tip = named.reduce((best, l) => (deeper(l, best) ? l : best));
-    tipWhy = `named like a tool centre (${re.source})`;
+    tipWhy = `named like ${what} (${re.source})`;
     break;
   }
   const chain = pathTo(tip);
@@ -158,10 +181,20 @@ export function deriveProfile(urdf: string, name: string, urdfFile: string): Der
   const others = joints.filter((j) => movable(j) && j.mimic === undefined && !chain.includes(j));
   const driven = [...chain.filter((j) => movable(j) && j.mimic === undefined), ...others];
   const notes: string[] = [`tool centre: link "${tip}", ${tipWhy}; chain ${root} → ${tip}`];
+  const outside = tools.filter((j) => others.includes(j));
+  if (outside.length)
+    notes.push(
+      `tool joints (jogged, left alone by Cartesian moves): ${outside.map((j) => j.name).join(', ')}`,
+    );
+  const ids = transmissionIds(
+    urdf,
+    driven.map((j) => j.name),
+  );
+  if (ids) notes.push(`servo ids from the URDF's <transmission> actuators: ${ids.join(', ')}`);
   const servos: Record<string, unknown>[] = [];
   const home: Record<string, number> = {};
   driven.forEach((j, i) => {
-    const key = String(i).padStart(3, '0');
+    const key = String(ids ? ids[i]! : i).padStart(3, '0');
     const servo = servoFor(j, key, notes);
     if (typeof servo === 'string') errors.push(servo);
     else {
@@ -184,6 +217,7 @@ export function deriveProfile(urdf: string, name: string, urdfFile: string): Der
   const json: Record<string, unknown> = {
     $import: {
       tcp: { link: tip, why: tipWhy },
+      toolJoints: outside.map((j) => j.name),
       mimic,
       calibration: 'bus, polarity and offsets are not in a URDF: calibrate them',
     },

@@ -3,3 +3,4 @@ export * from './derive-profile.ts';
 export * from './meshes.ts';
 export * from './plan-import.ts';
 export * from './limits.ts';
+export * from './tool-rules.ts';

@@ -5,12 +5,28 @@
  * SYNC READ get no answer, as on real buses. Time is the caller's: `advance(nowMs)` turns the
  * shafts toward their goals. No timers, no I/O: the simulator (or a test) owns the serial port
  * and the clock.
+ *
+ * Faults a bus really has can be set up: two servos with one id (`idClash: 'collide'`: both
+ * answer at once, one a byte's time after the other, and their bytes mix on the wire as on an
+ * open-drain line, a 0 bit from either winning, so the host reads a garbled packet), a servo set to another baud rate than the line's
+ * (`setLineBaud`: it hears nothing), any control-table field of a servo (`fields`: a firmware,
+ * a 7.4 V servo's voltage limits, an error flag).
  */
 import { DIALECTS } from '../dialect.ts';
 import type { ServoModel } from '../control-table.ts';
-import { DYNAMIXEL_MODELS, XM430_W350, type XSeriesField } from '../dynamixel/control-table.ts';
+import {
+  DYNAMIXEL_BAUD_RATES,
+  DYNAMIXEL_MODELS,
+  XM430_W350,
+  type XSeriesField,
+} from '../dynamixel/control-table.ts';
 import { BusError, emptyPacketErrorCounts, type PacketErrorKind } from '../errors.ts';
-import { FEETECH_MODELS, STS3215, type StsField } from '../feetech/control-table.ts';
+import {
+  FEETECH_BAUD_RATES,
+  FEETECH_MODELS,
+  STS3215,
+  type StsField,
+} from '../feetech/control-table.ts';
 import { decodeInstruction } from '../instructions.ts';
 import type { Packet, PacketReader, StatusPacket } from '../packet.ts';
 import { BROADCAST_ID, MAX_SERVO_ID, type BusProtocol } from '../protocols.ts';
@@ -29,6 +45,8 @@ export interface EmulatedServoSpec {
   temperatureC?: number;
   /** Input voltage at power-on, V (default: the model's). */
   voltageV?: number;
+  /** Control-table fields set at power-on, by name (`EmulatedServo.setField`). */
+  fields?: Record<string, number>;
 }
 
 export interface EmulatedBusOptions {
@@ -38,6 +56,8 @@ export interface EmulatedBusOptions {
   startMs?: number;
   /** Longest instruction packet read from the line. */
   maxPacketLength?: number;
+  /** Two servos with one id: refused (default), or both on the bus, answering at once. */
+  idClash?: 'refuse' | 'collide';
 }
 
 export const DEFAULT_EMULATED_BUS_OPTIONS = {
@@ -68,6 +88,11 @@ export interface EmulatedBus {
   feed(bytes: Uint8Array): Uint8Array;
   /** Turns the shafts toward their goals up to `nowMs` (non-decreasing; earlier times are ignored). */
   advance(nowMs: number): void;
+  /**
+   * The line's baud rate, as the host set it: a servo whose Baud Rate field says another hears
+   * nothing. Undefined (the default): every servo hears, whatever its field says.
+   */
+  setLineBaud(baud: number | undefined): void;
   readonly counters: EmulatedBusCounters;
 }
 
@@ -99,6 +124,7 @@ function makeServo(protocol: BusProtocol, spec: EmulatedServoSpec): BusServo {
       : new FeetechServo(model as ServoModel<StsField>, spec.id, position);
   if (spec.temperatureC !== undefined) servo.setTemperature(spec.temperatureC);
   if (spec.voltageV !== undefined) servo.setVoltage(spec.voltageV);
+  for (const [name, value] of Object.entries(spec.fields ?? {})) servo.setField(name, value);
   return servo;
 }
 
@@ -107,7 +133,11 @@ export function createEmulatedBus(options: EmulatedBusOptions): EmulatedBus {
   const dialect = DIALECTS[protocol];
   const servos = options.servos.map((spec) => makeServo(protocol, spec));
   const ids = new Set(servos.map((s) => s.id));
-  if (ids.size !== servos.length) throw new BusError('out-of-range', 'two servos with the same id');
+  if (ids.size !== servos.length && options.idClash !== 'collide')
+    throw new BusError('out-of-range', 'two servos with the same id');
+  let lineBaud: number | undefined;
+  const bauds = protocol === 'dynamixel' ? DYNAMIXEL_BAUD_RATES : FEETECH_BAUD_RATES;
+  const hears = (s: BusServo) => lineBaud === undefined || bauds[s.field('baudRate')] === lineBaud;
   let lastMs = options.startMs ?? DEFAULT_EMULATED_BUS_OPTIONS.startMs;
   const counters: EmulatedBusCounters = {
     instructions: 0,
@@ -118,10 +148,24 @@ export function createEmulatedBus(options: EmulatedBusOptions): EmulatedBus {
   };
   let out: Uint8Array[] = [];
 
-  const byId = (id: number) => servos.find((s) => s.id === id);
+  const byId = (id: number) => servos.find((s) => s.id === id && hears(s));
+  const allById = (id: number) => servos.filter((s) => s.id === id && hears(s));
   const send = (status: StatusPacket | null) => {
     if (!status) return;
     out.push(dialect.encode(status));
+    counters.replies++;
+  };
+  /** Every servo of `id` answers at once: one answer, or their bytes mixed on the wire. */
+  const answer = (id: number, reply: (s: BusServo) => StatusPacket | null) => {
+    const wire = allById(id)
+      .map(reply)
+      .filter((r): r is StatusPacket => r !== null)
+      .map((r) => dialect.encode(r));
+    if (wire.length === 0) return;
+    // Servos never answer in step: each one a byte's time after the one before.
+    const mixed = new Uint8Array(Math.max(...wire.map((w, k) => w.length + k))).fill(0xff);
+    wire.forEach((w, k) => w.forEach((b, i) => (mixed[i + k]! &= b)));
+    out.push(mixed);
     counters.replies++;
   };
 
@@ -157,14 +201,14 @@ export function createEmulatedBus(options: EmulatedBusOptions): EmulatedBus {
     switch (ins.op) {
       case 'sync-read':
         for (const id of ins.ids)
-          send(
-            byId(id)?.handle({ op: 'read', id, address: ins.address, length: ins.length }, false) ??
-              null,
+          answer(id, (s) =>
+            s.handle({ op: 'read', id, address: ins.address, length: ins.length }, false),
           );
         return;
       case 'sync-write':
         for (const w of ins.writes)
-          byId(w.id)?.handle({ op: 'write', id: w.id, address: ins.address, data: w.data }, true);
+          for (const s of allById(w.id))
+            s.handle({ op: 'write', id: w.id, address: ins.address, data: w.data }, true);
         return;
       case 'ping':
       case 'read':
@@ -172,8 +216,10 @@ export function createEmulatedBus(options: EmulatedBusOptions): EmulatedBus {
       case 'reg-write':
       case 'action':
       case 'reboot':
-        if (target) send(target.handle(ins, false));
-        else for (const s of [...servos].sort((a, b) => a.id - b.id)) send(s.handle(ins, true));
+        if (target) answer(target.id, (s) => s.handle(ins, false));
+        else
+          for (const s of [...servos].filter(hears).sort((a, b) => a.id - b.id))
+            send(s.handle(ins, true));
         return;
       default: {
         const never: never = ins;
@@ -210,6 +256,9 @@ export function createEmulatedBus(options: EmulatedBusOptions): EmulatedBus {
         at += r.length;
       }
       return all;
+    },
+    setLineBaud(baud) {
+      lineBaud = baud;
     },
     advance(nowMs) {
       if (!(nowMs > lastMs)) return;

@@ -63,9 +63,9 @@ export class FeetechServo extends ServoBase<StsField> {
     this.checkHealth();
   }
 
-  /** The error flags the servo's state raises now. */
+  /** The error flags the servo's state raises now (and any held in its Status field). */
   private errorFlags(): number {
-    let flags = 0;
+    let flags = this.get('status');
     const v = this.get('presentVoltage');
     if (v < this.get('minVoltageLimit') || v > this.get('maxVoltageLimit'))
       flags |= FEETECH_ERROR_BITS.voltage;

@@ -36,6 +36,12 @@ export interface EmulatedServo {
   setVoltage(volts: number): void;
   /** Puts the shaft at a present position (ticks): moved by hand, or by the simulator's physics. */
   setPosition(ticks: number): void;
+  /**
+   * Sets a control-table field as the servo's own memory holds it (read-only ones too: a
+   * firmware version, a model number, Feetech's Status error bits), for faults a test or the
+   * simulator injects; the protections that follow from it apply.
+   */
+  setField(name: string, value: number): void;
 }
 
 /** The bus's side of a servo: instructions in, a status packet (or none) out, time passing. */
@@ -147,6 +153,12 @@ export abstract class ServoBase<F extends string> implements BusServo {
   setPosition(ticks: number): void {
     this.shaft = this.toShaft(ticks);
     this.refresh();
+  }
+
+  setField(name: string, value: number): void {
+    if (!(name in this.model.table)) throw new Error(`${this.model.name} has no field ${name}`);
+    this.set(name as F, value);
+    this.checkHealth();
   }
 
   abstract setVoltage(volts: number): void;
