@@ -52,7 +52,9 @@ function mqttJoints(): number[] | undefined {
 }
 
 beforeAll(async () => {
-  const parsed = parseProfile(JSON.parse(fs.readFileSync(path.join(MODEL, 'profile.json'), 'utf8')));
+  const parsed = parseProfile(
+    JSON.parse(fs.readFileSync(path.join(MODEL, 'profile.json'), 'utf8')),
+  );
   if (!parsed.ok) throw new Error(parsed.errors.join('; '));
   profile = parsed.profile;
   const url = broker().url;
@@ -70,14 +72,12 @@ beforeAll(async () => {
   await ros.subscribe(`${NS}/joint_states`, 'joint_state', (m) => states.push(m));
   sim = armtwin(['sim', '--mqtt', url, '--arm', ARM, '--rate', '50']);
   await watch.until(() => mqttJoints(), 20_000, 'the simulated arm');
-  bridge = armtwin([
-    'ros2', '--mqtt', url, '--arm', ARM, '--domain', String(domain), '--take',
-  ]);
-  await watch.until(() => (holder === 'ros2' ? true : undefined), 30_000, 'the bridge to hold the arm').catch(
-    (err: Error) => {
+  bridge = armtwin(['ros2', '--mqtt', url, '--arm', ARM, '--domain', String(domain), '--take']);
+  await watch
+    .until(() => (holder === 'ros2' ? true : undefined), 30_000, 'the bridge to hold the arm')
+    .catch((err: Error) => {
       throw new Error(`${err.message}\n${bridge.output()}`);
-    },
-  );
+    });
 });
 
 afterAll(async () => {
@@ -89,7 +89,10 @@ afterAll(async () => {
 });
 
 /** Sends a trajectory from ROS 2 once the bridge's subscription is matched. */
-async function sendTrajectory(names: string[], points: { positions: number[]; time_from_start_ms: number }[]) {
+async function sendTrajectory(
+  names: string[],
+  points: { positions: number[]; time_from_start_ms: number }[],
+) {
   const topic = `${NS}/joint_trajectory`;
   expect(await ros.advertise(topic, 'joint_trajectory', { waitMs: 10_000 })).toBeGreaterThan(0);
   ros.publish(topic, 'joint_trajectory', { joint_names: names, points });
@@ -97,7 +100,9 @@ async function sendTrajectory(names: string[], points: { positions: number[]; ti
 
 test('a late ROS 2 subscriber gets the robot description: the profile URDF, latched', async () => {
   let urdf: string | undefined;
-  await ros.subscribe(`${NS}/robot_description`, 'string', (m) => (urdf = m.data), { durable: true });
+  await ros.subscribe(`${NS}/robot_description`, 'string', (m) => (urdf = m.data), {
+    durable: true,
+  });
   const got = await watch.until(() => urdf, 15_000, 'robot_description');
   expect(got).toBe(fs.readFileSync(path.join(MODEL, profile.urdf), 'utf8'));
 });
@@ -113,7 +118,9 @@ test("the holder's trajectory moves the arm, and ROS 2 sees its joint states as 
   const at = await watch.until(
     () => {
       const q = mqttJoints();
-      return q && Math.abs(q[1]! + 0.5) * DEG < 0.2 && Math.abs(q[2]! + 1.0) * DEG < 0.2 ? q : undefined;
+      return q && Math.abs(q[1]! + 0.5) * DEG < 0.2 && Math.abs(q[2]! + 1.0) * DEG < 0.2
+        ? q
+        : undefined;
     },
     15_000,
     'the arm at the trajectory end',
@@ -121,7 +128,11 @@ test("the holder's trajectory moves the arm, and ROS 2 sees its joint states as 
   expect(Math.abs(at[0]!) * DEG).toBeLessThan(0.2); // base, not named, stayed
   // The ROS 2 joint state now carries the same values as the MQTT status.
   const n = states.length;
-  const js = await watch.until(() => (states.length > n ? states.at(-1) : undefined), 10_000, 'a joint state');
+  const js = await watch.until(
+    () => (states.length > n ? states.at(-1) : undefined),
+    10_000,
+    'a joint state',
+  );
   expect(js.name).toEqual(profile.servos.map((s) => s.joint));
   const q = mqttJoints()!;
   js.position.forEach((v, i) => expect(Math.abs(v - q[i]!) * DEG).toBeLessThan(0.01));
@@ -142,7 +153,11 @@ test("someone else's hold: the bridge's trajectory does not move the arm and is 
   expect(refusal.detail).toMatch(/alice/);
   // The arm is where it was: every later state sample equals the one before the trajectory.
   const from = watch.items.length;
-  await watch.until(() => (watch.items.length > from + 50 ? true : undefined), 10_000, 'a second of states');
+  await watch.until(
+    () => (watch.items.length > from + 50 ? true : undefined),
+    10_000,
+    'a second of states',
+  );
   const after = mqttJoints()!;
   after.forEach((v, i) => expect(Math.abs(v - before[i]!) * DEG).toBeLessThan(0.01));
 });

@@ -63,7 +63,9 @@ export async function startArmInRos(options: Partial<ArmInRosOptions> = {}): Pro
     jointStates: 0,
     trajectories: 0,
     stops: 0,
-    refused: Object.fromEntries(TRAJECTORY_REFUSALS.map((r) => [r, 0])) as ArmInRosCounts['refused'],
+    refused: Object.fromEntries(
+      TRAJECTORY_REFUSALS.map((r) => [r, 0]),
+    ) as ArmInRosCounts['refused'],
     badHolder: 0,
   };
 
@@ -106,7 +108,9 @@ export async function startArmInRos(options: Partial<ArmInRosOptions> = {}): Pro
       const held = claims.holds;
       claims.onHolder(record);
       if (held !== claims.holds)
-        o.onInfo(claims.holds ? `${o.user} holds ${o.armId}` : `${o.user} no longer holds ${o.armId}`);
+        o.onInfo(
+          claims.holds ? `${o.user} holds ${o.armId}` : `${o.user} no longer holds ${o.armId}`,
+        );
       if (record.user !== null && !claims.holds) streamer.cancel();
     }
   });

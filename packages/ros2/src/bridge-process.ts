@@ -12,7 +12,6 @@ import {
   parseEvent,
   ROS2_ERROR_KINDS,
   type Ros2Command,
-  type Ros2Event,
   type Ros2Messages,
   type Ros2MessageType,
 } from './wire.ts';
@@ -79,14 +78,20 @@ export class Ros2Bridge {
         resolve(code);
       }),
     );
-    proc.stderr!.on('data', (d: Buffer) => (this.stderr = (this.stderr + d.toString()).slice(-4000)));
+    proc.stderr!.on(
+      'data',
+      (d: Buffer) => (this.stderr = (this.stderr + d.toString()).slice(-4000)),
+    );
     readline.createInterface({ input: proc.stdout! }).on('line', (line) => this.onLine(line));
   }
 
   /** Starts the process and resolves once its node is up; throws with its stderr if it is not. */
   static async start(options: Partial<Ros2BridgeOptions> = {}): Promise<Ros2Bridge> {
     const o = { ...DEFAULT_ROS2_BRIDGE_OPTIONS, ...options };
-    if (o.domain !== undefined && !(Number.isInteger(o.domain) && o.domain >= 0 && o.domain <= MAX_ROS2_DOMAIN))
+    if (
+      o.domain !== undefined &&
+      !(Number.isInteger(o.domain) && o.domain >= 0 && o.domain <= MAX_ROS2_DOMAIN)
+    )
       throw new RangeError(`ROS 2 domain must be an integer in 0–${MAX_ROS2_DOMAIN}`);
     const args = ['-m', 'armtwin_ros2.bridge'];
     if (o.domain !== undefined) args.push('--domain', String(o.domain));
@@ -101,11 +106,18 @@ export class Ros2Bridge {
       await Promise.race([
         new Promise<void>((resolve) => (bridge.ready = () => resolve())),
         bridge.exited.then((code) => {
-          throw new Error(`the ROS 2 bridge exited (${code}) before it was ready: ${bridge.stderrTail()}`);
+          throw new Error(
+            `the ROS 2 bridge exited (${code}) before it was ready: ${bridge.stderrTail()}`,
+          );
         }),
         new Promise<never>((_, reject) => {
           timer = setTimeout(
-            () => reject(new Error(`the ROS 2 bridge was not ready in ${o.startTimeoutMs} ms: ${bridge.stderrTail()}`)),
+            () =>
+              reject(
+                new Error(
+                  `the ROS 2 bridge was not ready in ${o.startTimeoutMs} ms: ${bridge.stderrTail()}`,
+                ),
+              ),
             o.startTimeoutMs,
           );
         }),

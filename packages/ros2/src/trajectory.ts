@@ -74,13 +74,19 @@ export function trajectoryFrames(
     index.push(i);
   }
   if (traj.points.length === 0)
-    return { kind: 'stop', ids: (index.length ? index : servos.map((_, i) => i)).map((i) => servos[i]!.id) };
+    return {
+      kind: 'stop',
+      ids: (index.length ? index : servos.map((_, i) => i)).map((i) => servos[i]!.id),
+    };
   if (currentPwm.some((p) => !Number.isFinite(p)))
     return refuse('no-state', 'the arm has not reported every servo yet');
   const samples: PlanSample[] = [{ t: 0, pwm: [...currentPwm] }];
   for (const [k, p] of traj.points.entries()) {
     if (p.positions.length !== index.length || !p.positions.every(Number.isFinite))
-      return refuse('bad-point', `point ${k} has ${p.positions.length} positions for ${index.length} joints`);
+      return refuse(
+        'bad-point',
+        `point ${k} has ${p.positions.length} positions for ${index.length} joints`,
+      );
     const t = p.time_from_start_ms;
     const last = samples[samples.length - 1]!;
     if (!(t > last.t) || t > MAX_TRAJECTORY_MS)
@@ -93,7 +99,10 @@ export function trajectoryFrames(
       const servo = servos[i]!;
       pwm[i] = exactPwmFromServo(servo, servoFromJoint(servo, p.positions[j]!));
       if (!encodable(units[i]!, pwm[i]!))
-        return refuse('out-of-range', `point ${k}: joint ${servo.joint} at ${p.positions[j]} is beyond what servo ${servo.key} can be sent`);
+        return refuse(
+          'out-of-range',
+          `point ${k}: joint ${servo.joint} at ${p.positions[j]} is beyond what servo ${servo.key} can be sent`,
+        );
     }
     samples.push({ t, pwm });
   }

@@ -105,7 +105,9 @@ export type Ros2Event = z.infer<typeof event>;
 export type Ros2MessageEvent = Extract<Ros2Event, { ev: 'message' }>;
 
 /** One stdout line as an event, or why it is not one. */
-export function parseEvent(line: string): { ok: true; event: Ros2Event } | { ok: false; error: string } {
+export function parseEvent(
+  line: string,
+): { ok: true; event: Ros2Event } | { ok: false; error: string } {
   let json: unknown;
   try {
     json = JSON.parse(line);

@@ -49,11 +49,16 @@ export function registerRos2(program: Command): void {
     .option('--arm <id>', 'arm id', armId, d.armId)
     .option('--profile <name>', "the arm's robot profile (public/models/<name>)", d.profile)
     .option('--models <dir>', 'the folder of robot profiles (default public/models)')
-    .option('--user <name>', 'who the bridge is on MQTT (its control and claim topics)', controlUser, d.user)
+    .option(
+      '--user <name>',
+      'who the bridge is on MQTT (its control and claim topics)',
+      controlUser,
+      d.user,
+    )
     .option('--take', 'hold the arm whenever nobody else does, beating to keep the lease')
     .option(
       '--domain <id>',
-      'ROS_DOMAIN_ID (default: the environment\'s, else 0)',
+      "ROS_DOMAIN_ID (default: the environment's, else 0)",
       number('domain', 0, MAX_ROS2_DOMAIN, true),
     )
     .option('--namespace <ns>', 'ROS 2 namespace of the topics (default /armtwin/<arm>)')
