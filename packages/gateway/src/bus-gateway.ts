@@ -4,12 +4,21 @@
  * (missing ones reported with `$ERR` and pinged again every `repingMs`), switches wide joints to
  * multi-turn, writes present positions as goals and turns torque on; then it reads positions
  * with SYNC READ at the state rate and temperature and voltage at the health rate, publishing
- * `$TIM`-stamped angle and health groups. Control frames become checked goals
- * (`./bus-control.ts`), `$KMS` through the IK (`./bus-kms.ts`); a stop, the deadman or torque going back on write the present position as
- * the goal. One request on the half-duplex line at a time (`./bus-line.ts`). The bytes, the
+ * `$TIM`-stamped angle and health groups. Control frames go to the controller core
+ * (@armtwin/controller: limits, floor and zones, `$KMS`, the rate limit, the deadman, the
+ * e-stop), whose goals the bus carries out (`./bus-driver.ts`); a stop, the deadman or torque
+ * going back on write the present position as the goal. One request on the half-duplex line at a time (`./bus-line.ts`). The bytes, the
  * clock, the timers and the publish function are injected.
  */
 import type { Profile } from '@armtwin/ik';
+import {
+  ControlInput,
+  ControllerCore,
+  jointsFromProfile,
+  type KeepOutCheck,
+  type KmsSolver,
+} from '@armtwin/controller';
+import type { MotionRobot } from '@armtwin/motion';
 import {
   armTopics,
   encodeControllerError,
@@ -19,8 +28,7 @@ import {
   type OperatorTimers,
 } from '@armtwin/protocol';
 import type { BusProtocol, BusResult, ServoCalibration } from '@armtwin/servo-bus';
-import { BusControl } from './bus-control.ts';
-import type { BusKeepOut, BusKmsSolver } from './bus-kms.ts';
+import { BusDriver } from './bus-driver.ts';
 import { BusLine, type BusLineCounters } from './bus-line.ts';
 import { BusReports } from './bus-reports.ts';
 import { busCalibration, busJoints, type BusGoal, type BusJoint } from './bus-servos.ts';
@@ -50,10 +58,12 @@ export interface BusGatewayOptions {
   repingMs: number;
   /** A beating operator is let go after this long without a `1`, ms (0 = only a `0`). */
   operatorLeaseMs: number;
-  /** `$KMS` through the profile's IK (`busKmsSolver`); unset: `$KMS` is refused. */
-  kms?: BusKmsSolver;
-  /** Keep-out zones (the floor, `busFloorKeepOut`) checked before any goal is written. */
-  keepOut?: BusKeepOut;
+  /** `$KMS` through the profile's IK (`numericKms` of @armtwin/controller); unset: `$KMS` is refused. */
+  kms?: KmsSolver;
+  /** The floor and keep-out zones (`zonesKeepOut`) checked before any goal is written. */
+  keepOut?: KeepOutCheck;
+  /** The planner's robot, for motion requests (start-bus-gateway.ts). */
+  robot?: MotionRobot;
 }
 
 export const DEFAULT_BUS_GATEWAY_OPTIONS = {
@@ -76,8 +86,10 @@ export class BusGatewayCore {
   };
   readonly operator: OperatorWatch;
   readonly joints: BusJoint[];
-  /** Rebuilt by `reconfigure`. */
-  control: BusControl;
+  /** The controller: frames in, goals to the bus out. */
+  readonly controller: ControllerCore;
+  /** The control input in front of it: reader, payload bound, rate limit. */
+  readonly input: ControlInput;
   readonly reports = new BusReports();
   /** Servos that answer (others are pinged again). */
   readonly found = new Set<number>();
@@ -99,13 +111,19 @@ export class BusGatewayCore {
     this.topics = armTopics(this.o.armId);
     this.joints = busJoints(this.o.profile);
     this.line = new BusLine(this.o.protocol, this.joints, this.o.baudRate, io);
-    this.control = new BusControl(this, this.joints, this.o.kms, this.o.keepOut);
+    this.controller = new ControllerCore(
+      jointsFromProfile(this.o.profile),
+      new BusDriver(this, this.joints),
+      { kms: this.o.kms, keepOut: this.o.keepOut },
+    );
+    this.input = new ControlInput(this.controller, { onFirst: io.onFirst }, io.now());
     this.operator = new OperatorWatch(
       io,
       (reason) => {
-        if (!this.ready) return;
+        const out: string[] = [];
+        if (!this.controller.operatorLeft(io.now(), out)) return;
         this.counters.deadmanStops++;
-        this.hold(this.joints.map((j) => j.id));
+        this.status(out);
         if (reason === 'lapsed') io.onFirst('deadman:lapsed', 'operator stopped beating: holding');
       },
       this.o.operatorLeaseMs,
@@ -167,13 +185,18 @@ export class BusGatewayCore {
     this.operator.receive(payload);
   }
 
-  /** Moves refused by a keep-out rule so far, and why the last one was. */
-  keepOutRefusals(): { count: number; last: string } {
-    return this.control.keepOutRefusals;
+  /** The planner's robot now (motion requests), when one was given. */
+  get robot(): MotionRobot | undefined {
+    return this.o.robot;
+  }
+
+  /** The last goal written to servo `id`, degrees. */
+  goalOf(id: number): number | undefined {
+    return this.reports.goalOf(id);
   }
 
   fromControl(payload: Uint8Array | string): void {
-    const replies = this.control.receive(payload);
+    const replies = this.input.receive(payload, this.io.now());
     if (replies.length) this.status(replies);
   }
 
@@ -195,7 +218,12 @@ export class BusGatewayCore {
    * and changes nothing, when the ids differ or a joint would switch in or out of multi-turn
    * (that is set up with torque off, at start).
    */
-  reconfigure(profile: Profile, kms?: BusKmsSolver, keepOut?: BusKeepOut): string {
+  reconfigure(
+    profile: Profile,
+    kms?: KmsSolver,
+    keepOut?: KeepOutCheck,
+    robot?: MotionRobot,
+  ): string {
     const next = busJoints(profile);
     const ids = (js: readonly BusJoint[]) => js.map((j) => String(j.id).padStart(3, '0')).join(' ');
     if (ids(next) !== ids(this.joints))
@@ -205,19 +233,14 @@ export class BusGatewayCore {
       return `servos ${ids(turned)} would switch multi-turn mode: restart the gateway`;
     this.line.dropGoals();
     this.joints.splice(0, this.joints.length, ...next);
-    this.o = { ...this.o, profile, kms, keepOut };
+    this.o = { ...this.o, profile, kms, keepOut, robot: robot ?? this.o.robot };
     this.line.recalibrate();
     this.reports.forgetGoals();
-    const old = this.control.counters;
-    const refusals = this.control.keepOutRefusals;
-    this.control = new BusControl(this, this.joints, kms, keepOut);
-    this.control.keepOutRefusals = refusals;
-    Object.assign(this.control.counters.refused, old.refused);
-    this.control.counters.frames = old.frames;
+    this.controller.reconfigure(jointsFromProfile(profile), { kms, keepOut });
     return '';
   }
 
-  /** Goals checked by `BusControl`: one sync write, after whatever is on the line now. */
+  /** Goals checked by the controller core: one sync write, after whatever is on the line now. */
   writeGoals(goals: BusGoal[]): void {
     this.counters.goalWrites++;
     this.reports.remember(goals);

@@ -36,6 +36,11 @@ export class BusReports {
     for (const g of goals) this.commanded.set(g.id, g.degrees);
   }
 
+  /** The last goal written to servo `id`, degrees as commanded (undefined: none yet). */
+  goalOf(id: number): number | undefined {
+    return this.commanded.get(id);
+  }
+
   /** Forgets the goals (a new calibration reads the same ticks as other angles). */
   forgetGoals(): void {
     this.commanded.clear();

@@ -4,10 +4,10 @@
  * 4096; s = polarity · (ticks − 2048) · 360 / 4096, so the profile's `polarity` is the mounting
  * direction, and its `offset` the joint's zero: joint = s + offset), and a joint whose limits reach
  * past half a turn either way runs multi-turn (Dynamixel extended position mode, Feetech
- * with both angle limits 0). Control frames become goals here: limits checked, pulse widths
- * turned into degrees through the profile, `T…` turned into a speed.
+ * with both angle limits 0). The controller core's goals become bus goals here: `T…` turned
+ * into a speed.
  */
-import { servoFromPwm, servoLimits, type Profile, type ProfileServo } from '@armtwin/ik';
+import { servoLimits, type Profile, type ProfileServo } from '@armtwin/ik';
 import type { ServoCalibration } from '@armtwin/servo-bus';
 
 export interface BusJoint {
@@ -46,27 +46,12 @@ export interface BusGoal {
   speedDegPerS: number;
 }
 
-export type GoalResult = { ok: true; goal: BusGoal } | { ok: false; error: string };
-
-const id3 = (id: number) => String(id).padStart(3, '0');
-
 /**
- * A move to `degrees` in `ms` from `fromDeg` (the last position read, NaN when unknown): the
- * speed that arrives on time, never above the profile's `maxSpeed` (0 ms = as fast as allowed).
+ * A goal for `degrees` (already checked by the controller core) in `ms` from `fromDeg` (the last
+ * position read, NaN when unknown): the speed that arrives on time, never above the profile's
+ * `maxSpeed` (0 ms = as fast as allowed).
  */
-export function goalFor(
-  joint: BusJoint,
-  degrees: number,
-  ms: number,
-  fromDeg: number,
-  what: string,
-): GoalResult {
-  const tol = 1e-9;
-  if (!Number.isFinite(degrees) || degrees < joint.min - tol || degrees > joint.max + tol)
-    return {
-      ok: false,
-      error: `limit ${id3(joint.id)} ${what} outside ${joint.min}..${joint.max}`,
-    };
+export function busGoal(joint: BusJoint, degrees: number, ms: number, fromDeg: number): BusGoal {
   const top = joint.servo.maxSpeed;
   let speed = top;
   if (ms > 0 && Number.isFinite(fromDeg))
@@ -74,13 +59,5 @@ export function goalFor(
       top,
       Math.max(BUS_MIN_SPEED_DEG_PER_S, Math.abs(degrees - fromDeg) / (ms / 1000)),
     );
-  return { ok: true, goal: { id: joint.id, degrees, speedDegPerS: speed } };
+  return { id: joint.id, degrees, speedDegPerS: speed };
 }
-
-/** `#IIIPppppTtttt!` on a bus servo: the pulse width read through the profile (§2). */
-export const pulseGoal = (joint: BusJoint, pwm: number, ms: number, fromDeg: number) =>
-  goalFor(joint, servoFromPwm(joint.servo, pwm), ms, fromDeg, `P${pwm}`);
-
-/** `#IIIA±ddd.ddTtttt!`. */
-export const angleGoal = (joint: BusJoint, deg: number, ms: number, fromDeg: number) =>
-  goalFor(joint, deg, ms, fromDeg, `A${deg}`);

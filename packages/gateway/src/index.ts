@@ -2,9 +2,8 @@
  * The edge gateway: a real controller on a serial line ⇄ MQTT. `startGateway` (what
  * `armtwin gateway` runs), the socket-free `GatewayCore`, and the self-reopening `SerialLink`.
  */
-export * from './bus-control.ts';
+export * from './bus-driver.ts';
 export * from './bus-gateway.ts';
-export * from './bus-kms.ts';
 export * from './bus-line.ts';
 export * from './bus-reports.ts';
 export * from './bus-servos.ts';

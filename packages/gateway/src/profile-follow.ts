@@ -14,7 +14,7 @@ import type { MqttClient } from 'mqtt';
 import { readRobotFolder } from '@armtwin/motion/robot-folder';
 import { EMERGENCY_STOP, topic } from '@armtwin/protocol';
 import { parseProfile } from '@armtwin/ik';
-import { busKmsSolver, busZonesKeepOut } from './bus-kms.ts';
+import { numericKms, zonesKeepOut } from '@armtwin/controller';
 import type { BusGatewayCore } from './bus-gateway.ts';
 
 /** What every move is answered with while the profile file does not parse. */
@@ -53,7 +53,7 @@ export function followProfile(o: ProfileFollowOptions): { stop(): void } {
   const reload = () => {
     try {
       const { profile, raw, robot } = readRobotFolder(o.name, o.modelsDir);
-      const error = o.core.reconfigure(profile, busKmsSolver(robot), busZonesKeepOut(robot));
+      const error = o.core.reconfigure(profile, numericKms(robot), zonesKeepOut(robot), robot);
       if (error) return o.onFirst('profile:reload', error);
       announce(raw);
       o.onReload?.(profile.name);

@@ -1,15 +1,17 @@
 /**
  * Wires the bus gateway (`armtwin gateway --bus dynamixel|feetech`): the robot profile read
- * from disk (announced and followed: ./profile-follow.ts), a `SerialLink` (reopens with back-off), an mqtt.js client (last will `0` on
- * `arm/{id}/online`) and `BusGatewayCore`, on the system clock.
+ * from disk (announced and followed: ./profile-follow.ts), a `SerialLink` (reopens with
+ * back-off), an mqtt.js client (last will `0` on `arm/{id}/online`), `BusGatewayCore` and
+ * motion requests on `arm/{id}/request` (@armtwin/controller), on the system clock.
  */
 import type { MqttClient } from 'mqtt';
+import { MotionRequests, numericKms, zonesKeepOut } from '@armtwin/controller';
+import { startMotionService } from '@armtwin/controller/mqtt';
 import type { Profile } from '@armtwin/ik';
 import type { MotionRobot } from '@armtwin/motion';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { armTopics, SYSTEM_CLOCK, topic } from '@armtwin/protocol';
 import type { BusProtocol } from '@armtwin/servo-bus';
-import { busKmsSolver, busZonesKeepOut } from './bus-kms.ts';
 import {
   BusGatewayCore,
   DEFAULT_BUS_GATEWAY_OPTIONS,
@@ -99,8 +101,9 @@ export function startBusGateway(
     stateRate: o.stateRate,
     healthRate: o.healthRate,
     operatorLeaseMs: o.operatorLeaseMs,
-    kms: busKmsSolver(robot),
-    keepOut: busZonesKeepOut(robot),
+    kms: numericKms(robot),
+    keepOut: zonesKeepOut(robot),
+    robot,
   };
   const core = new BusGatewayCore(coreOptions, {
     ...SYSTEM_CLOCK,
@@ -118,6 +121,18 @@ export function startBusGateway(
     onReload: (name) =>
       log?.info({ profile: name }, 'profile file changed: new calibration in force'),
   });
+  // Motion requests, executed on the bus by the controller core (the profile is announced by followProfile).
+  const motion = startMotionService(
+    client,
+    new MotionRequests(core.controller, () => core.robot ?? robot, SYSTEM_CLOCK.now(), {
+      mayExecute: (user) => control.refusal(user, 'a motion request on the arm'),
+      onFirst: o.onFirst,
+      controlTopic: topics.control,
+    }),
+    o.armId,
+    SYSTEM_CLOCK,
+    o.onFirst,
+  );
   link.start();
   log?.info(
     { arm: o.armId, bus: o.bus, profile: o.profile, ids: core.joints.map((j) => j.id) },
@@ -128,6 +143,7 @@ export function startBusGateway(
     client,
     link,
     async stop() {
+      motion.stop();
       follow.stop();
       core.operator.reset();
       control.reset();

@@ -6,6 +6,7 @@
 import type { MqttClient } from 'mqtt';
 import type { Logger } from 'pino';
 import { connectBrokers, type BrokerClient } from '@armtwin/link';
+import { auditKeepOut, type ControllerCore } from '@armtwin/controller';
 import {
   armTopics,
   describeBroker,
@@ -117,8 +118,8 @@ export interface GatewayMqttCore {
   brokerConnected(connected: boolean): void;
   fromControl(payload: Buffer): void;
   fromOperator(payload: Buffer): void;
-  /** A bus arm's moves refused by its keep-out rules so far, and why the last one was. */
-  keepOutRefusals?(): { count: number; last: string };
+  /** A bus arm's controller core: its keep-out refusals go into the audit record. */
+  readonly controller?: ControllerCore;
 }
 
 /**
@@ -137,23 +138,18 @@ export function wireGatewayMqtt(
   const publish = (topic: string, payload: string, retain = false) => {
     if (client.connected) client.publish(topic, payload, { qos: retain ? 1 : 0, retain });
   };
-  const control = new ControlArbiter(
+  const control: ControlArbiter = new ControlArbiter(
     o.armId,
     {
       ...SYSTEM_CLOCK,
-      forward: (payload) => {
-        // A move the arm refuses by its keep-out rules is part of the record, with its sender.
-        const before = core.keepOutRefusals?.().count ?? 0;
-        core.fromControl(Buffer.from(payload));
-        const after = core.keepOutRefusals?.();
-        if (!after || after.count === before) return;
-        const by = control.author;
-        control.record(
-          by,
-          'refused-keep-out',
-          `${by || 'a client on a plain topic'}: ${after.last}`,
-        );
-      },
+      // A move the arm refuses by its keep-out rules is part of the record, with its sender.
+      forward: core.controller
+        ? auditKeepOut(
+            () => core.controller!,
+            (): ControlArbiter => control,
+            (payload) => core.fromControl(Buffer.from(payload)),
+          )
+        : (payload) => core.fromControl(Buffer.from(payload)),
       refuse: (message) =>
         publish(
           topics.status,

@@ -18,7 +18,8 @@ import {
   type BusProtocol,
   type EmulatedBus,
 } from '@armtwin/servo-bus';
-import { BusGatewayCore, BUS_MODELS_DIR, busFloorKeepOut, busKmsSolver } from '../src/index.ts';
+import { floorKeepOut, numericKms } from '@armtwin/controller';
+import { BusGatewayCore, BUS_MODELS_DIR } from '../src/index.ts';
 
 /** armtwin5 with its wrist roll (004) able to turn ±360°. */
 function profile(): Profile {
@@ -52,8 +53,8 @@ function rig(protocol: BusProtocol, ids = [0, 1, 2, 3, 4, 5]) {
       armId: 'a1',
       protocol,
       profile: profile(),
-      kms: busKmsSolver(createMotionRobot(profile())),
-      keepOut: busFloorKeepOut(createMotionRobot(profile())),
+      kms: numericKms(createMotionRobot(profile())),
+      keepOut: floorKeepOut(createMotionRobot(profile())),
     },
     {
       now: () => clock.now(),
@@ -146,7 +147,7 @@ describe.each(['dynamixel', 'feetech'] as const)('bus gateway core on %s', (prot
     r.clock.advance(500);
     expect(r.errors()).toEqual([
       'limit 004 A361 outside -360..360',
-      'limit 001 A95 outside -90..90',
+      'group rejected: limit 001 A95 outside -90..90', // a refused group is worded as on the sim (one controller)
     ]);
     expect(r.angle(0)).toBe(0); // the group's valid move was not made either
   });
@@ -201,7 +202,7 @@ describe.each(['dynamixel', 'feetech'] as const)('bus gateway core on %s', (prot
     r.clock.advance(1000);
     expect(r.errors()).toEqual([expect.stringMatching(/^floor: tip 148\.0 mm below the floor/)]);
     expect(r.angle(2)).toBe(0);
-    expect(r.core.control.counters.refused.floor).toBe(2);
+    expect(r.core.controller.counters.rejected.floor).toBe(2);
   });
 
   test('answers arriving after their time-out are drained, never taken for the next ones', () => {

@@ -1,64 +1,43 @@
 /**
- * The simulated controller: executes control frames the way the firmware would, against the
- * servo model. Pure: time comes in as an argument (epoch ms), replies go out as encoded frame
- * strings appended to an array the caller owns. The MQTT or serial side lives elsewhere.
+ * The simulated servos as a driver of the controller core (@armtwin/controller): the core
+ * checks and executes control frames the way the firmware would, this carries out its goals on
+ * the servo model and answers its reads. Pure: time comes in as an argument (epoch ms), replies
+ * go out as encoded frame strings appended to an array the caller owns. The MQTT or serial side
+ * lives elsewhere.
  */
 import { speaksAngle, type ArmProfile } from '@armtwin/ik';
 import {
-  KMS_FLOOR_CODE,
-  KMS_ZONE_CODE,
+  ControllerCore,
+  id3,
+  jointsFromArm,
+  type ControllerCounters,
+  type ControllerDriver,
+  type Goal,
+  type ReadAnswer,
+} from '@armtwin/controller';
+import {
   PWM_CENTRE,
   PWM_MAX,
   PWM_MIN,
-  SERVO_ID_ALL,
   US_PER_DEG,
   encodeAngle,
-  encodeControllerError,
-  encodeGroup,
   encodeHealth,
-  encodeKmsResult,
-  encodePing,
   encodePosition,
-  unhandled,
   type Frame,
   type Group,
 } from '@armtwin/protocol';
 import { DEFAULT_SIM_MODEL_OPTIONS, reportAngle, type SimModelOptions } from './options.ts';
-import { solveKms } from './kms.ts';
+import { analyticKms } from './kms.ts';
 import { Servos } from './servos.ts';
-import { keepOutKind } from '@armtwin/motion';
 
-import { frameRefusal, id3 } from './frameRefusal.ts';
+/** What the controller did with a command, counted by kind (the core's counters). */
+export type SimCounters = ControllerCounters;
 
-/** What the controller did with a command, counted by kind. */
-export interface SimCounters {
-  moves: number;
-  groups: number;
-  kms: number;
-  stops: number;
-  emergencyStops: number;
-  rejected: Record<
-    'limit' | 'floor' | 'zone' | 'unknown-servo' | 'group' | 'unexpected' | 'ik',
-    number
-  >;
-}
-
-export class SimModel {
+export class SimModel implements ControllerDriver {
   readonly servos: Servos;
   readonly arm: ArmProfile;
-  readonly counters: SimCounters = {
-    moves: 0,
-    groups: 0,
-    kms: 0,
-    stops: 0,
-    emergencyStops: 0,
-    rejected: { limit: 0, floor: 0, zone: 0, 'unknown-servo': 0, group: 0, unexpected: 0, ik: 0 },
-  };
-
-  /** Why the last move refused by a keep-out rule was refused ('' = none yet). */
-  lastKeepOutRefusal = '';
-  private readonly kmsSolver: SimModelOptions['kms'];
-  private keepOut: SimModelOptions['keepOut'];
+  /** The controller: frames in, goals to these servos out. */
+  readonly core: ControllerCore;
   /** Per servo index: 1 when its position is reported in §8 angle frames. */
   readonly reportsAngle: Uint8Array;
   /** Per servo index: mounting polarity, for servo angle ↔ the model's pulse-equivalent. */
@@ -67,9 +46,11 @@ export class SimModel {
   constructor(options: Partial<SimModelOptions> = {}, now = 0) {
     const o = { ...DEFAULT_SIM_MODEL_OPTIONS, ...options };
     this.arm = o.arm;
-    this.kmsSolver = o.kms;
-    this.keepOut = o.keepOut;
     this.servos = new Servos(o, now);
+    this.core = new ControllerCore(jointsFromArm(o.arm), this, {
+      kms: o.kms ?? analyticKms(o.arm),
+      keepOut: o.keepOut,
+    });
     this.reportsAngle = Uint8Array.from(o.arm.servos, (spec) =>
       reportAngle(o.report, speaksAngle(spec)) ? 1 : 0,
     );
@@ -115,57 +96,37 @@ export class SimModel {
       : encodePosition(id, this.reportedPwm(i, t));
   }
 
+  /** What the controller did with commands, by kind. */
+  get counters(): SimCounters {
+    return this.core.counters;
+  }
+
+  /** Why the last move refused by a keep-out rule was refused ('' = none yet). */
+  get lastKeepOutRefusal(): string {
+    return this.core.lastKeepOutRefusal;
+  }
+
   /** Executes one top-level frame received at t; appends reply frames to `out`. */
   execute(frame: Frame, t: number, out: string[]): void {
     this.advance(t);
-    const reads: string[] = [];
-    const error = this.check(frame) || this.checkKeepOut([frame]);
-    if (error) {
-      out.push(encodeControllerError(error));
-      return;
-    }
-    this.apply(frame, t, reads, out);
-    if (reads.length > 1) out.push(encodeGroup(reads));
-    else if (reads.length === 1) out.push(reads[0]!);
+    this.core.execute(frame, t, out);
   }
 
-  /**
-   * Executes a `{…}` group received at t: only when every frame in it decoded and passes its
-   * checks, and then all together. Reads inside it are answered as one group.
-   */
+  /** Executes a `{…}` group received at t: all together or not at all (the core). */
   executeGroup(group: Group, t: number, out: string[]): void {
     this.advance(t);
-    let error = group.invalid > 0 ? `group rejected: ${group.invalid} bad frame(s)` : '';
-    for (const frame of group.frames) {
-      if (error) break;
-      const e = this.check(frame);
-      if (e) error = `group rejected: ${e}`;
-    }
-    if (!error) {
-      const e = this.checkKeepOut(group.frames);
-      if (e) error = `group rejected: ${e}`;
-    }
-    if (error) {
-      this.counters.rejected.group++;
-      out.push(encodeControllerError(error));
-      return;
-    }
-    this.counters.groups++;
-    const reads: string[] = [];
-    for (const frame of group.frames) this.apply(frame, t, reads, out);
-    if (reads.length > 0) out.push(encodeGroup(reads));
+    this.core.executeGroup(group, t, out);
   }
 
   /** Puts other keep-out rules in force (a profile file edited while running: zones-follow.ts). */
   setKeepOut(check: SimModelOptions['keepOut']): void {
-    this.keepOut = check;
+    this.core.setKeepOut(check);
   }
 
   /** Stops every servo where it is now (`#255PDST!`). */
   emergencyStop(t: number): void {
     this.advance(t);
-    this.counters.emergencyStops++;
-    for (let i = 0; i < this.servos.count; i++) this.servos.stop(i, t);
+    this.core.emergencyStop(t);
   }
 
   /**
@@ -193,122 +154,39 @@ export class SimModel {
     return placed;
   }
 
-  /** The reason a frame cannot run, or '' when it can (./frameRefusal.ts), counted by kind. */
-  private check(frame: Frame): string {
-    const r = frameRefusal(frame, this.servos, this.arm);
-    if (!r) return '';
-    this.counters.rejected[r.kind]++;
-    return r.reason;
+  // The driver (@armtwin/controller): what the core asks of the servos.
+
+  unready(): string {
+    return '';
   }
 
-  /**
-   * The keep-out rules (the floor, the zones) for the move these (already checked) frames start:
-   * '' when it may run, else the reason (counted as `floor` or `zone`). Changes nothing.
-   */
-  private checkKeepOut(frames: readonly Frame[]): string {
-    if (!this.keepOut) return '';
+  pose(t: number): number[] {
+    return Array.from({ length: this.servos.count }, (_, i) => this.servos.pwmAt(i, t));
+  }
+
+  moving(t: number): boolean {
+    this.advance(t);
+    for (let i = 0; i < this.servos.count; i++) if (this.servos.isMoving(i, t)) return true;
+    return false;
+  }
+
+  move(goals: readonly Goal[], t: number): void {
+    this.advance(t);
+    for (const g of goals) this.servos.moveTo(g.i, g.pwm, g.ms, t);
+  }
+
+  hold(indices: readonly number[], t: number): void {
+    this.advance(t);
+    for (const i of indices) this.servos.stop(i, t);
+  }
+
+  read(kind: 'position' | 'health', i: number, t: number): ReadAnswer {
     const s = this.servos;
-    const to = Array.from(s.to);
-    let moved = false;
-    for (const f of frames) {
-      if (f.type !== 'move' && f.type !== 'angleMove') continue;
-      for (let i = 0; i < s.count; i++) {
-        if (f.id !== SERVO_ID_ALL && f.id !== s.ids[i]) continue;
-        to[i] = f.type === 'move' ? f.pwm : this.pulseOfAngle(i, f.deg);
-        moved = true;
-      }
-    }
-    const reason = moved ? this.keepOut(Array.from(s.to), to) : '';
-    if (reason) {
-      this.counters.rejected[keepOutKind(reason)]++;
-      this.lastKeepOutRefusal = reason;
-    }
-    return reason;
-  }
-
-  /** Runs a checked frame. Position and health reads go to `reads`, other replies to `out`. */
-  private apply(frame: Frame, t: number, reads: string[], out: string[]): void {
-    const s = this.servos;
-    switch (frame.type) {
-      case 'move':
-        this.counters.moves++;
-        for (let i = 0; i < s.count; i++) {
-          if (frame.id === SERVO_ID_ALL || frame.id === s.ids[i])
-            s.moveTo(i, frame.pwm, frame.ms, t);
-        }
-        return;
-      case 'angleMove':
-        this.counters.moves++;
-        for (let i = 0; i < s.count; i++) {
-          if (frame.id === SERVO_ID_ALL || frame.id === s.ids[i])
-            s.moveTo(i, this.pulseOfAngle(i, frame.deg), frame.ms, t);
-        }
-        return;
-      case 'stop':
-        if (frame.id === SERVO_ID_ALL) return this.emergencyStop(t);
-        this.counters.stops++;
-        return s.stop(s.indexOf(frame.id), t);
-      case 'readPosition':
-      case 'readHealth':
-        for (let i = 0; i < s.count; i++) {
-          const id = s.ids[i]!;
-          if (frame.id !== SERVO_ID_ALL && frame.id !== id) continue;
-          reads.push(
-            frame.type === 'readPosition'
-              ? this.positionReport(i, t)
-              : encodeHealth(id, s.temp[i]!, s.mv[i]!),
-          );
-        }
-        return;
-      case 'kms':
-        return this.kms(frame.x, frame.y, frame.z, frame.alpha, frame.ms, t, out);
-      case 'ping':
-        out.push(encodePing(frame.seq));
-        return;
-      case 'time': // `$TIM` on control: a stamp, nothing to do
-      case 'position': // status frames never pass check()
-      case 'angle':
-      case 'health':
-      case 'kmsResult':
-      case 'controllerError':
-        return;
-      default:
-        return unhandled(frame);
-    }
-  }
-
-  /**
-   * The `$KMS` code the keep-out rules give a solution (pulses by servo index, NaN = leave):
-   * 0 when it may run, `KMS_FLOOR_CODE` below the floor, `KMS_ZONE_CODE` into a zone.
-   */
-  private kmsKeepOutCode(pwm: readonly number[]): number {
-    if (!this.keepOut) return 0;
-    const from = Array.from(this.servos.to);
-    const to = from.map((p, i) => (Number.isNaN(pwm[i]) || pwm[i] === undefined ? p : pwm[i]!));
-    const reason = this.keepOut(from, to);
-    if (!reason) return 0;
-    const kind = keepOutKind(reason);
-    this.counters.rejected[kind]++;
-    this.lastKeepOutRefusal = reason;
-    return kind === 'zone' ? KMS_ZONE_CODE : KMS_FLOOR_CODE;
-  }
-
-  /** `$KMS`: solve (./kms.ts), answer `$KMS:c!`, move the servos together only when c is 0. */
-  private kms(
-    x: number,
-    y: number,
-    z: number,
-    alpha: number | undefined,
-    ms: number,
-    t: number,
-    out: string[],
-  ) {
-    this.counters.kms++;
-    const k = solveKms(x, y, z, alpha, t, this.servos, this.arm, this.kmsSolver, (pwm) =>
-      this.kmsKeepOutCode(pwm),
-    );
-    if (k.ikRefused) this.counters.rejected.ik++;
-    out.push(encodeKmsResult(k.code));
-    for (const m of k.moves) this.servos.moveTo(m.i, m.pwm, ms, t);
+    return {
+      frame:
+        kind === 'position'
+          ? this.positionReport(i, t)
+          : encodeHealth(s.ids[i]!, s.temp[i]!, s.mv[i]!),
+    };
   }
 }

@@ -1,5 +1,6 @@
 /**
- * The simulated arm on MQTT: the runner's status payloads go to `arm/{id}/status` (QoS 0),
+ * The simulated arm on MQTT (its controller is @armtwin/controller's core, the servo model its
+ * driver): the runner's status payloads go to `arm/{id}/status` (QoS 0),
  * `arm/{id}/control` feeds it, `arm/{id}/sim` takes fault commands (JSON, see faults.ts) and
  * the faults in force are published retained on `arm/{id}/sim/faults`. Presence: retained `1`
  * on `arm/{id}/online` at every (re)connect; the client must be created with the retained `0`
@@ -26,8 +27,9 @@ import {
   SYSTEM_CLOCK,
   type Clock,
 } from '@armtwin/protocol';
+import { auditKeepOut, MotionRequests } from '@armtwin/controller';
+import { startMotionService } from '@armtwin/controller/mqtt';
 import { parseFaults } from './faults.ts';
-import { startMotionService } from './motion-service.ts';
 import type { SimProfile } from './profile.ts';
 import { SimRunner, type PayloadKind, type SimRunnerOptions } from './runner.ts';
 
@@ -113,22 +115,18 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
     options.operatorLeaseMs ?? OPERATOR_LEASE_MS,
   );
 
-  const control = new ControlArbiter(
+  const control: ControlArbiter = new ControlArbiter(
     options.armId,
     {
       now: () => clock.now(),
       setTimeout: (fn, ms) => clock.setTimeout(fn, ms),
       clearTimeout: (handle) => clock.clearTimeout(handle),
-      forward: (payload) => {
-        // A move the arm refuses by its keep-out rules is part of the record, with its sender.
-        const r = runner.model.counters.rejected;
-        const before = r.zone + r.floor;
-        runner.receive(payload);
-        if (r.zone + r.floor === before) return;
-        const by = control.author;
-        const who = by || 'a client on a plain topic';
-        control.record(by, 'refused-keep-out', `${who}: ${runner.model.lastKeepOutRefusal}`);
-      },
+      // A move the arm refuses by its keep-out rules is part of the record, with its sender.
+      forward: auditKeepOut(
+        () => runner.model.core,
+        (): ControlArbiter => control,
+        (payload) => runner.receive(payload),
+      ),
       refuse: (message) => {
         if (client.connected)
           client.publish(
@@ -187,10 +185,20 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
   client.on('message', onMessage);
   if (client.connected) onConnect();
   runner.start();
-  const motion = options.profile
-    ? startMotionService(client, runner, options.armId, options.profile, clock, onFirst, {
-        mayExecute: (user) => control.refusal(user, 'a motion request on the arm'),
-      })
+  const sim = options.profile;
+  const motion = sim
+    ? startMotionService(
+        client,
+        new MotionRequests(runner.model.core, () => sim.robot, clock.now(), {
+          mayExecute: (user) => control.refusal(user, 'a motion request on the arm'),
+          onFirst,
+          controlTopic: topics.control,
+        }),
+        options.armId,
+        clock,
+        onFirst,
+        () => sim.announcement,
+      )
     : undefined;
 
   return {

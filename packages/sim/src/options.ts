@@ -5,6 +5,7 @@
  * below 6.5 V. Currents are per servo, in amperes; index i is the arm profile's i-th servo.
  */
 import { DEMO_ARM, type ArmProfile } from '@armtwin/ik';
+import type { KeepOutCheck, KmsSolver } from '@armtwin/controller';
 import { unhandled } from '@armtwin/protocol';
 
 /**
@@ -76,17 +77,8 @@ export interface SimModelOptions {
   keepOut?: KeepOutCheck;
 }
 
-/** (goal pulses now, goal pulses after the command, by servo index) → refusal reason or ''. */
-export type KeepOutCheck = (from: readonly number[], to: readonly number[]) => string;
-
-/** (x, y, z mm, pitch deg or undefined, pulses now by servo index) → code and target pulses. */
-export type KmsSolver = (
-  x: number,
-  y: number,
-  z: number,
-  alpha: number | undefined,
-  pwm: readonly number[],
-) => { code: number; pwm: readonly number[] };
+/** The keep-out check and the `$KMS` solver, in pulses by servo index (@armtwin/controller). */
+export type { KeepOutCheck, KmsSolver } from '@armtwin/controller';
 
 export const DEFAULT_SIM_MODEL_OPTIONS: SimModelOptions = {
   arm: DEMO_ARM,

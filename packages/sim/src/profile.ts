@@ -16,16 +16,11 @@ import {
   pulseEquivalentArm,
   type Profile,
 } from '@armtwin/ik';
-import {
-  checkFloorMove,
-  createMotionRobot,
-  keepOutReason,
-  solveTip,
-  type MotionRobot,
-} from '@armtwin/motion';
+import { numericKms, zonesKeepOut } from '@armtwin/controller';
+import { createMotionRobot, type MotionRobot } from '@armtwin/motion';
 import { MODELS_DIR, PROFILE_NAME, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { PWM_CENTRE } from '@armtwin/protocol';
-import type { KeepOutCheck, KmsSolver, SimModelOptions } from './options.ts';
+import type { SimModelOptions } from './options.ts';
 
 export { MODELS_DIR, PROFILE_NAME };
 export const DEFAULT_PROFILE = 'armtwin5';
@@ -45,33 +40,8 @@ export interface SimProfile {
   announcement: string;
 }
 
-/**
- * `$KMS` on a numeric arm: without a pitch, a position-only target; with one, position + the
- * tool axis at that pitch (in the vertical plane the tool points in now). Seeded from the pose
- * the arm is in. Codes 0, 2, 9, 10 (docs/robots.md).
- */
-export function numericKms(robot: MotionRobot): KmsSolver {
-  return (x, y, z, alpha, pwm) => {
-    const r = solveTip(robot, alpha === undefined ? { x, y, z } : { x, y, z, pitch: alpha }, pwm);
-    return { code: r.code, pwm: r.pwm };
-  };
-}
-
-/** The floor as the controller checks it (docs/protocol.md, "The floor"). */
-export function floorKeepOut(robot: MotionRobot): KeepOutCheck {
-  return (from, to) => {
-    const c = checkFloorMove(robot, from, to);
-    return c.ok ? '' : `floor: ${c.message}`;
-  };
-}
-
-/**
- * The floor, the keep-out zones and self-collision as the controller checks them (docs/protocol.md,
- * "Keep-out zones"): the goal pose against the floor, the straight path to it against the zones.
- */
-export function zonesKeepOut(robot: MotionRobot): KeepOutCheck {
-  return (from, to) => keepOutReason(robot, from, to);
-}
+/** The `$KMS` solver and keep-out checks of a profile, declared once in @armtwin/controller. */
+export { floorKeepOut, numericKms, zonesKeepOut } from '@armtwin/controller';
 
 /** Builds the sim's view of a parsed profile; `urdf` is needed for a numeric one. */
 export function simProfile(profile: Profile, raw: unknown, urdf?: string): SimProfile {

@@ -1,5 +1,5 @@
 /** The simulated controller's runner (./runner.ts): its settings and their defaults, declared once. */
-import { MAX_PAYLOAD_BYTES } from '@armtwin/protocol';
+import { DEFAULT_CONTROL_INPUT_OPTIONS as INPUT } from '@armtwin/controller';
 import type { Fault } from './faults.ts';
 import type { SimModelOptions } from './options.ts';
 
@@ -43,14 +43,14 @@ export const DEFAULT_SIM_RUNNER_OPTIONS: SimRunnerOptions = {
   healthRate: 2,
   stamp: true,
   maxCatchUpMs: 500,
-  maxErrorsPerChunk: 8,
+  maxErrorsPerChunk: INPUT.maxErrorsPerChunk,
   random: Math.random,
   model: {},
   faults: [],
   onFirst: () => {},
-  commandRate: 50,
-  commandBurst: 100,
-  maxPayloadBytes: MAX_PAYLOAD_BYTES,
+  commandRate: INPUT.commandRate,
+  commandBurst: INPUT.commandBurst,
+  maxPayloadBytes: INPUT.maxPayloadBytes,
 };
 
 export const MAX_STATE_RATE = 1000;

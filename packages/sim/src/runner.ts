@@ -6,14 +6,8 @@
  * everything queued, and the deadman (`operatorLeft`). The clock and the random source are
  * injected; no sockets here.
  */
-import {
-  createReader,
-  encodeControllerError,
-  type Clock,
-  type Frame,
-  type Group,
-  type ReaderError,
-} from '@armtwin/protocol';
+import { ControlInput, isEmergencyStop, type Item } from '@armtwin/controller';
+import type { Clock } from '@armtwin/protocol';
 import { applyFault, NO_FAULTS, type Fault, type FaultState } from './faults.ts';
 import { SimModel } from './model.ts';
 import { DEFAULT_SIM_MODEL_OPTIONS } from './options.ts';
@@ -22,7 +16,6 @@ import {
   MAX_STATE_RATE,
   type SimRunnerOptions,
 } from './runner-options.ts';
-import { TokenBucket } from './rate-limit.ts';
 import { StatusWriter } from './status-writer.ts';
 import { TickLoop } from './tick-loop.ts';
 
@@ -39,11 +32,8 @@ export {
   type SimRunnerOptions,
 } from './runner-options.ts';
 
-type Item = { frame: Frame } | { group: Group } | { error: ReaderError } | { limited: true };
-
-export const RATE_LIMIT_REPLY = 'rate limit';
-export const OVERSIZE_REPLY = 'payload too large';
-export const DEADMAN_REPLY = 'deadman stop';
+/** The controller's replies, declared once in @armtwin/controller. */
+export { DEADMAN_REPLY, OVERSIZE_REPLY, RATE_LIMIT_REPLY } from '@armtwin/controller';
 
 export class SimRunner {
   readonly model: SimModel;
@@ -55,6 +45,7 @@ export class SimRunner {
     skippedSamples: 0,
     healthPayloads: 0,
     replyPayloads: 0,
+    /** Reader errors by kind. */
     rejected: {} as Record<string, number>,
     discardedQueued: 0,
     /** Commands dropped by the rate limit. */
@@ -64,18 +55,16 @@ export class SimRunner {
     /** Stops made because the operator's presence went to 0 while the arm was moving. */
     deadmanStops: 0,
   };
+  /** The control input in front of the core: reader, payload bound, rate limit. */
+  readonly input: ControlInput;
   faults: FaultState = { ...NO_FAULTS };
   private readonly o: SimRunnerOptions;
   private readonly writer = new StatusWriter();
   private readonly stateLoop: TickLoop;
   private readonly healthLoop: TickLoop;
-  private readonly items: Item[] = [];
-  private readonly reader;
   private lastStamp = -1;
   private readonly pending = new Set<unknown>(); // latency timers
   private inbound: { due: number; items: Item[]; timer: unknown }[] = [];
-  private readonly bucket: TokenBucket;
-  private limiting = false;
 
   constructor(
     private readonly transport: SimTransport,
@@ -88,7 +77,8 @@ export class SimRunner {
     if (!(o.healthRate > 0 && o.healthRate <= MAX_STATE_RATE))
       throw new RangeError('health rate must be > 0 Hz');
     this.model = new SimModel(o.model, clock.now());
-    this.bucket = new TokenBucket(o.commandRate, o.commandBurst, clock.now());
+    this.input = new ControlInput(this.model.core, o, clock.now());
+    this.counters.rejected = this.input.counters.rejected;
     this.stateLoop = new TickLoop(clock, (t, n) => this.stateTicks(t, n), {
       hz: o.rate,
       maxBatch: Math.max(1, Math.ceil((o.rate * o.maxCatchUpMs) / 1000)),
@@ -96,11 +86,6 @@ export class SimRunner {
     this.healthLoop = new TickLoop(clock, (t, n) => this.healthTick(t[n - 1]!), {
       hz: o.healthRate,
       maxBatch: 1,
-    });
-    this.reader = createReader({
-      onFrame: (frame) => this.items.push({ frame }),
-      onGroup: (group) => this.items.push({ group }),
-      onError: (error) => this.items.push({ error }),
     });
     this.applyFaults(o.faults);
   }
@@ -123,16 +108,14 @@ export class SimRunner {
   /** Control bytes as they arrive (an MQTT payload, a serial chunk). */
   receive(chunk: string | Uint8Array): void {
     this.stateLoop.catchUp(); // samples due before this command go out as they were
-    if (chunk.length > this.o.maxPayloadBytes) {
-      if (this.counters.oversizePayloads++ === 0)
-        this.o.onFirst('control:oversize', `control payload of ${chunk.length} bytes refused`);
-      return this.reply([encodeControllerError(OVERSIZE_REPLY)]);
-    }
-    this.reader.feed(chunk);
-    const items = this.limit(this.items.splice(0));
+    const taken = this.input.take(chunk, this.clock.now());
+    this.counters.oversizePayloads = this.input.counters.oversizePayloads;
+    this.counters.rateLimited = this.input.rateLimited;
+    if ('refused' in taken) return this.reply([taken.refused]);
+    const items = taken.items;
     if (items.length === 0) return;
     const latency = this.faults.latencyMs;
-    const stopAt = items.findIndex((it) => isEmergencyStop(it));
+    const stopAt = items.findIndex((it) => ('frame' in it || 'group' in it) && isEmergencyStop(it));
     if (stopAt >= 0) {
       // The emergency stop acts on arrival and discards every command still queued.
       this.discardQueued();
@@ -159,15 +142,12 @@ export class SimRunner {
   operatorLeft(): boolean {
     this.stateLoop.catchUp();
     const t = this.clock.now();
+    const out: string[] = [];
     this.model.advance(t);
-    const s = this.model.servos;
-    let moving = this.inbound.length > 0;
-    for (let i = 0; i < s.count && !moving; i++) moving = s.isMoving(i, t);
-    if (!moving) return false;
+    if (!this.model.core.operatorLeft(t, out, this.inbound.length > 0)) return false;
     this.discardQueued();
-    this.model.emergencyStop(t);
     this.counters.deadmanStops++;
-    this.reply([encodeControllerError(DEADMAN_REPLY)]);
+    this.reply(out);
     return true;
   }
 
@@ -200,45 +180,10 @@ export class SimRunner {
     this.inbound = [];
   }
 
-  /** Drops the commands over the rate (never stops); marks the first drop of a run for a reply. */
-  private limit(items: Item[]): Item[] {
-    const out: Item[] = [];
-    const now = this.clock.now();
-    for (const it of items) {
-      // Pings move nothing and measure the link: limiting them would distort the round trip.
-      const costs =
-        ('frame' in it && it.frame.type !== 'time' && it.frame.type !== 'ping') || 'group' in it;
-      if (!costs || isStop(it) || isEmergencyStop(it) || this.bucket.take(now)) {
-        if (costs) this.limiting = false;
-        out.push(it);
-        continue;
-      }
-      if (this.counters.rateLimited++ === 0)
-        this.o.onFirst('control:rate-limit', `commands over ${this.o.commandRate}/s dropped`);
-      if (!this.limiting) out.push({ limited: true });
-      this.limiting = true;
-    }
-    return out;
-  }
-
   private execute(items: Item[]): void {
     const t = this.clock.now();
-    const replies: string[] = [];
-    let errors = 0;
-    for (const it of items) {
-      if ('frame' in it) this.model.execute(it.frame, t, replies);
-      else if ('group' in it) this.model.executeGroup(it.group, t, replies);
-      else if ('limited' in it) replies.push(encodeControllerError(RATE_LIMIT_REPLY));
-      else {
-        const kind = it.error.kind;
-        this.counters.rejected[kind] = (this.counters.rejected[kind] ?? 0) + 1;
-        if (this.counters.rejected[kind] === 1)
-          this.o.onFirst(`control:${kind}`, `${it.error.message}: ${it.error.text}`);
-        if (errors++ < this.o.maxErrorsPerChunk)
-          replies.push(encodeControllerError(`${kind} ${it.error.text}`));
-      }
-    }
-    this.reply(replies, t);
+    this.model.advance(t);
+    this.reply(this.input.run(items, t), t);
   }
 
   /** Sends replies as one payload, `$TIM` first. */
@@ -301,19 +246,4 @@ export class SimRunner {
     }, latency);
     this.pending.add(timer);
   }
-}
-
-/** A stop of one servo or of all: never rate-limited (stopping must always be possible). */
-function isStop(it: Item): boolean {
-  if ('frame' in it) return it.frame.type === 'stop';
-  if ('group' in it)
-    return it.group.invalid === 0 && it.group.frames.every((f) => f.type === 'stop');
-  return false;
-}
-
-function isEmergencyStop(it: Item): boolean {
-  if ('frame' in it) return it.frame.type === 'stop' && it.frame.id === 255;
-  if ('group' in it)
-    return it.group.invalid === 0 && it.group.frames.some((f) => f.type === 'stop' && f.id === 255);
-  return false;
 }

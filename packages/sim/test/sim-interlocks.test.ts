@@ -4,7 +4,7 @@
  * Fake clock; the runner is fed bytes as the MQTT or serial side would.
  */
 import { describe, expect, test } from 'vitest';
-import { TokenBucket } from '../src/rate-limit.ts';
+import { TokenBucket } from '@armtwin/controller';
 import { SimRunner, type PayloadKind } from '../src/runner.ts';
 import { parseFaults } from '../src/faults.ts';
 import { FakeClock } from '@armtwin/protocol/fake-clock';

@@ -1,13 +1,22 @@
 /**
- * Keep-out zones on a servo bus (docs/protocol.md, "Keep-out zones"): `busZonesKeepOut` checks
- * a move in servo degrees as the simulator does in pulses: the floor at the goal, the zones and
- * self-collision along the straight path, the reason as `$ERR` text, '' when it may run.
+ * Keep-out zones as the controller core checks them for every driver (docs/protocol.md,
+ * "Keep-out zones"): `zonesKeepOut` checks a move in pulse-equivalents, here given in servo
+ * degrees as a servo bus reads them: the floor at the goal, the zones and self-collision along
+ * the straight path, the reason as `$ERR` text, '' when it may run.
  */
 import fs from 'node:fs';
 import { describe, expect, test } from 'vitest';
 import { parseProfile } from '@armtwin/ik';
-import { createMotionRobot } from '@armtwin/motion';
-import { busZonesKeepOut } from '../src/index.ts';
+import { createMotionRobot, exactPwmFromServo, type MotionRobot } from '@armtwin/motion';
+import { zonesKeepOut } from '../src/index.ts';
+
+/** The check in servo degrees (by servo index), as the bus driver hands the core its reads. */
+function busZonesKeepOut(robot: MotionRobot) {
+  const check = zonesKeepOut(robot);
+  const pwm = (deg: readonly number[]) =>
+    robot.profile.servos.map((s, i) => exactPwmFromServo(s, deg[i]!));
+  return (from: readonly number[], to: readonly number[]) => check(pwm(from), pwm(to));
+}
 
 function armtwin5(keepOut: unknown) {
   const url = new URL('../../../public/models/armtwin5/profile.json', import.meta.url);
@@ -19,7 +28,7 @@ function armtwin5(keepOut: unknown) {
 const TABLE = { name: 'table', shape: 'box', min: [150, -150, -20], max: [400, 150, 30] };
 const HOME = [0, 0, 0, 0, 0, 0];
 
-describe('keep-out zones on a bus', () => {
+describe('keep-out zones, the move given in servo degrees', () => {
   test('the hand into the table is refused, naming link and zone; a clear move is not', () => {
     const check = busZonesKeepOut(armtwin5({ zones: [TABLE] }));
     expect(check(HOME, [0, -45, -45, -90, 0, 0])).toMatch(/^zone: hand in "table"( on the way)?$/);
