@@ -7,3 +7,7 @@ export * from './frame-streamer.ts';
 export * from './claim-keeper.ts';
 export * from './arm-in-ros-options.ts';
 export * from './arm-in-ros.ts';
+export * from './gateway/joint-match.ts';
+export * from './gateway/ros2-driver.ts';
+export * from './gateway/ros2-gateway-core.ts';
+export * from './gateway/start-ros2-gateway.ts';
