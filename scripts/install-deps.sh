@@ -4,6 +4,7 @@
 #   - influxd 1.8.10 (scripts/build-influxd.sh: built once per machine, linked into .tools/bin)
 #   - influxd 2.7.11 (scripts/build-influxd2.sh: Go + Rust's cargo, built once, .tools/bin/influxd2)
 #   - a Python venv with the servo vendors' SDKs (dynamixel-sdk, feetech-servo-sdk), cached outside the clone
+#   - a Python 3.11 venv with ROS 2 Kilted's rclpy and FastDDS (scripts/install-ros2.sh), cached likewise
 #   - node_modules (`npm ci`) when missing or older than package-lock.json
 # Tests never use port 1883; the system Mosquitto service that the Debian package starts is
 # stopped and disabled right after installing it anyway.
@@ -111,6 +112,10 @@ fi
 # lerobot 0.6.1 (with its torch), example-robot-data (the SO-100/SO-101 descriptions) and yourdfpy
 # (an independent FK), cached beside the venv above: scripts/pyenv-lerobot.sh says what and why.
 bash "$ROOT/scripts/pyenv-lerobot.sh"
+
+# --- ROS 2 (rclpy + FastDDS wheels) ---------------------------------------------------
+# `armtwin ros2` and tests/integration/ros2-*.test.ts run a Python rclpy process from this venv.
+bash "$ROOT/scripts/install-ros2.sh"
 
 # --- node_modules ----------------------------------------------------------------------
 if [ ! -d node_modules ] || [ ! -f node_modules/.package-lock.json ] \

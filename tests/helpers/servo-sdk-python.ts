@@ -6,16 +6,8 @@
  */
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
-
-/** The cache root, read the way install-deps.sh reads it (empty counts as unset). */
-export function armtwinCacheDir(env: NodeJS.ProcessEnv = process.env): string {
-  return (
-    env.ARMTWIN_CACHE ||
-    path.join(env.XDG_CACHE_HOME || path.join(os.homedir(), '.cache'), 'armtwin')
-  );
-}
+import { armtwinCacheDir } from '@armtwin/ros2';
 
 export const servoSdkVenv = (env: NodeJS.ProcessEnv = process.env): string =>
   path.join(armtwinCacheDir(env), 'pyenv');

@@ -2,8 +2,9 @@
  * The controller's behaviour, the same on every driver (@armtwin/controller): one suite, run
  * against each row of `DRIVERS` through a real Mosquitto. Today's rows: the simulated servos
  * (`armtwin sim`) and the servo-bus gateway (`armtwin gateway --bus dynamixel`) driving an
- * emulated Dynamixel bus (`armtwin sim --bus dynamixel --serial`) over a socat pty pair. A ROS 2
- * or LeRobot driver is one more row. On each: a motion request executes; a move into a keep-out
+ * emulated Dynamixel bus (`armtwin sim --bus dynamixel --serial`) over a socat pty pair, and a
+ * ROS 2 arm (`armtwin gateway --ros2`, real rclpy and FastDDS, the arm a test node that executes
+ * JointTrajectory as a joint_trajectory_controller would). A LeRobot driver is one more row. On each: a motion request executes; a move into a keep-out
  * zone is refused, audited, and moves nothing; one operator at a time, handed over by a grant;
  * the deadman holds a moving arm when the operator's lease lapses; `#255PDST!` holds it at once.
  * The profile is armtwin5 with a table-top keep-out zone, written to a temporary models folder;
@@ -19,6 +20,7 @@ import { MODELS_DIR } from '@armtwin/sim';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
 import { serialLine, type SerialLine } from './serial-line.ts';
+import { startTestArm, testDomain } from '../helpers/ros2.ts';
 
 const broker = useMosquitto();
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-behaviour-'));
@@ -90,6 +92,28 @@ const DRIVERS: DriverRow[] = [
         async stop() {
           await gateway.stop('SIGKILL');
           await line.stop();
+        },
+      };
+    },
+  },
+  {
+    name: 'a ROS 2 arm (armtwin gateway --ros2)',
+    async start(url, arm) {
+      // The arm's trajectory controller: a rclpy node executing JointTrajectory (no ros2_control here).
+      const domain = String(testDomain());
+      const rosArm = await startTestArm([
+        ...['--joints', 'base_yaw,shoulder,elbow,wrist_pitch,wrist_roll,gripper'],
+        ...['--domain', domain, '--rate', '50'],
+      ]);
+      const gateway: Child = armtwin([
+        'gateway',
+        ...['--ros2', '--domain', domain, ...profileArgs],
+        ...['--mqtt', url, '--arm', arm, '--operator-lease', LEASE_MS],
+      ]);
+      return {
+        async stop() {
+          await gateway.stop('SIGKILL');
+          await rosArm.stop();
         },
       };
     },

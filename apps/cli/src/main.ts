@@ -8,6 +8,7 @@ import { registerBroker } from './commands/broker.ts';
 import { registerUp } from './commands/up.ts';
 import { registerCamera } from './commands/camera.ts';
 import { registerRobot } from './commands/robot.ts';
+import { registerRos2 } from './commands/ros2.ts';
 import { registerDeployMosquitto, registerPasswd } from './commands/security.ts';
 
 /** Each command module adds itself to the program. */
@@ -21,6 +22,7 @@ const COMMANDS: ((program: Command) => void)[] = [
   registerUp,
   registerCamera,
   registerRobot,
+  registerRos2,
   registerPasswd,
   registerDeployMosquitto,
 ];

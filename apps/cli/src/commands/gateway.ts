@@ -7,6 +7,7 @@ import {
   startGateway,
 } from '@armtwin/gateway';
 import { BUS_PROTOCOLS, type BusProtocol } from '@armtwin/servo-bus';
+import { DEFAULT_ROS2_GATEWAY_START, MAX_ROS2_DOMAIN, startRos2Gateway } from '@armtwin/ros2';
 import { DEFAULT_PROFILE } from '@armtwin/sim';
 import { loadCliConfig } from '../config.ts';
 import { createLogger, firstOnly } from '../log.ts';
@@ -14,7 +15,11 @@ import { armId, number, operatorLeaseOption } from './options.ts';
 import { untilSignal } from './signals.ts';
 
 interface GatewayFlags {
-  serial: string;
+  serial?: string;
+  ros2?: boolean;
+  jointStates: string;
+  trajectory: string;
+  domain?: number;
   baud?: number;
   bus: 'lsc' | BusProtocol;
   profile: string;
@@ -34,7 +39,23 @@ export function registerGateway(program: Command): void {
     .description(
       'bridge a real controller on a serial line to MQTT (status ← serial, control → serial)',
     )
-    .requiredOption('--serial <path>', 'serial device, e.g. /dev/ttyUSB0')
+    .option('--serial <path>', 'serial device, e.g. /dev/ttyUSB0 (or --ros2)')
+    .option('--ros2', 'the arm is a ROS 2 arm: joint states in, JointTrajectory out (docs/ros2.md)')
+    .option(
+      '--joint-states <topic>',
+      "ROS 2: the arm's sensor_msgs/JointState topic",
+      DEFAULT_ROS2_GATEWAY_START.jointStates,
+    )
+    .option(
+      '--trajectory <topic>',
+      "ROS 2: its joint trajectory controller's trajectory_msgs/JointTrajectory topic",
+      DEFAULT_ROS2_GATEWAY_START.trajectory,
+    )
+    .option(
+      '--domain <id>',
+      "ROS 2: ROS_DOMAIN_ID (default: the environment's, else 0)",
+      number('domain', 0, MAX_ROS2_DOMAIN, true),
+    )
     .option(
       '--baud <rate>',
       `baud rate (default ${DEFAULT_GATEWAY_OPTIONS.baudRate}; on a servo bus ${DEFAULT_BUS_GATEWAY_OPTIONS.baudRate})`,
@@ -90,14 +111,21 @@ it pings their ids at start ($ERR for missing ones), reads positions by sync rea
 publishes them as angle frames #IIIA±ddd.dd!, temperature and voltage at --health-rate as
 #IIITtttVvvvv!; pulse and angle moves are checked against the profile's limits and written by
 sync write at the speed their T asks; #IIIPDST!/#255PDST! and the deadman hold position. Torque
-is on at start; 0 on arm/{id}/torque turns it off, 1 back on. $KMS goes through the profile's IK.`,
+is on at start; 0 on arm/{id}/torque turns it off, 1 back on. $KMS goes through the profile's IK.
+
+With --ros2 (needs bash scripts/install-ros2.sh once) the arm is a ROS 2 arm, e.g. under
+ros2_control: its joint states (matched to --profile by joint name) are published as angle frames
+at --rate, and every command (jog, $KMS, plans, motion requests) is checked by the controller
+core and sent as a JointTrajectory; a stop, the e-stop and the deadman send one that holds where
+the joints are. The arm is offline while no joint state arrives.`,
     )
     .action(async (flags: GatewayFlags) => {
+      if (!flags.serial && !flags.ros2) program.error('gateway needs --serial <path> or --ros2');
       const env = loadCliConfig();
       const log = createLogger('gateway', env.logLevel);
       const username = flags.username ?? env.mqttUsername;
       const line = {
-        serialPath: flags.serial,
+        serialPath: flags.serial ?? '',
         mqttUrl: flags.mqtt ?? env.mqttUrl,
         armId: flags.arm,
         operatorLeaseMs: flags.operatorLease,
@@ -105,8 +133,17 @@ is on at start; 0 on arm/{id}/torque turns it off, 1 back on. $KMS goes through 
         onFirst: firstOnly(log),
         log,
       };
-      const gw =
-        flags.bus === 'lsc'
+      const gw = flags.ros2
+        ? await startRos2Gateway({
+            ...line,
+            profile: flags.profile,
+            modelsDir: flags.models,
+            jointStates: flags.jointStates,
+            trajectory: flags.trajectory,
+            domain: flags.domain,
+            stateRate: flags.rate,
+          })
+        : flags.bus === 'lsc'
           ? startGateway({ ...line, baudRate: flags.baud ?? DEFAULT_GATEWAY_OPTIONS.baudRate })
           : startBusGateway({
               ...line,
