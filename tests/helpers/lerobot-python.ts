@@ -8,7 +8,7 @@ import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { REPO_ROOT } from './services.ts';
-import { armtwinCacheDir } from './servo-sdk-python.ts';
+import { armtwinCacheDir } from '@armtwin/ros2';
 
 export const lerobotVenv = (env: NodeJS.ProcessEnv = process.env): string =>
   path.join(armtwinCacheDir(env), 'pyenv-lerobot');

@@ -9,4 +9,3 @@ export * from './run-up.ts';
 export * from './static-files.ts';
 export * from './up.ts';
 export * from './security-headers.ts';
-export { replaceProfileFile } from './profile-file.ts';

@@ -16,7 +16,7 @@ import {
   type LerobotKept,
 } from '@armtwin/servo-bus';
 import { MODELS_DIR } from '@armtwin/sim';
-import { replaceProfileFile } from '@armtwin/up';
+import { replaceProfileFile } from '@armtwin/http-api';
 
 interface Flags {
   profile: string;
