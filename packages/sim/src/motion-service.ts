@@ -171,7 +171,7 @@ export function startMotionService(
           replans: r.exec.replans,
         });
         return finish();
-      default:
+      case 'wait':
         break;
     }
     timer = clock.setTimeout(tick, exo.stepMs);
