@@ -83,156 +83,91 @@ type Family = { name: string; help: string } & (
   | { type: 'histogram'; histogram: (m: Metrics) => Histogram }
 );
 
+const scalar =
+  (type: 'counter' | 'gauge') =>
+  (name: string, help: string, value: (m: Metrics) => number | boolean): Family => ({
+    name,
+    help,
+    type,
+    value,
+  });
+const counter = scalar('counter');
+const gauge = scalar('gauge');
+const labelled = (
+  name: string,
+  help: string,
+  label: string,
+  values: (m: Metrics) => Record<string, number>,
+): Family => ({ name, help, type: 'counter', label, values });
+
 /** Every family `/metrics` shows, in the order shown. */
 const METRIC_FAMILIES: readonly Family[] = [
-  {
-    name: 'messages_total',
-    type: 'counter',
-    help: 'MQTT messages received, by topic kind.',
-    label: 'topic',
-    values: (m) => m.messages,
-  },
-  {
-    name: 'frames_total',
-    type: 'counter',
-    help: 'Frames decoded, by kind.',
-    label: 'kind',
-    values: (m) => m.frames,
-  },
-  {
-    name: 'frames_rejected_total',
-    type: 'counter',
-    help: 'Input dropped by the cleaner, by reason.',
-    label: 'reason',
-    values: (m) => m.rejected,
-  },
-  {
-    name: 'points_produced_total',
-    type: 'counter',
-    help: 'Points made from frames.',
-    value: (m) => m.pointsProduced,
-  },
-  {
-    name: 'timestamps_bumped_total',
-    type: 'counter',
-    help: 'Point times moved forward 1 us to stay unique in their series.',
-    value: (m) => m.timestampsBumped,
-  },
-  {
-    name: 'points_written_total',
-    type: 'counter',
-    help: 'Points InfluxDB accepted.',
-    value: (m) => m.pointsWritten,
-  },
-  {
-    name: 'write_batches_total',
-    type: 'counter',
-    help: 'Write requests, by result.',
-    label: 'result',
-    values: (m) => m.batches,
-  },
+  labelled('messages_total', 'MQTT messages received, by topic kind.', 'topic', (m) => m.messages),
+  labelled('frames_total', 'Frames decoded, by kind.', 'kind', (m) => m.frames),
+  labelled(
+    'frames_rejected_total',
+    'Input dropped by the cleaner, by reason.',
+    'reason',
+    (m) => m.rejected,
+  ),
+  counter('points_produced_total', 'Points made from frames.', (m) => m.pointsProduced),
+  counter(
+    'timestamps_bumped_total',
+    'Point times moved forward 1 us to stay unique in their series.',
+    (m) => m.timestampsBumped,
+  ),
+  counter('points_written_total', 'Points InfluxDB accepted.', (m) => m.pointsWritten),
+  labelled('write_batches_total', 'Write requests, by result.', 'result', (m) => m.batches),
   {
     name: 'write_latency_seconds',
     type: 'histogram',
     help: 'InfluxDB write request latency.',
     histogram: (m) => m.writeLatency,
   },
-  {
-    name: 'write_retries_total',
-    type: 'counter',
-    help: 'Write attempts that repeated an earlier failed one.',
-    value: (m) => m.retries,
-  },
-  {
-    name: 'points_rejected_total',
-    type: 'counter',
-    help: 'Points InfluxDB refused as bad data (kept in spool/rejected).',
-    value: (m) => m.pointsRejected,
-  },
-  {
-    name: 'points_dropped_total',
-    type: 'counter',
-    help: 'Points lost. Must stay 0.',
-    value: (m) => m.pointsDropped,
-  },
-  {
-    name: 'spool_files',
-    type: 'gauge',
-    help: 'Batches waiting on disk.',
-    value: (m) => m.spoolFiles,
-  },
-  {
-    name: 'spool_points',
-    type: 'gauge',
-    help: 'Points waiting on disk.',
-    value: (m) => m.spoolPoints,
-  },
-  {
-    name: 'spool_bytes',
-    type: 'gauge',
-    help: 'Bytes waiting on disk.',
-    value: (m) => m.spoolBytes,
-  },
-  {
-    name: 'spool_other_destination_points',
-    type: 'gauge',
-    help: 'Points waiting in the spool for another InfluxDB destination (written only by a middleware configured for it).',
-    value: (m) => m.spoolOtherPoints,
-  },
-  {
-    name: 'spool_full',
-    type: 'gauge',
-    help: '1 while the spool is at its bound and MQTT intake is paused.',
-    value: (m) => m.spoolFull,
-  },
-  {
-    name: 'spool_full_events_total',
-    type: 'counter',
-    help: 'Times the spool reached its bound.',
-    value: (m) => m.spoolFullEvents,
-  },
-  {
-    name: 'disk_errors_total',
-    type: 'counter',
-    help: 'Journal or spool file errors.',
-    value: (m) => m.diskErrors,
-  },
-  {
-    name: 'mqtt_connected',
-    type: 'gauge',
-    help: '1 while connected to the broker.',
-    value: (m) => m.mqttConnected,
-  },
-  {
-    name: 'mqtt_connects_total',
-    type: 'counter',
-    help: 'Successful MQTT connections.',
-    value: (m) => m.mqttConnects,
-  },
-  {
-    name: 'mqtt_broker',
-    type: 'gauge',
-    help: "The broker in use: its place in MQTT_URL's list.",
-    value: (m) => m.mqttBroker,
-  },
-  {
-    name: 'mqtt_broker_moves_total',
-    type: 'counter',
-    help: 'Moves to another broker of the list.',
-    value: (m) => m.mqttBrokerMoves,
-  },
-  {
-    name: 'influx_reachable',
-    type: 'gauge',
-    help: '1 while InfluxDB answers.',
-    value: (m) => m.influxReachable,
-  },
-  {
-    name: 'storage_enabled',
-    type: 'gauge',
-    help: '1 when INFLUX_URL is set (or a local influxd runs).',
-    value: (m) => m.storageEnabled,
-  },
+  counter(
+    'write_retries_total',
+    'Write attempts that repeated an earlier failed one.',
+    (m) => m.retries,
+  ),
+  counter(
+    'points_rejected_total',
+    'Points InfluxDB refused as bad data (kept in spool/rejected).',
+    (m) => m.pointsRejected,
+  ),
+  counter('points_dropped_total', 'Points lost. Must stay 0.', (m) => m.pointsDropped),
+  gauge('spool_files', 'Batches waiting on disk.', (m) => m.spoolFiles),
+  gauge('spool_points', 'Points waiting on disk.', (m) => m.spoolPoints),
+  gauge('spool_bytes', 'Bytes waiting on disk.', (m) => m.spoolBytes),
+  gauge(
+    'spool_other_destination_points',
+    'Points waiting in the spool for another InfluxDB destination (written only by a middleware configured for it).',
+    (m) => m.spoolOtherPoints,
+  ),
+  gauge(
+    'spool_full',
+    '1 while the spool is at its bound and MQTT intake is paused.',
+    (m) => m.spoolFull,
+  ),
+  counter(
+    'spool_full_events_total',
+    'Times the spool reached its bound.',
+    (m) => m.spoolFullEvents,
+  ),
+  counter('disk_errors_total', 'Journal or spool file errors.', (m) => m.diskErrors),
+  gauge('mqtt_connected', '1 while connected to the broker.', (m) => m.mqttConnected),
+  counter('mqtt_connects_total', 'Successful MQTT connections.', (m) => m.mqttConnects),
+  gauge('mqtt_broker', "The broker in use: its place in MQTT_URL's list.", (m) => m.mqttBroker),
+  counter(
+    'mqtt_broker_moves_total',
+    'Moves to another broker of the list.',
+    (m) => m.mqttBrokerMoves,
+  ),
+  gauge('influx_reachable', '1 while InfluxDB answers.', (m) => m.influxReachable),
+  gauge(
+    'storage_enabled',
+    '1 when INFLUX_URL is set (or a local influxd runs).',
+    (m) => m.storageEnabled,
+  ),
 ];
 
 function rows(name: string, f: Family, m: Metrics): string[] {

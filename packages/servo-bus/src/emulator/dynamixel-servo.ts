@@ -214,6 +214,7 @@ export class DynamixelServo extends ServoBase<XSeriesField> {
   private checkValue(name: XSeriesField, value: number, after: Uint8Array): DynamixelError | null {
     const t = this.model.table;
     const v = (n: XSeriesField) => decodeField(t[n], after, t[n].address);
+    // eslint-disable-next-line @typescript-eslint/switch-exhaustiveness-check -- only these fields have rules; every other is plain memory
     switch (name) {
       case 'torqueEnable':
         if (value > 1) return 'data-range';
