@@ -3,6 +3,9 @@ import {
   BUS_MODELS_DIR,
   DEFAULT_BUS_GATEWAY_OPTIONS,
   DEFAULT_GATEWAY_OPTIONS,
+  formatDoctorReport,
+  loadProfile,
+  runBusDoctor,
   startBusGateway,
   startGateway,
 } from '@armtwin/gateway';
@@ -26,6 +29,7 @@ interface GatewayFlags {
   username?: string;
   password?: string;
   operatorLease: number;
+  doctor: boolean;
 }
 
 export function registerGateway(program: Command): void {
@@ -74,6 +78,11 @@ export function registerGateway(program: Command): void {
     .option('--username <name>', 'broker user name (env MQTT_USERNAME)')
     .option('--password <secret>', 'broker password (env MQTT_PASSWORD)')
     .addOption(operatorLeaseOption())
+    .option(
+      '--doctor',
+      'servo bus: scan every baud rate and id, report what is wrong and how to fix it, and exit (1 when an error is found)',
+      false,
+    )
     .addHelpText(
       'after',
       `
@@ -90,7 +99,10 @@ it pings their ids at start ($ERR for missing ones), reads positions by sync rea
 publishes them as angle frames #IIIA±ddd.dd!, temperature and voltage at --health-rate as
 #IIITtttVvvvv!; pulse and angle moves are checked against the profile's limits and written by
 sync write at the speed their T asks; #IIIPDST!/#255PDST! and the deadman hold position. Torque
-is on at start; 0 on arm/{id}/torque turns it off, 1 back on. $KMS goes through the profile's IK.`,
+is on at start; 0 on arm/{id}/torque turns it off, 1 back on. $KMS goes through the profile's IK.
+Before it starts, the servo doctor checks the bus at --baud (ids, model, firmware, supply against
+the servos' voltage, overheat and overload flags...) and logs each finding with its fix; with
+--doctor it also tries every baud rate, prints the report and exits (docs/so101.md).`,
     )
     .action(async (flags: GatewayFlags) => {
       const env = loadCliConfig();
@@ -105,6 +117,24 @@ is on at start; 0 on arm/{id}/torque turns it off, 1 back on. $KMS goes through 
         onFirst: firstOnly(log),
         log,
       };
+      if (flags.bus !== 'lsc') {
+        const baudRate = flags.baud ?? DEFAULT_BUS_GATEWAY_OPTIONS.baudRate;
+        const ids = loadProfile(flags.profile, flags.models).profile.servos.map((s) => s.id);
+        const doctor = { bus: flags.bus, serialPath: flags.serial, baudRate, ids };
+        if (flags.doctor) {
+          const report = await runBusDoctor({ ...doctor, allBauds: true });
+          process.stdout.write(formatDoctorReport(report));
+          process.exitCode = report.findings.some((f) => f.severity === 'error') ? 1 : 0;
+          return;
+        }
+        try {
+          const report = await runBusDoctor({ ...doctor, allBauds: false });
+          for (const f of report.findings)
+            log.warn(`servo doctor: [${f.kind}] ${f.finding}; fix: ${f.fix}`);
+        } catch (err) {
+          log.warn(`servo doctor: could not check the bus (${(err as Error).message})`);
+        }
+      }
       const gw =
         flags.bus === 'lsc'
           ? startGateway({ ...line, baudRate: flags.baud ?? DEFAULT_GATEWAY_OPTIONS.baudRate })
