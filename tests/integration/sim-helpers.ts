@@ -192,6 +192,15 @@ export class StatusWatcher {
     return out;
   }
 
+  /** Resolves once the arm's retained `online` is `1`. */
+  online(timeoutMs = 20_000): Promise<true> {
+    return this.until(
+      () => (this.retained.get(`arm/${this.armId}/online`) === '1' ? true : undefined),
+      timeoutMs,
+      'online 1',
+    );
+  }
+
   /** Angle samples (state groups, §8 angle frames) of servo `id` after index `from`: [time, deg]. */
   angleSamples(id: number, from = 0): [number, number][] {
     const out: [number, number][] = [];

@@ -20,11 +20,7 @@ let seq = 1000;
 beforeAll(async () => {
   w = await StatusWatcher.connect(broker().url, ARM);
   sim = armtwin(['sim', '--mqtt', broker().url, '--arm', ARM, '--rate', String(RATE)]);
-  await w.until(
-    () => (w.retained.get(`arm/${ARM}/online`) === '1' ? true : undefined),
-    20_000,
-    'online 1',
-  );
+  await w.online();
 });
 
 afterAll(async () => {

@@ -6,31 +6,15 @@
  */
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { chainFk, chainFromUrdf, parseProfile, type Chain, type Profile } from '@armtwin/ik';
+import { chainFk } from '@armtwin/ik';
 import { MODELS_DIR } from '@armtwin/sim';
-import fs from 'node:fs';
+import { loadRobot, randomJoints, rng } from '../../packages/ik/test/numeric-fixtures.ts';
 import { runLerobotScript } from '../helpers/lerobot-python.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
 
 const DIR = path.join(MODELS_DIR, 'so101');
-const parsed = parseProfile(JSON.parse(fs.readFileSync(path.join(DIR, 'profile.json'), 'utf8')));
-if (!parsed.ok) throw new Error(parsed.errors.join('; '));
-const profile: Profile = parsed.profile;
-const built = chainFromUrdf(profile, fs.readFileSync(path.join(DIR, profile.urdf), 'utf8'));
-if (!built.ok) throw new Error(built.errors.join('; '));
-const chain: Chain = built.chain;
-
-/** Deterministic pseudo-random numbers in [0, 1) (mulberry32). */
-function rng(seed: number): () => number {
-  let a = seed;
-  return () => {
-    a = (a + 0x6d2b79f5) | 0;
-    let t = Math.imul(a ^ (a >>> 15), 1 | a);
-    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
+const { profile, chain } = loadRobot('so101');
 
 describe('the shipped SO-101', () => {
   test('its chain runs to the gripper frame; the gripper (id 6) is outside it', () => {
@@ -54,9 +38,7 @@ describe('the shipped SO-101', () => {
 
   test("FK matches yourdfpy's within 0.1 mm and 0.01° over 300 random poses", () => {
     const next = rng(101);
-    const poses = Array.from({ length: 300 }, () =>
-      Float64Array.from(chain.lower, (lo, i) => lo + next() * (chain.upper[i]! - lo)),
-    );
+    const poses = Array.from({ length: 300 }, () => randomJoints(chain, next));
     const gripper = profile.servos.findIndex((s) => s.joint === 'gripper');
     const theirs = runLerobotScript<number[][]>(
       'fk_yourdfpy.py',
@@ -103,11 +85,7 @@ describe('the simulated SO-101: a Cartesian move leaves the gripper alone', () =
   beforeAll(async () => {
     w = await StatusWatcher.connect(broker().url, ARM);
     sim = armtwin(['sim', '--mqtt', broker().url, '--arm', ARM, '--profile', 'so101']);
-    await w.until(
-      () => (w.retained.get(`arm/${ARM}/online`) === '1' ? true : undefined),
-      20_000,
-      'online 1',
-    );
+    await w.online();
   });
 
   afterAll(async () => {

@@ -14,7 +14,7 @@ const load = (name: string): MotionRobot => readRobotFolder(name, MODELS).robot;
 const home = (m: MotionRobot) => m.table.map((s) => s.homePwm);
 
 describe('Cartesian target', () => {
-  test.each(['armtwin5', 'track6'])(
+  test.each(['armtwin5', 'track6', 'so101', 'so100'])(
     '%s: the fields start at the tip, which is reachable',
     (name) => {
       const m = load(name);

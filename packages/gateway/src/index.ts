@@ -12,3 +12,4 @@ export * from './gateway.ts';
 export * from './serial-link.ts';
 export * from './start-bus-gateway.ts';
 export * from './start-gateway.ts';
+export * from './bus-doctor.ts';

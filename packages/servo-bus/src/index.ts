@@ -21,3 +21,4 @@ export * from './client/requests.ts';
 export * from './client/bus-client.ts';
 export * from './lerobot-calibration.ts';
 export * from './doctor/index.ts';
+export * from './emulator/bench-faults.ts';

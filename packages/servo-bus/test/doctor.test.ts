@@ -126,3 +126,36 @@ describe('the servo doctor on an emulated Feetech bus', () => {
     expect(f[0]!.fix).toMatch(/--baud 115200/);
   });
 });
+
+describe('the servo doctor on an emulated Dynamixel bus', () => {
+  /** At 1 Mbps (Baud Rate 3): an X-series servo leaves the factory at 57600. */
+  const fast = (s: EmulatedServoSpec): EmulatedServoSpec => ({
+    ...s,
+    fields: { baudRate: 3, ...s.fields },
+  });
+  const scanDxl = async (servos: EmulatedServoSpec[]) => {
+    const bus = createEmulatedBus({ protocol: 'dynamixel', servos });
+    const scan = await scanBus(emulatedDoctorLink(bus), {
+      protocol: 'dynamixel',
+      bauds: [1_000_000, 57_600],
+      ids: IDS,
+    });
+    return { scan, findings: diagnoseBus(scan, { baud: 1_000_000, ids: IDS }) };
+  };
+
+  test('a healthy Koch-like bus: described, no finding', async () => {
+    const { scan, findings } = await scanDxl(arm(fast));
+    expect(findings).toEqual([]);
+    expect(scan.servos[0]).toMatchObject({ id: 1, modelNumber: 1020, voltageV: 12 });
+  });
+
+  test('an overload in Hardware Error Status, and a servo at 57600 baud', async () => {
+    const { findings } = await scanDxl(
+      arm((s) => fast(s.id === 2 ? { ...s, fields: { hardwareErrorStatus: 0x20 } } : s)),
+    );
+    expect(kinds(findings)).toEqual(['overload']);
+    const slow = await scanDxl(arm()); // the factory's 57600
+    expect(kinds(slow.findings)).toEqual(['baud']);
+    expect(slow.findings[0]!.fix).toMatch(/--baud 57600/);
+  });
+});

@@ -15,6 +15,8 @@ import { SYSTEM_CLOCK, type Clock } from '@armtwin/protocol';
 import {
   createEmulatedBus,
   degreesToTicks,
+  withBenchFaults,
+  type BenchFault,
   type BusProtocol,
   type EmulatedBus,
 } from '@armtwin/servo-bus';
@@ -33,6 +35,8 @@ export interface BusSimOptions {
   overheatC: number;
   /** How often the emulated shafts are moved and the sensors set, ms. */
   tickMs: number;
+  /** Faults of the bench: servos absent, extra or sharing an id, a field set (bench-faults.ts). */
+  benchFaults: BenchFault[];
 }
 
 export const DEFAULT_BUS_SIM_OPTIONS = {
@@ -41,6 +45,7 @@ export const DEFAULT_BUS_SIM_OPTIONS = {
   stallC: 65,
   overheatC: DEFAULT_SIM_MODEL_OPTIONS.overheatC,
   tickMs: 20,
+  benchFaults: [],
 } satisfies Partial<BusSimOptions>;
 
 export class BusSimCore {
@@ -57,10 +62,8 @@ export class BusSimCore {
   ) {
     this.o = { ...DEFAULT_BUS_SIM_OPTIONS, ...options };
     const home = this.o.profile.poses.home ?? [];
-    this.bus = createEmulatedBus({
-      protocol: this.o.protocol,
-      startMs,
-      servos: this.o.profile.servos.map((s, i) => ({
+    const bench = withBenchFaults(
+      this.o.profile.servos.map((s, i) => ({
         id: s.id,
         position: degreesToTicks(Number.isFinite(home[i]) ? home[i]! : 0, {
           id: s.id,
@@ -68,7 +71,9 @@ export class BusSimCore {
         }),
         temperatureC: this.o.ambientC,
       })),
-    });
+      this.o.benchFaults,
+    );
+    this.bus = createEmulatedBus({ protocol: this.o.protocol, startMs, ...bench });
     for (const f of this.o.faults) this.apply(f);
     this.sense();
   }

@@ -13,7 +13,7 @@ import {
   parseBrokerList,
   redactBrokerUrl,
 } from '@armtwin/protocol';
-import type { BusProtocol } from '@armtwin/servo-bus';
+import type { BenchFault, BusProtocol } from '@armtwin/servo-bus';
 import { startBusSim, type BusSimCore } from './bus-sim.ts';
 import type { Fault } from './faults.ts';
 import { simWill, startMqttSim } from './mqtt-sim.ts';
@@ -52,6 +52,8 @@ export interface SimOptions {
   bus: '' | BusProtocol;
   /** Faults in force from the start. */
   faults: Fault[];
+  /** On a servo bus: faults of the bench (absent, extra, clashing servos, fields). */
+  benchFaults: BenchFault[];
   /** A beating operator is let go after this long without a `1`, ms (0 = only a `0`). */
   operatorLeaseMs: number;
   log: Logger;
@@ -72,6 +74,7 @@ export const DEFAULT_SIM_OPTIONS = {
   baudRate: 115200,
   bus: '',
   faults: [],
+  benchFaults: [],
   operatorLeaseMs: OPERATOR_LEASE_MS,
   onFirst: () => {},
 } satisfies Partial<SimOptions>;
@@ -105,6 +108,7 @@ export async function startSim(
       protocol: o.bus,
       profile: profile.profile,
       faults: o.faults,
+      benchFaults: o.benchFaults,
       path: o.serialPath,
       baudRate: o.baudRate,
       onFirst: o.onFirst,

@@ -3,6 +3,9 @@ import {
   BUS_MODELS_DIR,
   DEFAULT_BUS_GATEWAY_OPTIONS,
   DEFAULT_GATEWAY_OPTIONS,
+  formatDoctorReport,
+  loadProfile,
+  runBusDoctor,
   startBusGateway,
   startGateway,
 } from '@armtwin/gateway';
@@ -31,6 +34,7 @@ interface GatewayFlags {
   username?: string;
   password?: string;
   operatorLease: number;
+  doctor: boolean;
 }
 
 export function registerGateway(program: Command): void {
@@ -95,6 +99,11 @@ export function registerGateway(program: Command): void {
     .option('--username <name>', 'broker user name (env MQTT_USERNAME)')
     .option('--password <secret>', 'broker password (env MQTT_PASSWORD)')
     .addOption(operatorLeaseOption())
+    .option(
+      '--doctor',
+      'servo bus: scan every baud rate and id, report what is wrong and how to fix it, and exit (1 when an error is found)',
+      false,
+    )
     .addHelpText(
       'after',
       `
@@ -112,6 +121,9 @@ publishes them as angle frames #IIIA±ddd.dd!, temperature and voltage at --heal
 #IIITtttVvvvv!; pulse and angle moves are checked against the profile's limits and written by
 sync write at the speed their T asks; #IIIPDST!/#255PDST! and the deadman hold position. Torque
 is on at start; 0 on arm/{id}/torque turns it off, 1 back on. $KMS goes through the profile's IK.
+Before it starts, the servo doctor checks the bus at --baud (ids, model, firmware, supply against
+the servos' voltage, overheat and overload flags...) and logs each finding with its fix; with
+--doctor it also tries every baud rate, prints the report and exits (docs/so101.md).
 
 With --ros2 (needs bash scripts/install-ros2.sh once) the arm is a ROS 2 arm, e.g. under
 ros2_control: its joint states (matched to --profile by joint name) are published as angle frames
@@ -133,6 +145,24 @@ the joints are. The arm is offline while no joint state arrives.`,
         onFirst: firstOnly(log),
         log,
       };
+      if (!flags.ros2 && flags.bus !== 'lsc') {
+        const baudRate = flags.baud ?? DEFAULT_BUS_GATEWAY_OPTIONS.baudRate;
+        const ids = loadProfile(flags.profile, flags.models).profile.servos.map((s) => s.id);
+        const doctor = { bus: flags.bus, serialPath: line.serialPath, baudRate, ids };
+        if (flags.doctor) {
+          const report = await runBusDoctor({ ...doctor, allBauds: true });
+          process.stdout.write(formatDoctorReport(report));
+          process.exitCode = report.findings.some((f) => f.severity === 'error') ? 1 : 0;
+          return;
+        }
+        try {
+          const report = await runBusDoctor({ ...doctor, allBauds: false });
+          for (const f of report.findings)
+            log.warn(`servo doctor: [${f.kind}] ${f.finding}; fix: ${f.fix}`);
+        } catch (err) {
+          log.warn(`servo doctor: could not check the bus (${(err as Error).message})`);
+        }
+      }
       const gw = flags.ros2
         ? await startRos2Gateway({
             ...line,

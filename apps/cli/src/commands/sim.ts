@@ -7,7 +7,12 @@ import {
   type Fault,
   type ReportUnits,
 } from '@armtwin/sim';
-import { BUS_PROTOCOLS, type BusProtocol } from '@armtwin/servo-bus';
+import {
+  BUS_PROTOCOLS,
+  parseBenchFault,
+  type BenchFault,
+  type BusProtocol,
+} from '@armtwin/servo-bus';
 import { loadCliConfig } from '../config.ts';
 import { createLogger, firstOnly } from '../log.ts';
 import { armId, number, operatorLeaseOption } from './options.ts';
@@ -41,6 +46,7 @@ interface SimFlags {
   serial?: string;
   baud: number;
   bus?: BusProtocol;
+  busFault?: BenchFault[];
   stall?: number[];
   overheat?: Fault[];
   undervolt?: number;
@@ -140,6 +146,11 @@ export function registerSim(program: Command): void {
       ).choices(BUS_PROTOCOLS),
     )
     .option('--stall <id>', 'stall this servo (repeatable)', collect(servo))
+    .option(
+      '--bus-fault <fault>',
+      'with --bus: a fault of the bench, absent:ID, extra:ID, clash:ID or field:ID:FIELD=VALUE (repeatable; e.g. field:2:maxVoltageLimit=80)',
+      collect(parseBenchFault),
+    )
     .option('--overheat <id[:celsius]>', 'overheat this servo (repeatable)', collect(overheat))
     .option(
       '--undervolt <mv>',
@@ -173,6 +184,7 @@ export function registerSim(program: Command): void {
         baudRate: flags.baud,
         bus: flags.bus ?? '',
         faults: faultsFrom(flags),
+        benchFaults: flags.busFault ?? [],
         operatorLeaseMs: flags.operatorLease,
         log,
         onFirst: firstOnly(log),

@@ -11,6 +11,7 @@ import { X_SERIES_TABLE } from '../dynamixel/control-table.ts';
 import { STS_TABLE, FEETECH_VOLTAGE_UNIT_V } from '../feetech/control-table.ts';
 import { createBusClient, replyTimeoutMs, type BusClient } from '../client/bus-client.ts';
 import type { BusResult } from '../client/results.ts';
+import { DIALECTS } from '../dialect.ts';
 import { encodeInstruction } from '../instructions.ts';
 import { BROADCAST_ID, MAX_SERVO_ID, type BusProtocol } from '../protocols.ts';
 import { statusProblems, type StatusProblem } from '../status-errors.ts';
@@ -19,8 +20,11 @@ import { statusProblems, type StatusProblem } from '../status-errors.ts';
 export interface DoctorLink {
   /** Sets the line's baud rate (reopens a serial port). */
   setBaud(baud: number): Promise<void>;
-  /** Writes `bytes`; resolves with every byte that came back within `ms`. */
-  exchange(bytes: Uint8Array, ms: number): Promise<Uint8Array>;
+  /**
+   * Writes `bytes`; resolves with every byte that came back within `ms`, or as soon as
+   * `expectBytes` have (when given).
+   */
+  exchange(bytes: Uint8Array, ms: number, expectBytes?: number): Promise<Uint8Array>;
 }
 
 /** What one servo said of itself. */
@@ -58,7 +62,11 @@ export interface ScanOptions {
   ids?: readonly number[];
   /** Also ping every id at that rate when one of `ids` is missing (default true). */
   searchAll?: boolean;
-  /** Try the other rates only when nothing answered at the first (default true). */
+  /**
+   * Stop at the first rate where anything answered (default true); else go on while an id of
+   * `ids` has not answered. A servo answers at one rate only, so an id heard at one rate is
+   * not asked again at the next.
+   */
   stopAtFirst?: boolean;
   /** Wait margin for an answer, ms (USB latency). */
   marginMs?: number;
@@ -107,17 +115,20 @@ export async function scanBus(link: DoctorLink, o: ScanOptions): Promise<BusScan
   const client = createBusClient({ protocol, servos: every.map((id) => ({ id })) });
   const scan: BusScan = { protocol, bauds: [], servos: [] };
   const marginMs = o.marginMs ?? 20;
+  const heardFrom = new Set<number>();
 
   for (const baud of o.bauds) {
     await link.setBaud(baud);
     const wait = (bytes: number) => replyTimeoutMs(bytes, baud, marginMs);
     const ask = async (make: (c: BusClient) => Uint8Array): Promise<BusResult | undefined> => {
       const bytes = make(client);
-      const reply = await link.exchange(bytes, wait(client.pending?.expectedReplyBytes ?? 0));
+      const expected = client.pending?.expectedReplyBytes ?? 0;
+      const reply = await link.exchange(bytes, wait(expected), expected);
       return client.feed(reply)[0] ?? client.expire();
     };
     const broadcast = encodeInstruction(protocol, { op: 'ping', id: BROADCAST_ID });
     const heard = await link.exchange(broadcast, wait(14 * 8));
+    const echoed = answeredBroadcast(protocol, heard);
     const row = { baud, found: [] as number[], garbled: [] as number[] };
     scan.bauds.push(row);
     if (heard.length === 0 && o.ids === undefined) continue;
@@ -128,18 +139,36 @@ export async function scanBus(link: DoctorLink, o: ScanOptions): Promise<BusScan
       if (r?.kind === 'ping' && r.found) row.found.push(id);
       else if (errorsAfter > errorsBefore) row.garbled.push(id);
     };
-    const first = o.ids ?? every;
+    const first = (o.ids ?? every).filter((id) => !heardFrom.has(id));
     for (const id of first) await ping(id);
     const missing = first.some((id) => !row.found.includes(id));
+    // Others: those that answered the broadcast, or every id when its answers were garbled.
     if (o.ids && missing && (o.searchAll ?? true) && heard.length > 0)
-      for (const id of every) if (!first.includes(id)) await ping(id);
+      for (const id of echoed.garbled ? every : echoed.ids)
+        if (!first.includes(id) && !heardFrom.has(id)) await ping(id);
+    for (const id of [...row.found, ...row.garbled]) heardFrom.add(id);
     for (const id of row.found) {
       const servo = await describe(id, baud, ask, protocol);
       if (servo) scan.servos.push(servo);
     }
     if ((o.stopAtFirst ?? true) && (row.found.length || row.garbled.length)) break;
+    if (o.ids?.every((id) => heardFrom.has(id))) break;
   }
   return scan;
+}
+
+/** The ids in the answers to a broadcast ping, and whether some of it did not read. */
+function answeredBroadcast(protocol: BusProtocol, bytes: Uint8Array) {
+  const ids: number[] = [];
+  let garbled = false;
+  const reader = DIALECTS[protocol].createReader({
+    direction: 'status',
+    onPacket: (p) => (p.type === 'status' ? ids.push(p.id) : undefined),
+    onError: () => (garbled = true),
+  });
+  reader.feed(bytes);
+  reader.flush();
+  return { ids, garbled };
 }
 
 async function describe(
