@@ -36,7 +36,7 @@ export interface ApiOptions {
   /**
    * Robot folders, searched in order for a robot's profile.json; imports are written into the
    * first. Where the controllers (`armtwin sim`, `armtwin gateway --bus`) read their profiles,
-   * and the HUD its `/models/`.
+   * and the HUD its `/models/`. None: no robot routes.
    */
   modelDirs: readonly string[];
   /** Runs the model copies (`armtwin up`); null = 501 for `/arms/{id}/model`. */
@@ -93,9 +93,11 @@ export function createApi(o: ApiOptions): Api {
   route('/history', service.history);
   route('/history/*', service.history);
   route('/whoami', service.whoami);
-  route('/robots/import', robotImport.handle);
-  route('/robots/:name/calibration', (req, res, p) => calibration.handle(req, res, p.name!));
-  route('/robots/:name/keep-out', (req, res, p) => keepOut.handle(req, res, p.name!));
+  if (o.modelDirs.length > 0) {
+    route('/robots/import', robotImport.handle);
+    route('/robots/:name/calibration', (req, res, p) => calibration.handle(req, res, p.name!));
+    route('/robots/:name/keep-out', (req, res, p) => keepOut.handle(req, res, p.name!));
+  }
   route('/arms/:id/model', (req, res, p) => model.handle(req, res, p.id!));
 
   return {
