@@ -120,3 +120,30 @@ test('with a users file a refused read never carries a Basic challenge (no brows
   expect(await viewer.text()).toBe('up 1\n');
   await new Promise((r) => srv.close(r));
 });
+
+test('robot folders are served from the models folders at /models/, nothing outside them', async () => {
+  fs.mkdirSync(path.join(models, 'r1'));
+  fs.writeFileSync(path.join(models, 'r1', 'profile.json'), '{"name":"r1"}');
+  expect(await call('GET', '/models/r1/profile.json')).toMatchObject({
+    status: 200,
+    text: '{"name":"r1"}',
+  });
+  expect((await call('GET', '/models/r1/none.stl')).status).toBe(404);
+  // Sent as written (a URL would resolve the dots itself).
+  const escape = await new Promise<number>((resolve, reject) =>
+    http
+      .get(
+        {
+          host: '127.0.0.1',
+          port: new URL(base).port,
+          path: '/models/r1/%2e%2e/%2e%2e/etc/passwd',
+        },
+        (res) => {
+          res.resume();
+          resolve(res.statusCode ?? 0);
+        },
+      )
+      .on('error', reject),
+  );
+  expect(escape).toBe(403);
+});
