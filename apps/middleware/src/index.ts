@@ -252,12 +252,18 @@ export async function startMiddleware(
       })
     : null;
   const source = { metrics, health, history };
+  /** The kinds of refused or failed API requests told so far. */
+  const apiKinds = new Set<string>();
   const handler = createHttpHandler({
     ...source,
     apiToken: config.apiToken,
     logins,
     modelDirs,
-    onFirst: (kind, message) => once.warn(`api-${kind}`, {}, message),
+    onFirst: (kind, message) => {
+      if (apiKinds.has(kind)) return;
+      apiKinds.add(kind);
+      log.warn({ kind }, `${message} (logged once per kind)`);
+    },
   });
   let server: http.Server | null = null;
   let httpPort: number | null = null;

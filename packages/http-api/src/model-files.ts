@@ -1,14 +1,15 @@
 /**
- * Serves robot folders at `/models/<name>/…` straight from disk, at request time, so a robot
- * folder added (or imported with `armtwin robot import`) while `armtwin up` runs is served at
- * once, without rebuilding the HUD. The folders are searched in order (an extra models folder
+ * `GET /models/<name>/…`: robot folders straight from disk, at request time, so a robot folder
+ * added (imported, calibrated, its zones saved) while the server runs is served at once, without
+ * rebuilding the HUD; by `armtwin up` and by the middleware (its MODELS_DIR). The folders are searched in order (an extra models folder
  * first, then the repository's `public/models`); the first that holds the file answers.
  * A missing file is a 404 (never the HUD's index.html), and nothing outside the folders is served.
  */
 import type http from 'node:http';
 import path from 'node:path';
-import type { Handler } from './static-files.ts';
 import { isFile, readPath, sendFile } from './send-file.ts';
+
+type Handler = (req: http.IncomingMessage, res: http.ServerResponse) => void;
 
 /** The URL prefix robot folders are served under. */
 export const MODELS_PREFIX = '/models/';
@@ -31,11 +32,6 @@ export const MODEL_TYPES: Record<string, string> = {
   '.txt': 'text/plain; charset=utf-8',
   '.md': 'text/markdown; charset=utf-8',
 };
-
-/** Whether a request is for a robot folder (this handler answers it, 404 included). */
-export function isModelRequest(req: http.IncomingMessage): boolean {
-  return (req.url ?? '').startsWith(MODELS_PREFIX);
-}
 
 /** The file a `/models/…` path names in `dir`, or null when it would leave `dir`. */
 export function modelFilePath(dir: string, pathname: string): string | null {
