@@ -49,6 +49,27 @@ describe('JointPredictor', () => {
     expect(j.predict(1050)).toBe(40);
   });
 
+  it('does not run past the target from a report exactly on it', () => {
+    // Off the command's course (it started late), the reports' velocity carries the joint on;
+    // the newest report is on the target pulse itself: it stays there.
+    const j = new JointPredictor(-135, 135, VMAX);
+    j.report(0, 0);
+    j.command(40, 1000, 0);
+    j.report(600, 36);
+    j.report(620, 38);
+    j.report(640, 40);
+    expect(j.following).toBe(false);
+    expect(j.predict(700)).toBe(40);
+    // And from the other side.
+    const k = new JointPredictor(-135, 135, VMAX);
+    k.report(0, 40);
+    k.command(0, 1000, 0);
+    k.report(600, 4);
+    k.report(620, 2);
+    k.report(640, 0);
+    expect(k.predict(700)).toBe(0);
+  });
+
   it('respects the top speed when the commanded time is shorter', () => {
     const j = new JointPredictor(-135, 135, VMAX);
     j.report(0, 0);
