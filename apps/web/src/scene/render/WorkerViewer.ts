@@ -234,7 +234,9 @@ export class WorkerViewer implements SceneView {
     // Picking and waypoint raycasts read world matrices, which no render updates on this side.
     this.scene.updateMatrixWorld();
     this.camera.updateMatrixWorld();
-    if (any) this.send(m);
+    if (!any) return;
+    this.send(m);
+    this.changes.posted(m);
   }
 
   private onMessage(m: FromWorker): void {
