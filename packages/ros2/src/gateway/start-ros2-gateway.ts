@@ -13,11 +13,12 @@ import {
   connectGatewayMqtt,
   DEFAULT_GATEWAY_OPTIONS,
   gatewayPublish,
+  leaveGatewayMqtt,
   wireGatewayMqtt,
   type GatewayOptions,
 } from '@armtwin/gateway';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
-import { armTopics, holderTopic, SYSTEM_CLOCK } from '@armtwin/protocol';
+import { armTopics, SYSTEM_CLOCK } from '@armtwin/protocol';
 import { Ros2Bridge } from '../bridge-process.ts';
 import type { JointStateMsg } from '../wire.ts';
 import { DEFAULT_ROS2_GATEWAY_OPTIONS, Ros2GatewayCore } from './ros2-gateway-core.ts';
@@ -154,13 +155,7 @@ export async function startRos2Gateway(
       motion.stop();
       core.stop();
       control.reset();
-      if (client.connected) {
-        await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
-        await client
-          .publishAsync(holderTopic(o.armId), '', { qos: 1, retain: true })
-          .catch(() => {});
-      }
-      await client.endAsync().catch(() => {});
+      await leaveGatewayMqtt(client, o.armId);
       await bridge.close();
       log?.info({ counters: core.counters, bridge: bridge.errors }, 'gateway stopped');
     },
