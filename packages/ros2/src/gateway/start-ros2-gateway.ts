@@ -57,6 +57,8 @@ export interface Ros2Gateway {
   core: Ros2GatewayCore;
   client: MqttClient;
   bridge: Ros2Bridge;
+  /** Resolves with the reason if the rclpy process ends before `stop()` (the arm is then offline). */
+  lost: Promise<string>;
   stop(): Promise<void>;
 }
 
@@ -147,11 +149,16 @@ export async function startRos2Gateway(
     },
     'ROS 2 gateway running',
   );
+  let stopping = false;
   return {
     core,
     client,
     bridge,
+    lost: bridge.exited.then((code) =>
+      stopping ? '' : `the ROS 2 bridge process exited (${code})`,
+    ),
     async stop() {
+      stopping = true;
       motion.stop();
       core.stop();
       control.reset();
