@@ -13,11 +13,12 @@ import {
   connectGatewayMqtt,
   DEFAULT_GATEWAY_OPTIONS,
   gatewayPublish,
+  leaveGatewayMqtt,
   wireGatewayMqtt,
   type GatewayOptions,
 } from '@armtwin/gateway';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
-import { armTopics, holderTopic, SYSTEM_CLOCK } from '@armtwin/protocol';
+import { armTopics, SYSTEM_CLOCK } from '@armtwin/protocol';
 import { Ros2Bridge } from '../bridge-process.ts';
 import type { JointStateMsg } from '../wire.ts';
 import { DEFAULT_ROS2_GATEWAY_OPTIONS, Ros2GatewayCore } from './ros2-gateway-core.ts';
@@ -56,6 +57,8 @@ export interface Ros2Gateway {
   core: Ros2GatewayCore;
   client: MqttClient;
   bridge: Ros2Bridge;
+  /** Resolves with the reason if the rclpy process ends before `stop()` (the arm is then offline). */
+  lost: Promise<string>;
   stop(): Promise<void>;
 }
 
@@ -146,21 +149,20 @@ export async function startRos2Gateway(
     },
     'ROS 2 gateway running',
   );
+  let stopping = false;
   return {
     core,
     client,
     bridge,
+    lost: bridge.exited.then((code) =>
+      stopping ? '' : `the ROS 2 bridge process exited (${code})`,
+    ),
     async stop() {
+      stopping = true;
       motion.stop();
       core.stop();
       control.reset();
-      if (client.connected) {
-        await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
-        await client
-          .publishAsync(holderTopic(o.armId), '', { qos: 1, retain: true })
-          .catch(() => {});
-      }
-      await client.endAsync().catch(() => {});
+      await leaveGatewayMqtt(client, o.armId);
       await bridge.close();
       log?.info({ counters: core.counters, bridge: bridge.errors }, 'gateway stopped');
     },
