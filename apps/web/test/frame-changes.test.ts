@@ -7,8 +7,8 @@
  */
 import { describe, expect, it } from 'vitest';
 import { angleFromPwm, encodeGroup, encodePosition } from '@armtwin/protocol';
-import { ArmStore } from '../src/store/ArmStore.ts';
-import { TargetPreview } from '../src/store/TargetPreview.ts';
+import { ArmStore } from '../src/core/store/ArmStore.ts';
+import { TargetPreview } from '../src/core/store/TargetPreview.ts';
 import { FrameChanges } from '../src/scene/render/FrameChanges.ts';
 import { FrameMirror } from '../src/scene/render/FrameMirror.ts';
 import type { FrameInput } from '../src/scene/render/messages.ts';
