@@ -15,7 +15,7 @@ import os from 'node:os';
 import path from 'node:path';
 import mqtt, { type MqttClient } from 'mqtt';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { parseAudit, type AuditEvent, type Frame } from '@armtwin/protocol';
+import { parseAudit, type AuditEvent } from '@armtwin/protocol';
 import { MODELS_DIR } from '@armtwin/sim';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
@@ -48,7 +48,7 @@ afterAll(() => fs.rmSync(dir, { recursive: true, force: true }));
 /** A driver under test: started for arm `arm` on the broker at `url`. */
 interface DriverRow {
   name: string;
-  start(url: string, arm: string): Promise<{ stop(): Promise<void> }>;
+  start(url: string, arm: string): Promise<{ stop(): Promise<unknown> }>;
 }
 
 const DRIVERS: DriverRow[] = [
@@ -123,23 +123,15 @@ const DRIVERS: DriverRow[] = [
 describe.each(DRIVERS.map((d, i) => ({ ...d, arm: `behaviour-${i}` })))(
   'the controller on $name',
   ({ start, arm }) => {
-    let driver: { stop(): Promise<void> } | undefined;
+    let driver: { stop(): Promise<unknown> } | undefined;
     let w: StatusWatcher;
     let users: MqttClient;
     const feedback: { id?: string; status?: string; message?: string }[] = [];
     const audit: AuditEvent[] = [];
     let holder = '';
 
-    /** Servo `id`'s angle in every state group (all six servos) after item `from`. */
-    function angles(id: number, from = 0): number[] {
-      const out: number[] = [];
-      for (const it of w.items.slice(from)) {
-        if (!('group' in it) || it.group.frames.length !== SERVOS) continue;
-        const f = it.group.frames.find((x: Frame) => x.type === 'angle' && x.id === id);
-        if (f?.type === 'angle') out.push(f.deg);
-      }
-      return out;
-    }
+    /** Servo `id`'s angle in every state group after item `from`. */
+    const angles = (id: number, from = 0) => w.angles(id, from, SERVOS);
     const reaches = (id: number, deg: number, from: number) =>
       w.until(
         () => (angles(id, from).some((d) => Math.abs(d - deg) < 0.1) ? true : undefined),

@@ -12,7 +12,6 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import type { Frame } from '@armtwin/protocol';
 import { MODELS_DIR } from '@armtwin/sim';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
@@ -55,16 +54,8 @@ describe.each(['dynamixel', 'feetech'] as const)('armtwin gateway --bus %s', (bu
   const startLine = () => line.start();
   const stopLine = () => line.stop();
 
-  /** State groups (every servo's angle) after item `from`: the angle of servo `id` in each. */
-  function angles(id: number, from = 0): number[] {
-    const out: number[] = [];
-    for (const it of w.items.slice(from)) {
-      if (!('group' in it) || it.group.frames.length !== SERVOS) continue;
-      const f = it.group.frames.find((x: Frame) => x.type === 'angle' && x.id === id);
-      if (f?.type === 'angle') out.push(f.deg);
-    }
-    return out;
-  }
+  /** Servo `id`'s angle in every state group after item `from`. */
+  const angles = (id: number, from = 0) => w.angles(id, from, SERVOS);
 
   const reaches = (id: number, deg: number, from: number, ms = 10_000) =>
     w.until(

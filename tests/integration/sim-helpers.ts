@@ -181,6 +181,17 @@ export class StatusWatcher {
     return out;
   }
 
+  /** State groups of `servos` angle frames (§8) after index `from`: the angle of servo `id` in each. */
+  angles(id: number, from = 0, servos = 6): number[] {
+    const out: number[] = [];
+    for (const it of this.items.slice(from)) {
+      if (!('group' in it) || it.group.frames.length !== servos) continue;
+      const f = it.group.frames.find((x) => x.type === 'angle' && x.id === id);
+      if (f?.type === 'angle') out.push(f.deg);
+    }
+    return out;
+  }
+
   /** Latest health of servo `id`. */
   health(id: number): { temp: number; mv: number } | undefined {
     for (let i = this.items.length - 1; i >= 0; i--) {

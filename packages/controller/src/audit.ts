@@ -1,9 +1,9 @@
 /**
- * One operator at a time, in front of the core: the `ControlArbiter` (@armtwin/protocol) decides
+ * One operator at a time, in front of the core: the `ControlArbiter` (./arbiter.ts) decides
  * whose control payloads reach the controller; this puts the core's keep-out refusals into its
  * audit record with their sender (`refused-keep-out`), for every driver alike.
  */
-import type { ControlArbiter } from '@armtwin/protocol';
+import type { ControlArbiter } from './arbiter.ts';
 import type { ControllerCore } from './core.ts';
 
 /**

@@ -4,6 +4,7 @@
  * the rules (keep-out, `$KMS`) and the arbiter's keep-out audit. The MQTT binding of motion
  * requests is `@armtwin/controller/mqtt`.
  */
+export * from './arbiter.ts';
 export * from './audit.ts';
 export * from './control-input.ts';
 export * from './core.ts';
@@ -13,9 +14,3 @@ export * from './motion.ts';
 export * from './rate-limit.ts';
 export * from './refusal.ts';
 export * from './rules.ts';
-export {
-  ControlArbiter,
-  DEFAULT_CONTROL_ARBITER_OPTIONS,
-  type ControlArbiterIo,
-  type ControlArbiterOptions,
-} from '@armtwin/protocol';

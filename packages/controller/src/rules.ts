@@ -44,3 +44,9 @@ export function floorKeepOut(robot: MotionRobot): KeepOutCheck {
 export function zonesKeepOut(robot: MotionRobot): KeepOutCheck {
   return (from, to) => keepOutReason(robot, from, to);
 }
+
+/** What every move is answered while the profile file does not parse (the arm stays stopped). */
+export const INVALID_PROFILE_REASON = 'zone: profile.json invalid';
+
+/** The keep-out check in force while the profile file does not parse: every move refused. */
+export const refuseEveryMove: KeepOutCheck = () => INVALID_PROFILE_REASON;

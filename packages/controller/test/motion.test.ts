@@ -17,7 +17,7 @@ function rig(mayExecute?: (user: string) => string) {
   if (!parsed.ok) throw new Error(parsed.errors.join('\n'));
   const robot = createMotionRobot(parsed.profile);
   const driver = new ArrayDriver();
-  const core = new ControllerCore(jointsFromArm(armProfileFromProfile(parsed.profile)), driver);
+  const core = new ControllerCore(jointsFromArm(armProfileFromProfile(parsed.profile)!), driver);
   const motion = new MotionRequests(core, () => robot, 0, mayExecute ? { mayExecute } : {});
   /** Steps every `stepMs` from t until the execution ends; the feedback and the end time. */
   const runFrom = (t: number) => {

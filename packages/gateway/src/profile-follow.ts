@@ -14,11 +14,8 @@ import type { MqttClient } from 'mqtt';
 import { readRobotFolder } from '@armtwin/motion/robot-folder';
 import { EMERGENCY_STOP, topic } from '@armtwin/protocol';
 import { parseProfile } from '@armtwin/ik';
-import { numericKms, zonesKeepOut } from '@armtwin/controller';
+import { numericKms, refuseEveryMove, zonesKeepOut } from '@armtwin/controller';
 import type { BusGatewayCore } from './bus-gateway.ts';
-
-/** What every move is answered with while the profile file does not parse. */
-const refuseAll = () => 'zone: profile.json invalid';
 
 /** How often the profile file is looked at, ms (a stat; renames are seen too). */
 export const PROFILE_POLL_MS = 500;
@@ -67,7 +64,7 @@ export function followProfile(o: ProfileFollowOptions): { stop(): void } {
   const started = parseProfile(o.raw);
   const stopUntilFixed = () => {
     o.core.fromControl(EMERGENCY_STOP);
-    if (started.ok) o.core.reconfigure(started.profile, undefined, refuseAll);
+    if (started.ok) o.core.reconfigure(started.profile, undefined, refuseEveryMove);
   };
   const onChange = (now: fs.Stats, before: fs.Stats) => {
     if (now.mtimeMs !== before.mtimeMs || now.ino !== before.ino) reload();

@@ -6,14 +6,11 @@
 import type { MqttClient } from 'mqtt';
 import type { Logger } from 'pino';
 import { connectBrokers, type BrokerClient } from '@armtwin/link';
-import { auditKeepOut, type ControllerCore } from '@armtwin/controller';
+import type { ControlArbiter, ControllerCore } from '@armtwin/controller';
+import { mqttArbiter } from '@armtwin/controller/mqtt';
 import {
   armTopics,
   describeBroker,
-  auditTopic,
-  ControlArbiter,
-  encodeControllerError,
-  encodeTime,
   holderTopic,
   linkOptions,
   MQTT_KEEPALIVE_S,
@@ -135,31 +132,13 @@ export function wireGatewayMqtt(
   extra: Record<string, (payload: Buffer) => void> = {},
 ): ControlArbiter {
   const topics = armTopics(o.armId);
-  const publish = (topic: string, payload: string, retain = false) => {
-    if (client.connected) client.publish(topic, payload, { qos: retain ? 1 : 0, retain });
-  };
-  const control: ControlArbiter = new ControlArbiter(
+  const controller = core.controller;
+  const control = mqttArbiter(
+    client,
     o.armId,
-    {
-      ...SYSTEM_CLOCK,
-      // A move the arm refuses by its keep-out rules is part of the record, with its sender.
-      forward: core.controller
-        ? auditKeepOut(
-            () => core.controller!,
-            (): ControlArbiter => control,
-            (payload) => core.fromControl(Buffer.from(payload)),
-          )
-        : (payload) => core.fromControl(Buffer.from(payload)),
-      refuse: (message) =>
-        publish(
-          topics.status,
-          encodeTime(Math.round(SYSTEM_CLOCK.now())) + encodeControllerError(message),
-        ),
-      holder: (record) => publish(holderTopic(o.armId), JSON.stringify(record), true),
-      audit: (event) =>
-        client.connected &&
-        void client.publish(auditTopic(o.armId), JSON.stringify(event), { qos: 1 }),
-    },
+    SYSTEM_CLOCK,
+    controller && (() => controller),
+    (payload) => core.fromControl(Buffer.from(payload)),
     o.operatorLeaseMs === undefined ? {} : { leaseMs: o.operatorLeaseMs },
   );
   const handlers: Record<string, (payload: Buffer) => void> = {

@@ -11,7 +11,6 @@ export * from './operator.ts';
 export * from './link.ts';
 export * from './clock.ts';
 export * from './control-claims.ts';
-export * from './control-arbiter.ts';
 export * from './thermal-model.ts';
 export * from './thermal-fit.ts';
 export * from './thermal-watch.ts';

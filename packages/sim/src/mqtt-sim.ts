@@ -8,7 +8,7 @@
  * Deadman: `arm/{id}/operator` is watched (`OperatorWatch`): a `0` there (the operator let go,
  * or the broker published its last will because its page dropped), or a beating operator whose
  * lease ran out, stops a moving arm (`runner.operatorLeft`).
- * One operator at a time: control comes in through a `ControlArbiter` (@armtwin/protocol), which
+ * One operator at a time: control comes in through a `ControlArbiter` (@armtwin/controller), which
  * keeps who holds the arm (retained on `arm/{id}/holder`), takes claims on `arm/{id}/claim/+`
  * and `arm/{id}/override/+`, lets only the holder's moves through and reports on
  * `arm/{id}/audit` (docs/protocol.md, "Control: one operator at a time").
@@ -17,18 +17,14 @@
 import type { IClientOptions, MqttClient } from 'mqtt';
 import {
   armTopics,
-  auditTopic,
-  ControlArbiter,
-  encodeControllerError,
-  encodeTime,
   holderTopic,
   OPERATOR_LEASE_MS,
   OperatorWatch,
   SYSTEM_CLOCK,
   type Clock,
 } from '@armtwin/protocol';
-import { auditKeepOut, MotionRequests } from '@armtwin/controller';
-import { startMotionService } from '@armtwin/controller/mqtt';
+import { MotionRequests, type ControlArbiter } from '@armtwin/controller';
+import { mqttArbiter, startMotionService } from '@armtwin/controller/mqtt';
 import { parseFaults } from './faults.ts';
 import type { SimProfile } from './profile.ts';
 import { SimRunner, type PayloadKind, type SimRunnerOptions } from './runner.ts';
@@ -37,7 +33,7 @@ export interface MqttSimOptions extends Partial<SimRunnerOptions> {
   /** The arm id: `[a-z0-9-]{1,32}`. */
   armId: string;
   clock?: Clock;
-  /** The arm's profile: announced on `arm/{id}/profile`, and motion requests served (motion-service.ts). */
+  /** The arm's profile: announced on `arm/{id}/profile`, and motion requests served (MotionRequests of @armtwin/controller). */
   profile?: SimProfile;
   /** A beating operator is let go after this long without a `1` (0 = only a `0` lets go). */
   operatorLeaseMs?: number;
@@ -115,34 +111,12 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
     options.operatorLeaseMs ?? OPERATOR_LEASE_MS,
   );
 
-  const control: ControlArbiter = new ControlArbiter(
+  const control = mqttArbiter(
+    client,
     options.armId,
-    {
-      now: () => clock.now(),
-      setTimeout: (fn, ms) => clock.setTimeout(fn, ms),
-      clearTimeout: (handle) => clock.clearTimeout(handle),
-      // A move the arm refuses by its keep-out rules is part of the record, with its sender.
-      forward: auditKeepOut(
-        () => runner.model.core,
-        (): ControlArbiter => control,
-        (payload) => runner.receive(payload),
-      ),
-      refuse: (message) => {
-        if (client.connected)
-          client.publish(
-            topics.status,
-            encodeTime(Math.round(clock.now())) + encodeControllerError(message),
-            { qos: 0 },
-          );
-      },
-      holder: (record) =>
-        void client.publish(holderTopic(options.armId), JSON.stringify(record), {
-          qos: 1,
-          retain: true,
-        }),
-      audit: (event) =>
-        void client.publish(auditTopic(options.armId), JSON.stringify(event), { qos: 1 }),
-    },
+    clock,
+    () => runner.model.core,
+    (payload) => runner.receive(payload),
     { leaseMs: options.operatorLeaseMs ?? OPERATOR_LEASE_MS },
   );
 

@@ -10,9 +10,9 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import type { MqttClient } from 'mqtt';
+import { refuseEveryMove } from '@armtwin/controller';
 import { readRobotFolder } from '@armtwin/motion/robot-folder';
 import { EMERGENCY_STOP, topic } from '@armtwin/protocol';
-import type { KeepOutCheck } from './options.ts';
 import { simProfile, type SimProfile } from './profile.ts';
 import type { SimRunner } from './runner.ts';
 
@@ -20,8 +20,7 @@ import type { SimRunner } from './runner.ts';
 export const ZONES_POLL_MS = 500;
 
 /** What the sim answers every move with while its profile file does not parse. */
-export const INVALID_PROFILE_REASON = 'zone: profile.json invalid';
-const refuseAll: KeepOutCheck = () => INVALID_PROFILE_REASON;
+export { INVALID_PROFILE_REASON } from '@armtwin/controller';
 
 export interface ZonesFollowOptions {
   client: MqttClient;
@@ -49,7 +48,7 @@ export function followZones(o: ZonesFollowOptions): { stop(): void } {
     } catch (err) {
       const message = `${file} not taken, the arm is stopped: ${(err as Error).message}`;
       o.runner.receive(EMERGENCY_STOP);
-      o.runner.model.setKeepOut(refuseAll);
+      o.runner.model.setKeepOut(refuseEveryMove);
       o.onFirst('profile:invalid', message);
       return o.onReload?.(false, message);
     }

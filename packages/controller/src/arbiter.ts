@@ -2,7 +2,7 @@
  * The controller's side of "one operator at a time" (docs/protocol.md): it keeps who holds the
  * arm, lets only the holder's moves through, and answers everyone else. The simulator and the
  * gateways put it in front of their control input. Identity comes from the topic
- * (./control-claims.ts): `arm/{id}/control/{user}` is the user's own control topic.
+ * (`control-claims.ts` of @armtwin/protocol): `arm/{id}/control/{user}` is the user's own control topic.
  *
  * - Nobody holds the arm: every control payload passes, on the plain topic or a user's, as
  *   before there was any holder (the anonymous demo, `mosquitto_pub -t arm/arm1/control`).
@@ -11,28 +11,30 @@
  *   refused with `$ERR:controlled by <holder>…!` and an audit event, and never reach the arm.
  * - Every change of holder (release, grant, admin take-over, a lapsed lease) stops the arm.
  * - The holder's lease: once a holder repeats `beat`, `leaseMs` without one loses the arm
- *   (the page went idle or away), as the operator lease does (./operator.ts).
+ *   (the page went idle or away), as the operator lease does (`OperatorWatch` of @armtwin/protocol).
  * - Every emergency stop (`#255PDST!`) that reaches the arm is an audit event `e-stop` with its
  *   sender, and the first move after it that reaches the arm is `e-stop-released` with its
  *   sender: who stopped the arm, and who set it going again.
  *
  * Pure: the clock, the timers and every output are injected.
  */
-import type { Clock } from './clock.ts';
 import {
+  createReader,
+  EMERGENCY_STOP,
+  encodeFrame,
+  OPERATOR_LEASE_MS,
+  OperatorWatch,
   parseClaim,
   parseUserTopic,
+  SERVO_ID_ALL,
   type AuditEvent,
   type AuditKind,
   type Claim,
+  type Clock,
+  type FrameType,
   type HolderRecord,
   type HolderRole,
-} from './control-claims.ts';
-import { EMERGENCY_STOP, encodeFrame } from './encode.ts';
-import type { FrameType } from './frames.ts';
-import { SERVO_ID_ALL } from './limits.ts';
-import { OPERATOR_LEASE_MS, OperatorWatch } from './operator.ts';
-import { createReader } from './reader.ts';
+} from '@armtwin/protocol';
 
 export interface ControlArbiterIo extends Clock {
   /** Hands a control payload to the arm (what the plain control topic used to do). */

@@ -1,15 +1,71 @@
 /**
- * Motion requests on MQTT, for any driver (`@armtwin/controller/mqtt`): subscribes
+ * The controller on MQTT, for any driver (`@armtwin/controller/mqtt`); the client and the clock
+ * are the driver's.
+ *
+ * `mqttArbiter`: one operator at a time in front of the controller, its refusals as `$ERR` on
+ * `arm/{id}/status`, the holder record retained on `arm/{id}/holder`, events on
+ * `arm/{id}/audit` (with the core's keep-out refusals, `auditKeepOut`).
+ *
+ * `startMotionService`: motion requests; subscribes
  * `arm/{id}/request` and `arm/{id}/request/+`, hands each request to `MotionRequests`, publishes
  * the feedback on `arm/{id}/feedback` (QoS 1, stamped `t`), and steps a running execution every
  * `stepMs` on the injected clock. With `announcement`, the arm's profile is published, retained,
- * on `arm/{id}/profile` at every (re)connect. The client and the clock are the driver's.
+ * on `arm/{id}/profile` at every (re)connect.
  */
 import type { MqttClient } from 'mqtt';
 
-import { armTopics, parseUserTopic, type Clock } from '@armtwin/protocol';
+import {
+  armTopics,
+  auditTopic,
+  encodeControllerError,
+  encodeTime,
+  holderTopic,
+  parseUserTopic,
+  type Clock,
+} from '@armtwin/protocol';
+import { ControlArbiter, type ControlArbiterOptions } from './arbiter.ts';
+import { auditKeepOut } from './audit.ts';
+import type { ControllerCore } from './core.ts';
 import { CODE_INVALID, type MotionFeedback } from '@armtwin/motion';
 import type { MotionRequests } from './motion.ts';
+
+/**
+ * A `ControlArbiter` for arm `armId` on this client: `forward` hands a payload that may reach
+ * the arm to the driver; with `core`, its keep-out refusals go into the audit record. The
+ * holder record is published at each `announce()` (call it at every connect); a refusal or the
+ * holder record is dropped while offline, an audit event waits in the client's queue (QoS 1).
+ */
+export function mqttArbiter(
+  client: MqttClient,
+  armId: string,
+  clock: Clock,
+  core: (() => ControllerCore) | undefined,
+  forward: (payload: Uint8Array | string) => void,
+  options: Partial<ControlArbiterOptions> = {},
+): ControlArbiter {
+  const status = armTopics(armId).status;
+  const control: ControlArbiter = new ControlArbiter(
+    armId,
+    {
+      now: () => clock.now(),
+      setTimeout: (fn, ms) => clock.setTimeout(fn, ms),
+      clearTimeout: (handle) => clock.clearTimeout(handle),
+      forward: core ? auditKeepOut(core, () => control, forward) : forward,
+      refuse: (message) => {
+        if (!client.connected) return;
+        const payload = encodeTime(Math.round(clock.now())) + encodeControllerError(message);
+        client.publish(status, payload, { qos: 0 });
+      },
+      holder: (record) => {
+        if (client.connected)
+          client.publish(holderTopic(armId), JSON.stringify(record), { qos: 1, retain: true });
+      },
+      audit: (event) => void client.publish(auditTopic(armId), JSON.stringify(event), { qos: 1 }),
+    },
+    options,
+  );
+  return control;
+}
 
 export interface MotionService {
   /** Counters by outcome, for logs. */

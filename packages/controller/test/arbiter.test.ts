@@ -1,13 +1,13 @@
 import { describe, expect, it } from 'vitest';
-import { FakeClock } from '../src/fake-clock.ts';
 import {
-  ControlArbiter,
   parseClaim,
   parseHolder,
   parseUserTopic,
   type AuditEvent,
   type HolderRecord,
-} from '../src/index.ts';
+} from '@armtwin/protocol';
+import { FakeClock } from '@armtwin/protocol/fake-clock';
+import { ControlArbiter } from '../src/index.ts';
 
 function arbiter() {
   const clock = new FakeClock();
