@@ -6,7 +6,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
-import { parseProfile } from '@armtwin/ik';
+import { parseProfile } from '@armtwin/robot';
 import { createMotionRobot, planRequest, DEFAULT_EXECUTE_OPTIONS } from '@armtwin/motion';
 import {
   EMPTY_FLEET,

@@ -13,7 +13,7 @@ import path from 'node:path';
 import type { MqttClient } from 'mqtt';
 import { readRobotFolder } from '@armtwin/motion/robot-folder';
 import { EMERGENCY_STOP, topic } from '@armtwin/protocol';
-import { parseProfile } from '@armtwin/ik';
+import { parseProfile } from '@armtwin/robot';
 import { numericKms, refuseEveryMove, zonesKeepOut } from '@armtwin/controller';
 import type { BusGatewayCore } from './bus-gateway.ts';
 

@@ -15,7 +15,7 @@ import {
   chainFromUrdf,
   pulseEquivalentArm,
   type Profile,
-} from '@armtwin/ik';
+} from '@armtwin/robot';
 import { numericKms, zonesKeepOut } from '@armtwin/controller';
 import { createMotionRobot, type MotionRobot } from '@armtwin/motion';
 import { MODELS_DIR, PROFILE_NAME, readRobotFolder } from '@armtwin/motion/robot-folder';

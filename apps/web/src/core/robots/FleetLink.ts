@@ -13,7 +13,7 @@ import {
   parseTopic,
   unhandled,
 } from '@armtwin/protocol';
-import type { Profile } from '@armtwin/ik';
+import type { Profile } from '@armtwin/robot';
 import type { MotionRequest } from '@armtwin/motion';
 import { connectOptions, type ConnectOptions } from '../link/connectOptions.ts';
 import type { MqttLike } from '../link/MqttLike.ts';

@@ -2,7 +2,7 @@
  * The retained `arm/{id}/profile` message (docs/protocol.md, "Motion requests"):
  * `{"name","title","profile":{…profile.json…}}`, read as untrusted input. Pure.
  */
-import { parseProfile, type Profile } from '@armtwin/ik';
+import { parseProfile, type Profile } from '@armtwin/robot';
 
 /** Largest announcement read, bytes (the arm refuses to publish one over 32 KiB). */
 export const MAX_ANNOUNCEMENT_BYTES = 32768;

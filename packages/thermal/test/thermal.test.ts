@@ -4,13 +4,13 @@ import {
   fitThermal,
   predictVolt,
   secondsTo,
-  solveLinear,
   thermalTraces,
   stepTemperature,
   ThermalWatch,
   type ThermalParams,
   type ThermalTrace,
 } from '../src/index.ts';
+import { solveLinear } from '@armtwin/protocol';
 
 /** Speeds by grid step: rests and moves of random length and speed. */
 function motion(steps: number, seed: number): number[] {
