@@ -11,7 +11,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import mqtt, { type MqttClient } from 'mqtt';
 import { afterAll, beforeAll, expect, test } from 'vitest';
-import { jointFromPwm, parseProfile, type Profile } from '@armtwin/ik';
+import { jointFromPwm, parseProfile, type Profile } from '@armtwin/robot';
 import { parseAudit, parseHolder, type AuditEvent } from '@armtwin/protocol';
 import type { JointStateMsg, Ros2Bridge } from '@armtwin/ros2';
 import { REPO_ROOT } from '../helpers/services.ts';

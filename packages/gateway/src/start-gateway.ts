@@ -10,16 +10,15 @@ import type { ControlArbiter, ControllerCore } from '@armtwin/controller';
 import { mqttArbiter } from '@armtwin/controller/mqtt';
 import {
   armTopics,
-  describeBroker,
   holderTopic,
   linkOptions,
   MQTT_KEEPALIVE_S,
   MQTT_RECONNECT_MS,
   OPERATOR_LEASE_MS,
-  parseBrokerList,
   SYSTEM_CLOCK,
   topic,
 } from '@armtwin/protocol';
+import { describeBroker, parseBrokerList } from '@armtwin/link';
 import { GatewayCore } from './gateway.ts';
 import { DEFAULT_SERIAL_LINK_OPTIONS, SerialLink, type SerialLinkOptions } from './serial-link.ts';
 

@@ -18,12 +18,12 @@ import { readRobotFolder, MODELS_DIR } from '@armtwin/motion/robot-folder';
 import {
   encodeStop,
   linkOptions,
-  parseBrokerList,
   parseHolder,
   topic,
   holderTopic,
   userTopic,
 } from '@armtwin/protocol';
+import { parseBrokerList } from '@armtwin/link';
 import { Ros2Bridge } from './bridge-process.ts';
 import { ClaimKeeper } from './claim-keeper.ts';
 import { FrameStreamer } from './frame-streamer.ts';

@@ -17,7 +17,7 @@ import type { MeshFailure } from './loadRobot.ts';
 import { MeshFailureNote } from './MeshFailureNote.ts';
 import { createStage, type Stage } from './stage.ts';
 import { ZonesView } from './ZonesView.ts';
-import type { ProfileKeepOut } from '@armtwin/ik';
+import type { ProfileKeepOut } from '@armtwin/robot';
 import { TargetMarker } from './TargetMarker.ts';
 import { FloorPicker } from './FloorPicker.ts';
 import { FramePacer } from './FramePacer.ts';

@@ -19,6 +19,7 @@ import {
 } from '@armtwin/gateway';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { armTopics, SYSTEM_CLOCK } from '@armtwin/protocol';
+import { profileAnnouncement } from '@armtwin/robot';
 import { Ros2Bridge } from '../bridge-process.ts';
 import type { JointStateMsg } from '../wire.ts';
 import { DEFAULT_ROS2_GATEWAY_OPTIONS, Ros2GatewayCore } from './ros2-gateway-core.ts';
@@ -122,7 +123,7 @@ export async function startRos2Gateway(
   // No await from the client's creation to its wiring: its first connect must not be missed.
   const control = wireGatewayMqtt(client, o, core);
   core.fromJointState(firstState);
-  const announcement = JSON.stringify({ name: profile.name, title: profile.title, profile: raw });
+  const announcement = profileAnnouncement(profile.name, profile.title, raw);
   client.on('connect', () =>
     client.publish(topics.profile, announcement, { qos: 1, retain: true }),
   );

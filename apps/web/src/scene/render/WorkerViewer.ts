@@ -11,7 +11,7 @@
  */
 import * as THREE from 'three';
 import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import type { ProfileKeepOut } from '@armtwin/ik';
+import type { ProfileKeepOut } from '@armtwin/robot';
 import type { ArmStore } from '../../core/store/ArmStore.ts';
 import type { TargetPreview } from '../../core/store/TargetPreview.ts';
 import type { SiblingSource } from '../ReplaySibling.ts';

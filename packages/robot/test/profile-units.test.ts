@@ -3,7 +3,8 @@
  * limits are servo angles up to ±999.99° and no longer have to fit the 500–2500 µs pulse range.
  */
 import { describe, expect, it } from 'vitest';
-import { parseProfile, pulseEquivalentArm, servoModelArm, speaksAngle } from '../src/index.ts';
+import { parseProfile, pulseEquivalentArm, servoModelArm } from '../src/index.ts';
+import { speaksAngle } from '@armtwin/ik';
 import { readModelFile } from './numeric-fixtures.ts';
 
 // eslint-disable-next-line @typescript-eslint/no-explicit-any -- free-form edits of raw JSON

@@ -1,46 +1,22 @@
 /**
- * A serial chain for the numeric IK: the URDF joints on the path from the profile's base link
- * to its tip link, each moving joint tied to the profile servo that drives it. Fixed joints are
+ * The numeric IK's serial chain (`Chain`, `@armtwin/ik`) from a profile and its URDF: the URDF
+ * joints on the path from the profile's base link to its tip link, each moving joint tied to the profile servo that drives it. Fixed joints are
  * folded into the next moving joint's origin (or into the tip offset), so FK does one
  * multiply and one motion per degree of freedom. Lengths in mm; joint values in URDF units
  * (radians for revolute, metres for prismatic); limits are the profile's.
  */
+import {
+  createMat4,
+  mat4FromXyzRpy,
+  mat4Identity,
+  mat4Multiply,
+  type Chain,
+  type ChainJoint,
+  type Mat4,
+} from '@armtwin/ik';
 import { jointLimits } from '../profile/convert.ts';
 import type { Profile } from '../profile/types.ts';
-import { createMat4, mat4FromXyzRpy, mat4Identity, mat4Multiply, type Mat4 } from './mat4.ts';
 import type { UrdfJoint } from './urdf.ts';
-
-export interface ChainJoint {
-  /** URDF joint name. */
-  readonly name: string;
-  readonly type: 'revolute' | 'prismatic';
-  /** Transform from the previous moving joint's frame (or the base) to this joint's, mm. */
-  readonly origin: Mat4;
-  /** Unit axis in this joint's frame. */
-  readonly axis: readonly [number, number, number];
-  /** Index of the servo in `profile.servos`. */
-  readonly servoIndex: number;
-}
-
-export interface Chain {
-  readonly baseLink: string;
-  readonly tipLink: string;
-  /** The moving joints, base to tip; the joint vector `q` follows this order. */
-  readonly joints: readonly ChainJoint[];
-  readonly dof: number;
-  /** Joint limits, radians or metres, from the profile. */
-  readonly lower: Float64Array;
-  readonly upper: Float64Array;
-  /** Last moving joint's frame → tip link frame, mm. */
-  readonly tip: Mat4;
-  /**
-   * An upper bound on the distance from the first joint's origin to the tip, mm: every link
-   * length after it plus every prismatic joint's travel. Targets farther away are out of reach.
-   */
-  readonly reachMm: number;
-  /** Sum of the link lengths (no prismatic travel), mm: the chain's length scale. */
-  readonly lengthMm: number;
-}
 
 export type BuildChainResult = { ok: true; chain: Chain } | { ok: false; errors: string[] };
 

@@ -7,13 +7,13 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { describe, expect, it } from 'vitest';
 import {
-  chainFk,
   chainJointsFromPose,
   jointLimits,
   parseUrdfJoints,
   pwmFromChainJoints,
   servoTable,
 } from '../src/index.ts';
+import { chainFk } from '@armtwin/ik';
 import { MODELS, loadRobot } from './numeric-fixtures.ts';
 
 const { profile, chain, urdf } = loadRobot('track6');

@@ -2,7 +2,8 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chainFromUrdf, parseProfile, type Chain, type Profile } from '../src/index.ts';
+import { chainFromUrdf, parseProfile, type Profile } from '../src/index.ts';
+import { type Chain } from '@armtwin/ik';
 
 export const MODELS = path.resolve(fileURLToPath(import.meta.url), '../../../../public/models');
 

@@ -4,7 +4,7 @@
  * (bytes and triangles) so that meshes too large for a page are warned about.
  */
 import type { Element } from '@xmldom/xmldom';
-import { attribute, childElements, parseUrdfXml, serializeUrdf } from '../numeric/urdf-xml.ts';
+import { attribute, childElements, parseUrdfXml, serializeUrdf } from '../urdf/urdf-xml.ts';
 import { ancestors, basename, dirname, join, normalize } from './paths.ts';
 
 /** The formats the HUD reads (apps/web/src/scene/meshLoaders.ts), by extension. */

@@ -22,8 +22,8 @@
  * - polarity +1 and the offsets are left for calibration, as is the bus.
  */
 import { parseProfile } from '../profile/parse.ts';
-import { chainFromUrdf } from '../numeric/target.ts';
-import { parseUrdfJoints, type UrdfJoint } from '../numeric/urdf.ts';
+import { chainFromUrdf } from '../urdf/chain-from-urdf.ts';
+import { parseUrdfJoints, type UrdfJoint } from '../urdf/urdf.ts';
 import {
   TOOL_FRAME_NAMES,
   isToolFrame,

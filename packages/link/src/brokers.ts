@@ -5,7 +5,8 @@
  * fall-backs. On losing its broker a part tries the next one in the list (wrapping round); while
  * on a fall-back it probes the first, and goes back to it once the first has answered
  * `returnAfterProbes` probes in a row. The I/O (an mqtt.js client whose reconnects follow this
- * policy, and the probes) is `@armtwin/link`.
+ * policy, and the probes) is `connectBrokers.ts` beside it; this file has no I/O, so the page's
+ * connection settings and the servers' options parse lists with it too.
  */
 
 export interface BrokerListOptions {

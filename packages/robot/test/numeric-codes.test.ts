@@ -5,14 +5,8 @@
  */
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import {
-  NUMERIC_IK_CODES,
-  NumericIkSolver,
-  buildChain,
-  chainFk,
-  parseUrdfJoints,
-  targetFromTransform,
-} from '../src/index.ts';
+import { buildChain, parseUrdfJoints } from '../src/index.ts';
+import { NUMERIC_IK_CODES, NumericIkSolver, chainFk, targetFromTransform } from '@armtwin/ik';
 import { loadRobot, withinLimits } from './numeric-fixtures.ts';
 
 const D = Math.PI / 180;

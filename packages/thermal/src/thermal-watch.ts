@@ -12,7 +12,7 @@
  * above `marginCPerS` for `sustainS` while, at the measured rate, the servo would reach `limitC`
  * within `horizonS`; it clears after `clearS` below half the margin.
  */
-import { TEMP_WARNING_C } from './health.ts';
+import { TEMP_WARNING_C } from '@armtwin/protocol';
 import { secondsTo, stepTemperature, thermalRate, type ThermalParams } from './thermal-model.ts';
 
 export interface ThermalWatchOptions {

@@ -4,7 +4,6 @@ import {
   fitThermal,
   predictVolt,
   secondsTo,
-  solveLinear,
   thermalTraces,
   stepTemperature,
   ThermalWatch,
@@ -118,29 +117,6 @@ describe('fitThermal', () => {
     expect(fit.params.tauS).toBe(60);
     expect(fit.params.restC).toBeCloseTo(TRUE.restC, 1);
     expect(fit.reason).toMatch(/too small to fit τ/);
-  });
-});
-
-describe('solveLinear', () => {
-  it('solves a small system and refuses a singular one', () => {
-    expect(
-      solveLinear(
-        [
-          [2, 1],
-          [1, 3],
-        ],
-        [3, 5],
-      ),
-    ).toEqual([0.8, 1.4].map((v) => expect.closeTo(v, 9) as number));
-    expect(
-      solveLinear(
-        [
-          [1, 2],
-          [2, 4],
-        ],
-        [1, 2],
-      ),
-    ).toBeNull();
   });
 });
 

@@ -11,3 +11,4 @@ export {
 export * from './servo-table.ts';
 export * from './calibration.ts';
 export * from './apply-calibration.ts';
+export * from './announcement.ts';

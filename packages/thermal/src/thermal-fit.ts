@@ -12,7 +12,7 @@
  * not fitted at all but kept from the prior.
  */
 import { DEFAULT_THERMAL_PARAMS, stepTemperature, type ThermalParams } from './thermal-model.ts';
-import { solveLinear } from './linear-solve.ts';
+import { solveLinear } from '@armtwin/protocol';
 
 /** One servo's history on a uniform time grid. */
 export interface ThermalTrace {

@@ -9,7 +9,7 @@
  * - **servo ids** from the URDF's `<transmission>` actuators when they are numbered
  *   (`motor1` … `motor6`: the bus ids the arm's makers gave them, as LeRobot's SO-101).
  */
-import type { UrdfJoint } from '../numeric/urdf.ts';
+import type { UrdfJoint } from '../urdf/urdf.ts';
 
 /** Link names taken for a tool frame (on a fixed joint), after the tool-centre names. */
 export const TOOL_FRAME_NAMES: readonly RegExp[] = [

@@ -5,19 +5,21 @@
  */
 import { describe, expect, it } from 'vitest';
 import {
-  DEMO_ARM,
   armProfileFromProfile,
-  chainFk,
-  forwardKinematics,
   jointFromServo,
   jointLimits,
-  jointsFromServoAngles,
   parseUrdfJoints,
   posePwm,
   servoTable,
+} from '../src/index.ts';
+import {
+  DEMO_ARM,
+  chainFk,
+  forwardKinematics,
+  jointsFromServoAngles,
   servoLimitsPwm,
   type Quad,
-} from '../src/index.ts';
+} from '@armtwin/ik';
 import { loadRobot, rng } from './numeric-fixtures.ts';
 
 const { profile, chain, urdf } = loadRobot('armtwin5');

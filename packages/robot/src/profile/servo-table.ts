@@ -4,7 +4,7 @@
  * `analytic5` profile, the `ArmProfile` that `solveIk` takes.
  */
 import { US_PER_DEG, angleFromPwm } from '@armtwin/protocol';
-import type { ArmProfile, ServoSpec } from '../arm.ts';
+import type { ArmProfile, ServoSpec } from '@armtwin/ik';
 import { maxSpeedPwm, pwmFromServo, pwmLimits, servoLimits } from './convert.ts';
 import type { Profile, ServoUnits } from './types.ts';
 

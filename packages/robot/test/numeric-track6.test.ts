@@ -4,7 +4,7 @@
  * 0.1 mm and 0.1° of the target on at least 99% of them, and no solution may leave the limits.
  */
 import { describe, expect, it } from 'vitest';
-import { NumericIkSolver, chainFk, targetFromTransform, type TargetMode } from '../src/index.ts';
+import { NumericIkSolver, chainFk, targetFromTransform, type TargetMode } from '@armtwin/ik';
 import {
   axisAngle,
   loadRobot,

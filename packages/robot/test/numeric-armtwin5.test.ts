@@ -5,16 +5,16 @@
  * the target; the numeric solution also satisfies §4's FK once mapped to servo angles.
  */
 import { describe, expect, it } from 'vitest';
+import { servoFromJoint } from '../src/index.ts';
 import {
   NumericIkSolver,
   chainFk,
   forwardKinematics,
   jointsFromServoAngles,
-  servoFromJoint,
   solveIk,
   targetFromTransform,
   type Quad,
-} from '../src/index.ts';
+} from '@armtwin/ik';
 import {
   axisAngle,
   loadRobot,

@@ -6,7 +6,7 @@
  */
 import { describe, expect, test } from 'vitest';
 import { deriveProfile, toolJoints, transmissionIds } from '../src/index.ts';
-import { parseUrdfJoints } from '../src/numeric/urdf.ts';
+import { parseUrdfJoints } from '../src/urdf/urdf.ts';
 
 const joint = (name: string, type: string, parent: string, child: string) =>
   `<joint name="${name}" type="${type}"><parent link="${parent}"/><child link="${child}"/>` +

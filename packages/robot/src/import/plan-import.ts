@@ -13,7 +13,7 @@ import {
   resolveMeshPath,
   rewriteMeshPaths,
 } from './meshes.ts';
-import { attribute, parseUrdfXml } from '../numeric/urdf-xml.ts';
+import { attribute, parseUrdfXml } from '../urdf/urdf-xml.ts';
 import { commonDir, inside } from './paths.ts';
 
 export interface ImportSource {
