@@ -36,7 +36,13 @@ const leaderCalibration = (panOffset: number) =>
   Object.fromEntries(
     [...MOTORS, 'gripper'].map((m, i) => [
       m,
-      { id: i + 1, drive_mode: 0, homing_offset: i === 0 ? panOffset : 0, range_min: 0, range_max: 4095 },
+      {
+        id: i + 1,
+        drive_mode: 0,
+        homing_offset: i === 0 ? panOffset : 0,
+        range_min: 0,
+        range_max: 4095,
+      },
     ]),
   );
 /** LeRobot's degrees of a leader whose shaft is at mid-turn (2048) with this homing offset. */
@@ -85,7 +91,7 @@ async function session(
   op: 'teleoperate' | 'record',
   panOffset: number,
   extra: Record<string, unknown>,
-  during: () => Promise<void> = async () => {},
+  during: (ended: () => boolean) => Promise<void> = async () => {},
 ): Promise<{ code: number | null; out: string; err: string }> {
   const k = ++sessions;
   const host = path.join(dir, `leader${k}`);
@@ -108,7 +114,8 @@ async function session(
     let err = '';
     py.stdout.on('data', (d: Buffer) => (out += d.toString()));
     py.stderr.on('data', (d: Buffer) => (err += d.toString()));
-    const exited = new Promise<number | null>((r) => py.once('exit', r));
+    let ended = false;
+    const exited = new Promise<number | null>((r) => py.once('exit', r)).finally(() => (ended = true));
     py.stdin.end(
       JSON.stringify({
         op,
@@ -122,7 +129,11 @@ async function session(
         ...extra,
       }),
     );
-    await during();
+    try {
+      await during(() => ended);
+    } catch (e) {
+      throw new Error(`${String(e)}; LeRobot said:\n${err.slice(-3000)}`, { cause: e });
+    }
     return { code: await exited, out, err };
   } finally {
     await line.stop();
@@ -148,7 +159,7 @@ describe('LeRobot through armtwin (lerobot_robot_armtwin)', () => {
   }, 180_000);
 
   test('a leader pose through the keep-out zone is refused: the follower does not follow', async () => {
-    const start = pan().at(-1)!;
+    const start = await w.until(() => pan().at(-1), 10_000, 'a position report');
     const from = w.items.length;
     const auditFrom = audit.length;
     const r = await session('teleoperate', -455, { time_s: 3 }); // the leader at about +40°
@@ -161,18 +172,18 @@ describe('LeRobot through armtwin (lerobot_robot_armtwin)', () => {
   }, 180_000);
 
   test("an emergency stop wins over LeRobot's lease, and the arm stays stopped", async () => {
-    const start = pan().at(-1)!;
-    const target = leaderPan(-284); // about +25°: 65° away, at 0.2° an action (6°/s)
+    const start = await w.until(() => pan().at(-1), 10_000, 'a position report');
+    const target = leaderPan(-284); // about +25°, 1° an action at most
     let stoppedAt = NaN;
     const auditFrom = audit.length;
     const r = await session(
       'teleoperate',
       -284,
-      { time_s: 15, max_relative_target: 0.2 },
-      async () => {
+      { time_s: 15, max_relative_target: 1 },
+      async (ended) => {
         const from = w.items.length;
         await w.until(
-          () => (pan(from).some((d) => d > start + 5) ? true : undefined),
+          () => (pan(from).some((d) => d > start + 5) || ended() ? true : undefined),
           60_000,
           'the follower on its way',
         );
