@@ -115,7 +115,9 @@ async function session(
     py.stdout.on('data', (d: Buffer) => (out += d.toString()));
     py.stderr.on('data', (d: Buffer) => (err += d.toString()));
     let ended = false;
-    const exited = new Promise<number | null>((r) => py.once('exit', r)).finally(() => (ended = true));
+    const exited = new Promise<number | null>((r) => py.once('exit', r)).finally(
+      () => (ended = true),
+    );
     py.stdin.end(
       JSON.stringify({
         op,

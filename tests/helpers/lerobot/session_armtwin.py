@@ -13,7 +13,7 @@ import sys
 import time
 from pathlib import Path
 
-import scservo_sdk.port_handler
+import lerobot.motors.feetech.feetech
 
 from lerobot.motors import MotorCalibration
 from lerobot.robots import RobotConfig
@@ -26,10 +26,17 @@ robot_cfg = RobotConfig.get_choice_class("armtwin")(
     broker=req["broker"], arm=req["arm"], user=req["user"], max_relative_target=req.get("max_relative_target")
 )
 calibration_dir = Path(req["dir"]) / "calibration"
-# The emulated bus (node on a pty) answers late on a loaded machine: the servo SDK's own latency
-# allowance (its USB adapter's 16 ms, which gives a 34 ms reply timeout) raised to 250 ms, and
-# LeRobot's own retries of a failed sync read. Nothing else of LeRobot's bus is changed.
-scservo_sdk.port_handler.LATENCY_TIMER = 250
+# The emulated bus (node on a pty) answers late on a loaded machine: LeRobot's own per-packet
+# reply allowance (its patch of the servo SDK: 50 ms) raised to 500 ms, and LeRobot's own retries
+# of a failed sync read. Nothing else of LeRobot's bus is changed.
+
+
+def patient_packet_timeout(self, packet_length):
+    self.packet_start_time = self.getCurrentTime()
+    self.packet_timeout = self.tx_time_per_byte * (packet_length + 3.0) + 500
+
+
+lerobot.motors.feetech.feetech.patch_setPacketTimeout = patient_packet_timeout
 teleop_cfg = SO101LeaderConfig(
     port=req["leader_port"], id="leader", calibration_dir=calibration_dir, num_read_retries=10
 )
@@ -38,9 +45,18 @@ leader.calibration = {m: MotorCalibration(**c) for m, c in req["leader_calibrati
 leader._save_calibration()
 # A fresh emulated bus can miss the first pings while node warms up; LeRobot's connect pings each
 # id once. Wait until every servo answers LeRobot's own ping (20 s at most), then let it connect.
+
+
+def answers(motor: str) -> bool:
+    try:
+        return leader.bus.ping(motor) is not None
+    except IndexError:  # the servo SDK's ping on a reply cut short
+        return False
+
+
 leader.bus.connect(handshake=False)
 deadline = time.monotonic() + 20
-while any(leader.bus.ping(m) is None for m in leader.bus.motors) and time.monotonic() < deadline:
+while not all(answers(m) for m in leader.bus.motors) and time.monotonic() < deadline:
     time.sleep(0.2)
 leader.bus.disconnect(disable_torque=False)
 

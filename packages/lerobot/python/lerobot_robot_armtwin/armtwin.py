@@ -98,11 +98,12 @@ class Armtwin(Robot):
         if estop:
             return self._present()
         goals = {k: float(v) for k, v in action.items() if k.endswith(".pos")}
-        if self.config.max_relative_target is not None:
+        limit = self.config.max_relative_target
+        if limit is not None:
             present = self._present()
-            goals = ensure_safe_goal_position(
+            goals = ensure_safe_goal_position(  # LeRobot's own clamp, which takes floats only
                 {k.removesuffix(".pos"): (g, present[k]) for k, g in goals.items()},
-                self.config.max_relative_target,
+                float(limit) if isinstance(limit, int) else limit,
             )
             goals = {f"{k}.pos": v for k, v in goals.items()}
         by_name = {m.name: m for m in link.motors}
