@@ -11,7 +11,7 @@
  * the follower stays; an emergency stop from someone else wins over LeRobot's lease, and the arm
  * stays stopped for the rest of the session.
  */
-import { spawn } from 'node:child_process';
+import { execFileSync, spawn } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -19,6 +19,7 @@ import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { parseAudit, type AuditEvent } from '@armtwin/protocol';
 import { MODELS_DIR } from '@armtwin/sim';
 import { LEROBOT_SCRIPTS, lerobotPython } from '../helpers/lerobot-python.ts';
+import { REPO_ROOT } from '../helpers/services.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
 import { serialLine } from './serial-line.ts';
@@ -27,6 +28,7 @@ const broker = useMosquitto();
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-lerobot-plugin-'));
 const MODELS = path.join(dir, 'models');
 const ARM = 'follower';
+const PLUGIN_DIR = path.join(REPO_ROOT, 'packages', 'lerobot', 'python');
 const MOTORS = ['shoulder_pan', 'shoulder_lift', 'elbow_flex', 'wrist_flex', 'wrist_roll'];
 /** Where the SO-101's gripper frame sweeps with shoulder_pan past about +30° (others at 0). */
 const ZONE = { name: 'bin', shape: 'box', min: [250, -280, 150], max: [360, -190, 300] };
@@ -107,9 +109,13 @@ async function session(
   );
   await line.start();
   try {
-    const py = spawn(lerobotPython('lerobot, lerobot_robot_armtwin'), [
-      path.join(LEROBOT_SCRIPTS, 'session_armtwin.py'),
-    ]);
+    // LeRobot finds the installed distribution (scripts/pyenv-lerobot.sh); its module is imported
+    // from this clone's sources, first on the path.
+    const py = spawn(
+      lerobotPython('lerobot, lerobot_robot_armtwin'),
+      [path.join(LEROBOT_SCRIPTS, 'session_armtwin.py')],
+      { env: { ...process.env, PYTHONPATH: PLUGIN_DIR } },
+    );
     let out = '';
     let err = '';
     py.stdout.on('data', (d: Buffer) => (out += d.toString()));
@@ -145,6 +151,19 @@ async function session(
 const near = (a: number, b: number, tol = 0.5) => Math.abs(a - b) < tol;
 
 describe('LeRobot through armtwin (lerobot_robot_armtwin)', () => {
+  test("the plugin's pure part: its unittest suite passes on this clone's sources", () => {
+    const out = execFileSync(
+      lerobotPython('lerobot, paho.mqtt'),
+      ['-m', 'unittest', 'discover', '-s', 'tests'],
+      {
+        cwd: path.join(REPO_ROOT, 'packages', 'lerobot', 'python'),
+        encoding: 'utf8',
+        stdio: 'pipe',
+      },
+    );
+    expect(out).toBe('');
+  });
+
   test('lerobot-record: the follower goes where the leader is, and the dataset holds it', async () => {
     const from = w.items.length;
     const r = await session('record', 455, { time_s: 3 });
