@@ -1,9 +1,19 @@
 import { defineConfig } from 'vitest/config';
 
-// Two projects: `unit` (pure logic, fakes allowed, fast) and `integration`
-// (real Mosquitto / influxd / processes, started by tests/helpers). Integration files run three
-// at a time: each starts its own services on free ports with its own temp folders, and most of
-// their time is spent waiting on those processes, so a 2-core machine runs three side by side.
+// `unit` (pure logic, fakes allowed, fast) and the integration tests (real Mosquitto / influxd /
+// processes, started by tests/helpers; run both with `--project 'integration*'`). Integration
+// files run three at a time: each starts its own services on free ports with its own temp
+// folders, and most of their time is spent waiting on those processes. The serial-line files
+// (a pty pair and an emulated servo bus answering within the protocol's timeouts) run after
+// them, one at a time and alone: starved of CPU, a late reply reads as a broken bus.
+const SERIAL_LINE = [
+  'tests/integration/gateway-bus.test.ts',
+  'tests/integration/gateway-pty.test.ts',
+  'tests/integration/brokers-gateway.test.ts',
+  'tests/integration/servo-bus-sdk.test.ts',
+];
+const INTEGRATION = { testTimeout: 180_000, hookTimeout: 240_000 };
+
 export default defineConfig({
   test: {
     projects: [
@@ -17,9 +27,18 @@ export default defineConfig({
         test: {
           name: 'integration',
           include: ['tests/integration/**/*.test.ts'],
-          testTimeout: 180_000,
-          hookTimeout: 240_000,
+          exclude: SERIAL_LINE,
+          ...INTEGRATION,
           maxWorkers: 3,
+        },
+      },
+      {
+        test: {
+          name: 'integration-serial',
+          include: SERIAL_LINE,
+          ...INTEGRATION,
+          fileParallelism: false,
+          sequence: { groupOrder: 1 },
         },
       },
     ],

@@ -44,9 +44,10 @@ step() {
 }
 skip() { printf '%s\tskipped:%s\t\n' "$1" "$2" >>"$STEPS"; }
 
+# vitest_project <project filter> [report name]
 vitest_project() {
   npx vitest run --project "$1" --passWithNoTests \
-    --reporter=default --reporter=json --outputFile.json="$RESULTS/vitest-$1.json"
+    --reporter=default --reporter=json --outputFile.json="$RESULTS/vitest-${2:-$1}.json"
 }
 
 step install '' bash "$ROOT/scripts/install-deps.sh" || exit 1
@@ -61,7 +62,7 @@ fi
 step lint '' npx eslint . || true
 
 step unit "$RESULTS/vitest-unit.json" vitest_project unit || true
-step integration "$RESULTS/vitest-integration.json" vitest_project integration || true
+step integration "$RESULTS/vitest-integration.json" vitest_project 'integration*' integration || true
 
 has_build=$(node -e "try{const p=require('./apps/web/package.json');process.stdout.write(p.scripts&&p.scripts.build?'yes':'no')}catch{process.stdout.write('no')}")
 has_specs=''
