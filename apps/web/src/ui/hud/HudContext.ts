@@ -69,7 +69,7 @@ export interface Hud {
   /** Where the 3D view is drawn (the page's thread or a worker), and why (Status panel). */
   rendering: RenderChoice;
   /** The 3D view's own figures, read by the Status panel as it samples. */
-  view: Pick<SceneView, 'software' | 'frameCostMs'>;
+  view: Pick<SceneView, 'software' | 'frameCostMs' | 'reports'>;
 }
 
 export const HudContext = createContext<Hud | null>(null);
