@@ -26,7 +26,12 @@ describe('operatorDeadman', () => {
     const timers = manualTimers();
     const notes: string[] = [];
     let stops = 0;
-    const watch = operatorDeadman(timers, () => (stops++, true), (kind) => notes.push(kind), 100);
+    const watch = operatorDeadman(
+      timers,
+      () => (stops++, true),
+      (kind) => notes.push(kind),
+      100,
+    );
     watch.receive('1');
     watch.receive('0');
     expect(stops).toBe(1);
@@ -36,7 +41,12 @@ describe('operatorDeadman', () => {
   test('a beating operator that falls silent stops the arm when its lease runs out', () => {
     const timers = manualTimers();
     const notes: string[] = [];
-    const watch = operatorDeadman(timers, () => true, (kind) => notes.push(kind), 100);
+    const watch = operatorDeadman(
+      timers,
+      () => true,
+      (kind) => notes.push(kind),
+      100,
+    );
     watch.receive('1');
     watch.receive('1'); // beating: the lease runs
     expect(notes).toEqual([]);
@@ -46,7 +56,11 @@ describe('operatorDeadman', () => {
 
   test('an arm at rest is not stopped: nothing is noted', () => {
     const notes: string[] = [];
-    const watch = operatorDeadman(manualTimers(), () => false, (kind) => notes.push(kind));
+    const watch = operatorDeadman(
+      manualTimers(),
+      () => false,
+      (kind) => notes.push(kind),
+    );
     watch.receive('1');
     watch.receive('0');
     expect(notes).toEqual([]);

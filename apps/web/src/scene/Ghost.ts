@@ -3,7 +3,7 @@
  * IK solution of the Cartesian target (refused by a keep-out zone: its offending link red), a
  * refused jog's pose (its offending link red), else the pose this HUD last commanded (store/ghostPose.ts),
  * hidden when that is where the live arm already is or when the Ghost panel turns it off. Posed
- * every frame by the Viewer's loop by mutation: the inputs to `ghostPose` are one object,
+ * every frame by the 3D view's loop by mutation: the inputs to `ghostPose` are one object,
  * refilled in place, and the angles one array; nothing is allocated per frame.
  */
 import * as THREE from 'three';

@@ -272,11 +272,6 @@ export class ArmStore {
     return this.predicting ? this.predictor.leadMs : 0;
   }
 
-  /** The frame drawn from the last `sample` is done at `now` (the predictor learns the lag). */
-  frameShown(now: number): void {
-    this.predictor.shown(now);
-  }
-
   setTwinMode(mode: TwinMode): void {
     this.opts.twinMode = mode;
   }

@@ -169,6 +169,14 @@ export class SceneClient implements SceneView {
   get world(): THREE.Group {
     return this.stage.world;
   }
+  /**
+   * The world the runtime draws (its live arm, ghost, sibling) where it runs on this thread; null
+   * from a worker. End-to-end checks and console users look at the drawn meshes there.
+   */
+  get drawnWorld(): THREE.Group | null {
+    return this.worker.runtime?.world ?? null;
+  }
+
   /** The live arm's model where the runtime runs on this thread; null from a worker. */
   get liveRobot(): SceneView['liveRobot'] {
     return this.worker.runtime?.liveRobot ?? null;

@@ -3,7 +3,7 @@
  * zones and the cameras' screens, drawn on a canvas with its own requestAnimationFrame loop, the
  * steps of a frame in one order. One class, two hosts behind the same messages (./sceneHost.ts):
  * the render worker (./renderWorker.ts, an OffscreenCanvas) and, where no worker can draw, the
- * page's main thread behind a MessageChannel (./inThreadScene.ts, the page's own canvas). What it
+ * page's main thread behind a port pair (./inThreadScene.ts, the page's own canvas). What it
  * reads (the store's drawn angles, the target, the plan preview, the sibling's pose, the orbit
  * camera) arrives from the page as `FrameInput` messages and is copied into small stand-ins
  * (./FrameMirror.ts), so Ghost, TargetMarker and ReplaySibling run unchanged. It renders only
@@ -161,6 +161,11 @@ export class SceneRuntime {
     }
     if (m.tracking) this.tracking = m.tracking;
     if (m.invalidate) this.needsRender = this.shadowsDirty = true;
+  }
+
+  /** The arm's z-up world as drawn (the live arm, ghost, sibling, zones): an in-thread page reads it. */
+  get world(): THREE.Group {
+    return this.stage.world;
   }
 
   /** The live arm's URDF model (null before a robot loads): an in-thread host's page reads it. */

@@ -2,7 +2,7 @@
  * Hosts the scene runtime (./SceneRuntime.ts) behind a message port: the page's `ToWorker`
  * messages in, `FromWorker` reports out (./messages.ts). The same host runs in the render worker
  * (./renderWorker.ts, on the worker's own scope) and on the page's main thread behind a
- * MessageChannel (./inThreadScene.ts); only where the canvas comes from and how frames are paced
+ * port pair (./inThreadScene.ts); only where the canvas comes from and how frames are paced
  * differ, and the host is told both.
  */
 import type { FramePacerOptions } from '../FramePacer.ts';
@@ -10,7 +10,7 @@ import { webglRenderer, isSoftwareRenderer } from '../webglInfo.ts';
 import type { FromWorker, ToWorker } from './messages.ts';
 import { SceneRuntime } from './SceneRuntime.ts';
 
-/** A worker's scope or a MessageChannel's port: what the host listens on and posts to. */
+/** A worker's scope or an in-thread port: what the host listens on and posts to. */
 export interface ScenePort {
   postMessage(m: FromWorker): void;
   onmessage: ((e: MessageEvent<ToWorker>) => void) | null;
