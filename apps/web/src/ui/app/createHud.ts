@@ -102,7 +102,8 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
   // here; a worker that fails before its first frame hands over to the main thread.
   let rendering = chooseRenderThread(window.location.search, canRenderOffscreen());
   let built = false; // the fallback may come while the viewer is built, before `hud` is
-  const mainView = () => new SceneClient(els.view, store, target, sibling, false, IN_THREAD_HOSTING);
+  const mainView = () =>
+    new SceneClient(els.view, store, target, sibling, false, IN_THREAD_HOSTING);
   const viewer: SceneView =
     rendering.thread === 'worker'
       ? new FallbackSceneView(
