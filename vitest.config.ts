@@ -1,7 +1,9 @@
 import { defineConfig } from 'vitest/config';
 
 // Two projects: `unit` (pure logic, fakes allowed, fast) and `integration`
-// (real Mosquitto / influxd / processes, started by tests/helpers).
+// (real Mosquitto / influxd / processes, started by tests/helpers). Integration files run three
+// at a time: each starts its own services on free ports with its own temp folders, and most of
+// their time is spent waiting on those processes, so a 2-core machine runs three side by side.
 export default defineConfig({
   test: {
     projects: [
@@ -17,7 +19,7 @@ export default defineConfig({
           include: ['tests/integration/**/*.test.ts'],
           testTimeout: 180_000,
           hookTimeout: 240_000,
-          fileParallelism: false,
+          maxWorkers: 3,
         },
       },
     ],

@@ -42,6 +42,7 @@ import { holdJogSection } from './holdjog.ts';
 import { handoverSection } from './handover.ts';
 import { soakSection } from './soak.ts';
 import { twinSection } from './twin.ts';
+import { ros2Section } from './ros2.ts';
 import { CHROMIUM_ARGS, GPU_CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
 
 const SECTIONS: Section[] = [
@@ -57,6 +58,7 @@ const SECTIONS: Section[] = [
   telegrafSection,
   holdJogSection,
   handoverSection,
+  ros2Section,
   soakSection,
 ];
 /** Sections left out of a run without `--only` (the soak alone takes `--soak-minutes`, 30 min). */

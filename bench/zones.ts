@@ -5,7 +5,7 @@
  * early), with self-collision on. Reported against the 4 ms frame of a 250 Hz page, since the
  * page runs the same check before it sends a plan. Median of rounds, after a warm-up.
  */
-import { chainFromUrdf, type ProfileKeepOut, type Zone } from '@armtwin/ik';
+import { chainFromUrdf, type ProfileKeepOut, type Zone } from '@armtwin/robot';
 import {
   checkKeepOutMove,
   createMotionRobot,

@@ -8,7 +8,8 @@
  */
 import fs from 'node:fs';
 import path from 'node:path';
-import { parseProfile, solveIk } from '@armtwin/ik';
+import { solveIk } from '@armtwin/ik';
+import { parseProfile } from '@armtwin/robot';
 import { createMotionRobot, tipPose } from '@armtwin/motion';
 import { REPO_ROOT } from '../helpers/services.ts';
 import { expect, shot, test } from './fixtures.ts';

@@ -12,7 +12,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import mqtt, { type MqttClient } from 'mqtt';
 import type { Browser, Locator, Page } from '@playwright/test';
-import { parseProfile } from '@armtwin/ik';
+import { parseProfile } from '@armtwin/robot';
 import { createMotionRobot, tipPose } from '@armtwin/motion';
 import { REPO_ROOT } from '../helpers/services.ts';
 import { expect, shot, test, type HudWindow } from './fixtures.ts';

@@ -9,7 +9,7 @@
  */
 import type { Page } from '@playwright/test';
 import { angleFromPwm } from '@armtwin/protocol';
-import { jointFromPwm, pwmFromServo } from '@armtwin/ik';
+import { jointFromPwm, pwmFromServo } from '@armtwin/robot';
 import { shot } from './fixtures.ts';
 import { expect, historyGet, test } from './history-fixtures.ts';
 import { until } from './support/sim.ts';

@@ -2,7 +2,7 @@
  * The command box's motion requests, end to end (real Mosquitto, real `armtwin sim`, Debian
  * Chromium): a reachable target reaches the arm, an unreachable one says why.
  */
-import { posePwm } from '@armtwin/ik';
+import { posePwm } from '@armtwin/robot';
 import { createMotionRobot, tipPose } from '@armtwin/motion';
 import { expect, shot, test } from './fixtures.ts';
 import { loadProfile } from './support/profiled-arm.ts';

@@ -6,7 +6,7 @@
  * `window.__armtwin` (`joints()`: the URDF joint values as drawn).
  */
 import type { Page } from '@playwright/test';
-import { pwmFromServo } from '@armtwin/ik';
+import { pwmFromServo } from '@armtwin/robot';
 import { angleFromPwm, pwmFromAngle } from '@armtwin/protocol';
 import { expect, shot, test, type HudWindow } from './fixtures.ts';
 import { until } from './support/sim.ts';

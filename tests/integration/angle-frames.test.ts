@@ -8,7 +8,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { parseProfile } from '@armtwin/ik';
+import { parseProfile } from '@armtwin/robot';
 import type { Frame } from '@armtwin/protocol';
 import { MODELS_DIR } from '@armtwin/sim';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';

@@ -80,6 +80,9 @@ test(
       20_000,
       'the middleware on broker 1',
     );
+    // Its connections start together: when the second answered first (a busy machine), it has
+    // already moved once, from the second to the first.
+    const movesAtStart = (await metrics())['mqtt_broker_moves_total'] ?? 0;
     await until(async () => (await stored()) > 50, 30_000, 'points stored from broker 1');
     expect(online(onB)).toBeUndefined(); // nothing announced on the fall-back yet
 
@@ -113,7 +116,7 @@ test(
     await until(
       async () => {
         const m = await metrics();
-        return m['mqtt_broker'] === 1 && m['mqtt_broker_moves_total'] === 2;
+        return m['mqtt_broker'] === 1 && m['mqtt_broker_moves_total'] === movesAtStart + 2;
       },
       60_000,
       'the middleware back on broker 1',

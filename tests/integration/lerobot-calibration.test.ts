@@ -10,7 +10,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, describe, expect, test } from 'vitest';
-import { parseProfile } from '@armtwin/ik';
+import { parseProfile } from '@armtwin/robot';
 import { MODELS_DIR } from '@armtwin/sim';
 import { runLerobotScript } from '../helpers/lerobot-python.ts';
 import { ARMTWIN } from './sim-helpers.ts';

@@ -2,8 +2,9 @@
  * A deployment without `armtwin up`: Mosquitto, `armtwin sim --models DIR` and the middleware
  * (MODELS_DIR=DIR, ARMTWIN_USERS), all real processes. The middleware's HTTP API saves a
  * calibration and a keep-out zone into the robot folders for an operator (a viewer, or no
- * log-in, is refused and nothing changes), and the arm's controller puts the zone in force at
- * once: it announces it and refuses a raw frame into it. Model copies need `armtwin up`: the
+ * log-in, is refused and nothing changes), serves the saved profile at /models/ for the page, and
+ * the arm's controller puts the zone in force at once: it announces it and refuses a raw frame
+ * into it. Model copies need `armtwin up`: the
  * middleware says so (501).
  */
 import fs from 'node:fs';
@@ -145,6 +146,9 @@ test('a keep-out zone saved through the middleware is in force at the simulator 
   expect(JSON.parse(fs.readFileSync(profileFile('zone5'), 'utf8')).keepOut).toEqual({
     zones: [TABLE],
   });
+  // The page reads the robot from the middleware's /models/ (proxied as /api/ is): the saved zone.
+  const served = await fetch(`${base}/models/zone5/profile.json`);
+  expect(((await served.json()) as { keepOut: unknown }).keepOut).toEqual({ zones: [TABLE] });
   await w.until(() => (announcedZones()?.length === 1 ? true : undefined), 15_000, 'announced');
   expect(announcedZones()).toEqual([TABLE]);
   const from = w.items.length;

@@ -9,7 +9,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { chainFromUrdf, parseProfile } from '@armtwin/ik';
+import { chainFromUrdf, parseProfile } from '@armtwin/robot';
 import { exampleRobotDataDir, ROS2_ROBOTS } from '../helpers/rtb-data.ts';
 import { armtwin } from './sim-helpers.ts';
 

@@ -10,14 +10,8 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import {
-  chainFk,
-  chainFromUrdf,
-  NumericIkSolver,
-  parseProfile,
-  targetFromTransform,
-  type Chain,
-} from '@armtwin/ik';
+import { chainFk, NumericIkSolver, targetFromTransform, type Chain } from '@armtwin/ik';
+import { chainFromUrdf, parseProfile } from '@armtwin/robot';
 import { RTB_ROBOTS, rtbDataDir } from '../helpers/rtb-data.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher } from './sim-helpers.ts';

@@ -11,7 +11,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import mqtt, { type MqttClient } from 'mqtt';
 import { afterAll, beforeAll, expect, test } from 'vitest';
-import { jointFromPwm, parseProfile, type Profile } from '@armtwin/ik';
+import { jointFromPwm, parseProfile, type Profile } from '@armtwin/robot';
 import { parseAudit, parseHolder, type AuditEvent } from '@armtwin/protocol';
 import type { JointStateMsg, Ros2Bridge } from '@armtwin/ros2';
 import { REPO_ROOT } from '../helpers/services.ts';
@@ -36,11 +36,14 @@ const states: JointStateMsg[] = [];
 const audits: AuditEvent[] = [];
 let holder: string | null | undefined;
 
-/** The arm's latest position report of every servo, as joint values (rad). */
-function mqttJoints(): number[] | undefined {
+/**
+ * The arm's position report of every servo as joint values (rad): the latest, or the one
+ * stamped `time` (`$TIM`, which the bridge puts in the JointState's header).
+ */
+function mqttJoints(time?: number): number[] | undefined {
   for (let i = watch.items.length - 1; i >= 0; i--) {
     const it = watch.items[i]!;
-    if (!('group' in it)) continue;
+    if (!('group' in it) || (time !== undefined && it.time !== time)) continue;
     const pos = it.group.frames.filter((f) => f.type === 'position');
     if (pos.length !== profile.servos.length) continue;
     return profile.servos.map((s) => {
@@ -49,6 +52,18 @@ function mqttJoints(): number[] | undefined {
     });
   }
   return undefined;
+}
+
+/** The pose, once the last 10 position groups are all the same. */
+function atRest(): number[] | undefined {
+  const poses: string[] = [];
+  for (const it of watch.items.slice(-40)) {
+    if (!('group' in it)) continue;
+    const pos = it.group.frames.map((f) => (f.type === 'position' ? `${f.id}:${f.pwm}` : ''));
+    if (pos.some(Boolean)) poses.push(pos.join());
+  }
+  const last = poses.slice(-10);
+  return last.length === 10 && new Set(last).size === 1 ? mqttJoints() : undefined;
 }
 
 beforeAll(async () => {
@@ -126,7 +141,7 @@ test("the holder's trajectory moves the arm, and ROS 2 sees its joint states as 
     'the arm at the trajectory end',
   );
   expect(Math.abs(at[0]!) * DEG).toBeLessThan(0.2); // base, not named, stayed
-  // The ROS 2 joint state now carries the same values as the MQTT status.
+  // The ROS 2 joint state carries the values of the MQTT status payload with its stamp.
   const n = states.length;
   const js = await watch.until(
     () => (states.length > n ? states.at(-1) : undefined),
@@ -134,15 +149,16 @@ test("the holder's trajectory moves the arm, and ROS 2 sees its joint states as 
     'a joint state',
   );
   expect(js.name).toEqual(profile.servos.map((s) => s.joint));
-  const q = mqttJoints()!;
-  js.position.forEach((v, i) => expect(Math.abs(v - q[i]!) * DEG).toBeLessThan(0.01));
-  expect(js.stamp_ms).toBeGreaterThan(0);
+  const q = mqttJoints(js.stamp_ms);
+  expect(q).toBeDefined();
+  js.position.forEach((v, i) => expect(Math.abs(v - q![i]!) * DEG).toBeLessThan(0.01));
+  expect(Math.abs(js.position[1]! + 0.5) * DEG).toBeLessThan(0.2);
 });
 
 test("someone else's hold: the bridge's trajectory does not move the arm and is refused as its user's", async () => {
   await other.publishAsync(`arm/${ARM}/override/alice`, 'take', { qos: 1 });
   await watch.until(() => (holder === 'alice' ? true : undefined), 10_000, 'alice to hold the arm');
-  const before = mqttJoints()!;
+  const before = await watch.until(atRest, 10_000, 'the arm at rest');
   const seen = audits.length;
   await sendTrajectory(['shoulder'], [{ positions: [0.4], time_from_start_ms: 300 }]);
   const refusal = await watch.until(

@@ -8,7 +8,7 @@ import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { chainFk } from '@armtwin/ik';
 import { MODELS_DIR } from '@armtwin/sim';
-import { loadRobot, randomJoints, rng } from '../../packages/ik/test/numeric-fixtures.ts';
+import { loadRobot, randomJoints, rng } from '../../packages/robot/test/numeric-fixtures.ts';
 import { runLerobotScript } from '../helpers/lerobot-python.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';

@@ -8,15 +8,13 @@
 import mqtt, { type MqttClient } from 'mqtt';
 import { afterAll, describe, expect, test } from 'vitest';
 import type { AuditAnswer } from '@armtwin/api';
+import { encodeMove, TEMP_WARNING_C, US_PER_DEG } from '@armtwin/protocol';
 import {
-  encodeMove,
   parseThermalAlert,
-  TEMP_WARNING_C,
   THERMAL_ALERT_BY,
   thermalAlertTopic,
-  US_PER_DEG,
   type ThermalAlert,
-} from '@armtwin/protocol';
+} from '@armtwin/thermal';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
 import { armtwin, type Child } from './sim-helpers.ts';

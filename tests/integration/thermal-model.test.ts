@@ -21,11 +21,10 @@ import {
   createReader,
   encodeMove,
   TEMP_WARNING_C,
-  ThermalWatch,
   US_PER_DEG,
   type Frame,
-  type ThermalParams,
 } from '@armtwin/protocol';
+import { ThermalWatch, type ThermalParams } from '@armtwin/thermal';
 import { DEFAULT_SIM_MODEL_OPTIONS } from '../../packages/sim/src/options.ts';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';

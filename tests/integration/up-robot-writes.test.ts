@@ -9,7 +9,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, expect, test } from 'vitest';
-import { MAX_CALIBRATION_REQUEST_BYTES } from '@armtwin/ik';
+import { MAX_CALIBRATION_REQUEST_BYTES } from '@armtwin/robot';
 import { MODELS_DIR } from '@armtwin/sim';
 import { freePorts } from '../helpers/services.ts';
 import { startUpProcess, type Child } from './sim-helpers.ts';

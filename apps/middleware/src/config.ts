@@ -3,12 +3,8 @@
  * `DEFAULT_MIDDLEWARE_CONFIG` is the one copy of the defaults; the README quotes it.
  */
 import { z } from 'zod';
-import {
-  MAX_PAYLOAD_BYTES,
-  MQTT_KEEPALIVE_S,
-  MQTT_RECONNECT_MS,
-  parseBrokerList,
-} from '@armtwin/protocol';
+import { MAX_PAYLOAD_BYTES, MQTT_KEEPALIVE_S, MQTT_RECONNECT_MS } from '@armtwin/protocol';
+import { parseBrokerList } from '@armtwin/link';
 import { QUERY_LANGUAGES, type InfluxSource, type QueryLanguage } from './history/reader.ts';
 
 /** Every setting, with the environment variable it comes from. */

@@ -6,7 +6,8 @@ import fs from 'node:fs';
 import http from 'node:http';
 import path from 'node:path';
 import { MODELS_DIR } from '@armtwin/motion/robot-folder';
-import { describeBroker, redactBrokerUrl, SYSTEM_CLOCK, type Clock } from '@armtwin/protocol';
+import { SYSTEM_CLOCK, type Clock } from '@armtwin/protocol';
+import { describeBroker, redactBrokerUrl } from '@armtwin/link';
 import { LoginThrottle, loadUsers } from '@armtwin/auth';
 import { ConfigError, influxSource, type MiddlewareConfig } from './config.ts';
 import { createHistoryHandler, type HistoryHandlerDeps } from './history/index.ts';
@@ -252,12 +253,18 @@ export async function startMiddleware(
       })
     : null;
   const source = { metrics, health, history };
+  /** The kinds of refused or failed API requests told so far. */
+  const apiKinds = new Set<string>();
   const handler = createHttpHandler({
     ...source,
     apiToken: config.apiToken,
     logins,
     modelDirs,
-    onFirst: (kind, message) => once.warn(`api-${kind}`, {}, message),
+    onFirst: (kind, message) => {
+      if (apiKinds.has(kind)) return;
+      apiKinds.add(kind);
+      log.warn({ kind }, `${message} (logged once per kind)`);
+    },
   });
   let server: http.Server | null = null;
   let httpPort: number | null = null;

@@ -20,13 +20,8 @@
  * connected; a change of it is logged as a move.
  */
 import { connect, type IClientOptions, type IClientPublishOptions, type MqttClient } from 'mqtt';
-import {
-  allArmsTopic,
-  linkOptions,
-  parseBrokerList,
-  type BrokerChoice,
-  type BrokerMove,
-} from '@armtwin/protocol';
+import { allArmsTopic, linkOptions } from '@armtwin/protocol';
+import { parseBrokerList, type BrokerChoice, type BrokerMove } from '@armtwin/link';
 
 export interface MqttOptions {
   /** One broker URL, or an ordered comma-separated list. */

@@ -4,7 +4,7 @@
  * arm's log at its own time; each arm's models are refitted from the last `fitSpanMs` of its
  * history every `refitMs` (`/history/thermal-model`'s code, read through the history reader).
  */
-import { thermalAlertTopic, type ThermalAlert } from '@armtwin/protocol';
+import { thermalAlertTopic, type ThermalAlert } from '@armtwin/thermal';
 import { DEFAULT_HISTORY_OPTIONS } from './history/options.ts';
 import type { HistoryReader } from './history/reader.ts';
 import { thermalModel } from './history/thermal.ts';

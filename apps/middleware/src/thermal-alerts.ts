@@ -7,19 +7,15 @@
  * HUD. Pure: times are arguments, nothing is published or written here.
  */
 import type { ThermalModelAnswer } from '@armtwin/api';
+import { createReader, isValidArmId, US_PER_DEG, type Frame, type Reader } from '@armtwin/protocol';
 import {
-  createReader,
   DEFAULT_THERMAL_PARAMS,
-  isValidArmId,
   thermalAlert,
   THERMAL_ALERT_BY,
   ThermalWatch,
-  US_PER_DEG,
-  type Frame,
-  type Reader,
   type ThermalAlert,
   type ThermalWatchOptions,
-} from '@armtwin/protocol';
+} from '@armtwin/thermal';
 import { auditLine, auditSeries, type SeriesClock } from './points.ts';
 
 export interface ThermalAlertsOptions {

@@ -1,6 +1,6 @@
 import fc from 'fast-check';
 import { describe, expect, test } from 'vitest';
-import { parseProfile, type UrdfJoint } from '@armtwin/ik';
+import { parseProfile, type UrdfJoint } from '@armtwin/robot';
 import { nsFromRfc3339 } from '../src/export/recording.ts';
 import { jointSamples, linkTransforms } from '../src/export/robot-motion.ts';
 

@@ -4,7 +4,7 @@
  * for a longer range; a bad parameter is refused before anything is queried.
  */
 import { describe, expect, test } from 'vitest';
-import { stepTemperature, type ThermalParams } from '@armtwin/protocol';
+import { stepTemperature, type ThermalParams } from '@armtwin/thermal';
 import { DEFAULT_HISTORY_OPTIONS } from '../src/history/options.ts';
 import { parseParams, type HistoryParams } from '../src/history/params.ts';
 import type { HistoryReader } from '../src/history/reader.ts';

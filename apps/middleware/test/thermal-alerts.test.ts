@@ -6,13 +6,13 @@
  */
 import { describe, expect, test } from 'vitest';
 import type { ThermalModelAnswer } from '@armtwin/api';
+import { encodeFrame } from '@armtwin/protocol';
 import {
-  encodeFrame,
   parseThermalAlert,
   stepTemperature,
   type ThermalAlert,
   type ThermalParams,
-} from '@armtwin/protocol';
+} from '@armtwin/thermal';
 import { SeriesClock } from '../src/points.ts';
 import { ThermalAlerts, thermalAlertLine } from '../src/thermal-alerts.ts';
 

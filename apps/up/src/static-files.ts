@@ -4,7 +4,7 @@
  */
 import type http from 'node:http';
 import path from 'node:path';
-import { isFile, readPath, sendFile } from './send-file.ts';
+import { isFile, readPath, sendFile } from '@armtwin/http-api';
 
 const TYPES: Record<string, string> = {
   '.html': 'text/html; charset=utf-8',

@@ -31,7 +31,6 @@ import {
 } from '@armtwin/sim';
 import { createCameraPart } from './camera-part.ts';
 import { ensureWebBuild, startMiddlewarePart, WEB_DIST, type StartedMiddleware } from './parts.ts';
-import { isModelRequest, modelFiles } from './model-files.ts';
 import type { ModelCopies } from './model-copies.ts';
 import { createModelPart } from './model-part.ts';
 import { staticFiles } from './static-files.ts';
@@ -131,7 +130,6 @@ export async function startUp(o: UpOptions): Promise<Up> {
     WEB_DIST,
     'The HUD is not built: run `npm run build -w @armtwin/web`.\n',
   );
-  const models = modelFiles(modelDirs);
   const model = createModelPart({
     broker,
     simulated: new Map(
@@ -177,8 +175,9 @@ export async function startUp(o: UpOptions): Promise<Up> {
           .end(JSON.stringify({ error: 'not found' }));
       return;
     }
-    if (isModelRequest(req)) models(req, res);
-    else files(req, res);
+    // The robot folders (`/models/…`) are the API's too; everything else is the HUD's.
+    if (req.url?.startsWith('/models/') && api.handle(req, res)) return;
+    files(req, res);
   };
   const server = o.tls
     ? https.createServer({ ...o.tls, minVersion: 'TLSv1.2' }, onRequest)

@@ -8,7 +8,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { afterEach, beforeEach, describe, expect, it, vi } from 'vitest';
-import { parseProfile, type Profile } from '@armtwin/ik';
+import { parseProfile, type Profile } from '@armtwin/robot';
 import { encodeGroup, encodePosition } from '@armtwin/protocol';
 import { ArmStore } from '../src/core/store/ArmStore.ts';
 import { ArmLink } from '../src/core/link/ArmLink.ts';

@@ -4,7 +4,7 @@
  * re-claiming control on the page's behalf).
  */
 import { describe, expect, it } from 'vitest';
-import type { BrokerChoice } from '@armtwin/protocol';
+import type { BrokerChoice } from '@armtwin/link';
 import { ArmStore } from '../src/core/store/ArmStore.ts';
 import { ArmLink } from '../src/core/link/ArmLink.ts';
 import { FakeMqttClient } from './support/FakeMqttClient.ts';

@@ -8,7 +8,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect, test, vi } from 'vitest';
-import { parseProfile, type Profile } from '@armtwin/ik';
+import { parseProfile, type Profile } from '@armtwin/robot';
 import { ArmStore } from '../src/core/store/ArmStore.ts';
 import { robotSpec } from '../src/core/robots/robotSpec.ts';
 import { CalibrationSession } from '../src/core/calibration/CalibrationSession.ts';

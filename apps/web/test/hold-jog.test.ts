@@ -8,7 +8,8 @@ import { robotSpec } from '../src/core/robots/robotSpec.ts';
 import { DEFAULT_PROFILE } from '../src/core/robots/defaultProfile.ts';
 import { HoldJog } from '../src/core/jog/HoldJog.ts';
 import { createMotionRobot, tipPose } from '@armtwin/motion';
-import { parseProfile, solveIk } from '@armtwin/ik';
+import { solveIk } from '@armtwin/ik';
+import { parseProfile } from '@armtwin/robot';
 import { TargetPreview } from '../src/core/store/TargetPreview.ts';
 import armtwin5 from '../../../public/models/armtwin5/profile.json';
 import {

@@ -1,5 +1,5 @@
 /**
- * The page's zip writer against the server's zip reader (`readZip` of @armtwin/ik/import-node)
+ * The page's zip writer against the server's zip reader (`readZip` of @armtwin/robot/import-node)
  * and Python's zipfile (which checks every CRC): what is packed comes back byte for byte; the
  * reader refuses an archive whose files unpack to more than its bound, and what is not a zip.
  */
@@ -9,7 +9,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { expect, test } from 'vitest';
 import { zipSync } from 'fflate';
-import { readZip } from '@armtwin/ik/import-node';
+import { readZip } from '@armtwin/robot/import-node';
 import { packZip } from '../src/ui/panels/Import/packZip.ts';
 
 const entries = [

@@ -6,7 +6,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
-import { parseProfile } from '@armtwin/ik';
+import { parseProfile } from '@armtwin/robot';
 import { createMotionRobot, planRequest, DEFAULT_EXECUTE_OPTIONS } from '@armtwin/motion';
 import {
   EMPTY_FLEET,
@@ -16,7 +16,6 @@ import {
   sameSummary,
   type FleetState,
 } from '../src/core/robots/fleet.ts';
-import { parseAnnouncement } from '../src/core/robots/announcement.ts';
 import { feedbackWords, parseFeedback } from '../src/core/robots/feedback.ts';
 import { queryWithArm } from '../src/core/robots/selectArm.ts';
 import { hudExecuteOptions, planPeakSpeeds } from '../src/core/plan/executeOptions.ts';
@@ -81,30 +80,6 @@ describe('reduceFleet', () => {
   it('healthSummary: nothing reported is unknown', () => {
     expect(healthSummary({})).toEqual({ level: 'unknown', alarm: '' });
     expect(healthSummary({ 3: { temp: NaN, mv: NaN } })).toEqual({ level: 'unknown', alarm: '' });
-  });
-});
-
-describe('parseAnnouncement', () => {
-  it('reads the retained {name, title, profile}', () => {
-    const raw = JSON.parse(profileText('track6'));
-    const r = parseAnnouncement(JSON.stringify({ name: 'track6', title: 't', profile: raw }));
-    expect(r.ok && r.profile.servos.length).toBe(7);
-  });
-
-  it('refuses what is not one, saying why', () => {
-    expect(parseAnnouncement('{')).toEqual({
-      ok: false,
-      error: 'profile announcement is not JSON',
-    });
-    expect(parseAnnouncement('[]').ok).toBe(false);
-    expect(parseAnnouncement('{"name":"x"}')).toEqual({
-      ok: false,
-      error: 'profile announcement has no "profile"',
-    });
-    const bad = parseAnnouncement(JSON.stringify({ profile: { format: 'nope' } }));
-    expect(bad.ok).toBe(false);
-    expect(!bad.ok && bad.error).toMatch(/^bad profile: /);
-    expect(parseAnnouncement(' '.repeat(40000)).ok).toBe(false);
   });
 });
 

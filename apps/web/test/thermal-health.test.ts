@@ -7,13 +7,8 @@
 import { describe, expect, it } from 'vitest';
 import type { ThermalModelAnswer, ThermalServoFit } from '@armtwin/api';
 import { DEMO_ARM } from '@armtwin/ik';
-import {
-  DEFAULT_THERMAL_PARAMS,
-  encodeGroup,
-  encodeHealth,
-  encodePosition,
-  encodeTime,
-} from '@armtwin/protocol';
+import { encodeGroup, encodeHealth, encodePosition, encodeTime } from '@armtwin/protocol';
+import { DEFAULT_THERMAL_PARAMS } from '@armtwin/thermal';
 import { ArmStore } from '../src/core/store/ArmStore.ts';
 import { thermalWarningWords } from '../src/core/store/healthWords.ts';
 import { applyThermalFit, resetThermalFit } from '../src/core/store/thermalFit.ts';

@@ -50,6 +50,25 @@ describe('JointPredictor', () => {
     expect(j.predict(1050)).toBe(40);
   });
 
+  it('does not run past the target from a report exactly on it', () => {
+    // Off the command's course (it started late), the reports' velocity carries the joint on;
+    // the newest report is on the target pulse itself: it stays there. Both ways.
+    for (const [from, to] of [
+      [0, 40],
+      [40, 0],
+    ] as const) {
+      const j = new JointPredictor(-135, 135, VMAX);
+      const step = (to - from) / 20;
+      j.report(0, from);
+      j.command(to, 1000, 0);
+      j.report(600, to - 2 * step);
+      j.report(620, to - step);
+      j.report(640, to);
+      expect(j.following).toBe(false);
+      expect(j.predict(700)).toBe(to);
+    }
+  });
+
   it('respects the top speed when the commanded time is shorter', () => {
     const j = new JointPredictor(-135, 135, VMAX);
     j.report(0, 0);

@@ -4,7 +4,8 @@
  * the planner, the IK and the keep-out rules of @armtwin/motion. Built from the sim's servo table
  * (`jointsFromArm`) or from a robot profile (`jointsFromProfile`, the servo bus's).
  */
-import { servoLimits, servoLimitsPwm, type ArmProfile, type Profile } from '@armtwin/ik';
+import { servoLimitsPwm, type ArmProfile } from '@armtwin/ik';
+import { servoLimits, type Profile } from '@armtwin/robot';
 import { exactPwmFromServo } from '@armtwin/motion';
 import { PWM_CENTRE, US_PER_DEG } from '@armtwin/protocol';
 

@@ -248,7 +248,7 @@ export class MotionRequests {
           replans: r.exec.replans,
         });
         break;
-      default:
+      case 'wait':
         break;
     }
     return out;

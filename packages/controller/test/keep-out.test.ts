@@ -6,7 +6,7 @@
  */
 import fs from 'node:fs';
 import { describe, expect, test } from 'vitest';
-import { parseProfile } from '@armtwin/ik';
+import { parseProfile } from '@armtwin/robot';
 import { createMotionRobot, exactPwmFromServo, type MotionRobot } from '@armtwin/motion';
 import { zonesKeepOut } from '../src/index.ts';
 

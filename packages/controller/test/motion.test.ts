@@ -6,7 +6,7 @@
  */
 import fs from 'node:fs';
 import { describe, expect, test } from 'vitest';
-import { armProfileFromProfile, parseProfile } from '@armtwin/ik';
+import { armProfileFromProfile, parseProfile } from '@armtwin/robot';
 import { createMotionRobot } from '@armtwin/motion';
 import { ControlInput, ControllerCore, jointsFromArm, MotionRequests } from '../src/index.ts';
 import { ArrayDriver } from './array-driver.ts';

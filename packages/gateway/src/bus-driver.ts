@@ -4,7 +4,7 @@
  * profile), a goal becomes a goal position and the speed that arrives on time, a hold writes the
  * present positions as goals, and `PRAD` / `PRTV` are answered from the last reads. Pure.
  */
-import { servoFromPwm } from '@armtwin/ik';
+import { servoFromPwm } from '@armtwin/robot';
 import type { ControllerDriver, Goal, ReadAnswer } from '@armtwin/controller';
 import { exactPwmFromServo } from '@armtwin/motion';
 import { encodeAngle, encodeHealth } from '@armtwin/protocol';

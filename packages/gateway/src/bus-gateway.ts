@@ -10,7 +10,7 @@
  * going back on write the present position as the goal. One request on the half-duplex line at a time (`./bus-line.ts`). The bytes, the
  * clock, the timers and the publish function are injected.
  */
-import type { Profile } from '@armtwin/ik';
+import type { Profile } from '@armtwin/robot';
 import {
   ControlInput,
   ControllerCore,

@@ -7,7 +7,7 @@
  * with both angle limits 0). The controller core's goals become bus goals here: `T…` turned
  * into a speed.
  */
-import { servoLimits, type Profile, type ProfileServo } from '@armtwin/ik';
+import { servoLimits, type Profile, type ProfileServo } from '@armtwin/robot';
 import type { ServoCalibration } from '@armtwin/servo-bus';
 
 export interface BusJoint {

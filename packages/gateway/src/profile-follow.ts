@@ -13,7 +13,7 @@ import path from 'node:path';
 import type { MqttClient } from 'mqtt';
 import { readRobotFolder } from '@armtwin/motion/robot-folder';
 import { EMERGENCY_STOP, topic } from '@armtwin/protocol';
-import { parseProfile } from '@armtwin/ik';
+import { parseProfile, profileAnnouncement } from '@armtwin/robot';
 import { numericKms, refuseEveryMove, zonesKeepOut } from '@armtwin/controller';
 import type { BusGatewayCore } from './bus-gateway.ts';
 
@@ -41,7 +41,7 @@ export function followProfile(o: ProfileFollowOptions): { stop(): void } {
   let announcement = '';
   const announce = (raw: unknown) => {
     const p = raw as { name?: unknown; title?: unknown };
-    announcement = JSON.stringify({ name: p.name, title: p.title ?? p.name, profile: raw });
+    announcement = profileAnnouncement(p.name, p.title ?? p.name, raw);
     if (o.client.connected) o.client.publish(t, announcement, { qos: 1, retain: true });
   };
   const onConnect = () => o.client.publish(t, announcement, { qos: 1, retain: true });

@@ -7,7 +7,7 @@
 import type { MqttClient } from 'mqtt';
 import { MotionRequests, numericKms, zonesKeepOut } from '@armtwin/controller';
 import { startMotionService } from '@armtwin/controller/mqtt';
-import type { Profile } from '@armtwin/ik';
+import type { Profile } from '@armtwin/robot';
 import type { MotionRobot } from '@armtwin/motion';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { armTopics, SYSTEM_CLOCK, topic } from '@armtwin/protocol';

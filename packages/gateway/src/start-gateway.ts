@@ -10,16 +10,15 @@ import type { ControlArbiter, ControllerCore } from '@armtwin/controller';
 import { mqttArbiter } from '@armtwin/controller/mqtt';
 import {
   armTopics,
-  describeBroker,
   holderTopic,
   linkOptions,
   MQTT_KEEPALIVE_S,
   MQTT_RECONNECT_MS,
   OPERATOR_LEASE_MS,
-  parseBrokerList,
   SYSTEM_CLOCK,
   topic,
 } from '@armtwin/protocol';
+import { describeBroker, parseBrokerList } from '@armtwin/link';
 import { GatewayCore } from './gateway.ts';
 import { DEFAULT_SERIAL_LINK_OPTIONS, SerialLink, type SerialLinkOptions } from './serial-link.ts';
 
@@ -168,12 +167,25 @@ export function wireGatewayMqtt(
   return control;
 }
 
+/**
+ * A gateway's last words on its way out: the arm offline and nobody holding it (both retained),
+ * then the client closed. Errors are ignored: the broker may be gone already (the will says 0).
+ */
+export async function leaveGatewayMqtt(client: MqttClient, armId: string): Promise<void> {
+  if (client.connected) {
+    await client
+      .publishAsync(topic(armId, 'online'), '0', { qos: 1, retain: true })
+      .catch(() => {});
+    await client.publishAsync(holderTopic(armId), '', { qos: 1, retain: true }).catch(() => {});
+  }
+  await client.endAsync().catch(() => {});
+}
+
 export function startGateway(
   options: Partial<GatewayOptions> & Pick<GatewayOptions, 'serialPath' | 'mqttUrl' | 'armId'>,
 ): Gateway {
   const o: GatewayOptions = { ...DEFAULT_GATEWAY_OPTIONS, ...options };
   const { log } = o;
-  const topics = armTopics(o.armId);
   const client = connectGatewayMqtt(o);
   const link: SerialLink = new SerialLink(
     { ...o.serial, path: o.serialPath, baudRate: o.baudRate },
@@ -209,13 +221,7 @@ export function startGateway(
     async stop() {
       core.operator.reset();
       control.reset();
-      if (client.connected) {
-        await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
-        await client
-          .publishAsync(holderTopic(o.armId), '', { qos: 1, retain: true })
-          .catch(() => {});
-      }
-      await client.endAsync().catch(() => {});
+      await leaveGatewayMqtt(client, o.armId);
       await link.stop();
       log?.info({ counters: core.counters, serial: link.counters }, 'gateway stopped');
     },

@@ -8,7 +8,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { describe, expect, test } from 'vitest';
-import { parseProfile, type Profile } from '@armtwin/ik';
+import { parseProfile, type Profile } from '@armtwin/robot';
 import { createMotionRobot, exactPwmFromServo, tipPose } from '@armtwin/motion';
 import { createReader, type Frame } from '@armtwin/protocol';
 import { FakeClock } from '@armtwin/protocol/fake-clock';

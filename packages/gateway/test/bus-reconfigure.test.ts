@@ -7,7 +7,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { expect, test } from 'vitest';
-import { parseProfile, type Profile } from '@armtwin/ik';
+import { parseProfile, type Profile } from '@armtwin/robot';
 import { createReader } from '@armtwin/protocol';
 import { FakeClock } from '@armtwin/protocol/fake-clock';
 import { createEmulatedBus } from '@armtwin/servo-bus';

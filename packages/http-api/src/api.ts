@@ -11,6 +11,7 @@
  *   /robots/{name}/keep-out             PUT (./robots/keep-out.ts)
  *   /arms/{id}/model                    GET, POST, DELETE a model copy (./model-copies.ts; 501
  *                                       where no `modelCopies` host runs them)
+ *   /models/{name}/…                    GET the robot folders' files (./model-files.ts)
  */
 import type http from 'node:http';
 import Router from 'find-my-way';
@@ -23,6 +24,7 @@ import {
 } from './authorize.ts';
 import type { May, RouteCounters } from './counted-answer.ts';
 import { modelCopyRoute, type ModelCopyHost } from './model-copies.ts';
+import { modelFiles } from './model-files.ts';
 import { calibrationRoute } from './robots/calibration.ts';
 import { importRoute } from './robots/import.ts';
 import { keepOutRoute } from './robots/keep-out.ts';
@@ -36,7 +38,7 @@ export interface ApiOptions {
   /**
    * Robot folders, searched in order for a robot's profile.json; imports are written into the
    * first. Where the controllers (`armtwin sim`, `armtwin gateway --bus`) read their profiles,
-   * and the HUD its `/models/`.
+   * and the HUD its `/models/`. None: no robot routes.
    */
   modelDirs: readonly string[];
   /** Runs the model copies (`armtwin up`); null = 501 for `/arms/{id}/model`. */
@@ -93,9 +95,12 @@ export function createApi(o: ApiOptions): Api {
   route('/history', service.history);
   route('/history/*', service.history);
   route('/whoami', service.whoami);
-  route('/robots/import', robotImport.handle);
-  route('/robots/:name/calibration', (req, res, p) => calibration.handle(req, res, p.name!));
-  route('/robots/:name/keep-out', (req, res, p) => keepOut.handle(req, res, p.name!));
+  if (o.modelDirs.length > 0) {
+    route('/models/*', modelFiles(o.modelDirs));
+    route('/robots/import', robotImport.handle);
+    route('/robots/:name/calibration', (req, res, p) => calibration.handle(req, res, p.name!));
+    route('/robots/:name/keep-out', (req, res, p) => keepOut.handle(req, res, p.name!));
+  }
   route('/arms/:id/model', (req, res, p) => model.handle(req, res, p.id!));
 
   return {

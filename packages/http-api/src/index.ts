@@ -18,4 +18,5 @@ export type { RouteCounters } from './counted-answer.ts';
 export type { ModelCopyHost } from './model-copies.ts';
 export { MAX_MODEL_REQUEST_BYTES, parseModelPose, type ModelPose } from './model-pose.ts';
 export { replaceProfileFile } from './robots/profile-file.ts';
+export { isFile, readPath, sendFile } from './send-file.ts';
 export type { ApiService } from './service-routes.ts';

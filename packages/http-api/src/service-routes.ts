@@ -38,14 +38,12 @@ export function serviceRoutes(o: {
   ) => {
     const why = refusal(o.auth, req, await o.authorize(req), 'data');
     if (why) {
+      // Never a Basic challenge: a browser would open its own log-in dialog over the HUD (whose
+      // requests carry the page's log-in themselves); the body says what to send.
       const headers: Record<string, string> =
         why.status === 429
           ? { 'retry-after': String(why.retryAfterS) }
-          : {
-              'www-authenticate': o.auth.logins
-                ? 'Basic realm="armtwin"'
-                : 'Bearer realm="armtwin"',
-            };
+          : { 'www-authenticate': 'Bearer realm="armtwin"' };
       return sendJson(res, why.status, { error: why.error }, headers);
     }
     const s = o.service();

@@ -10,6 +10,7 @@ import type { AddressInfo } from 'node:net';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, expect, test } from 'vitest';
+import { hashPassword, LoginThrottle, parseUsers } from '@armtwin/auth';
 import { createApi, type ApiService } from '../src/index.ts';
 
 let server: http.Server;
@@ -92,4 +93,57 @@ test('no model-copy host: 501, naming armtwin up, counted', async () => {
   expect(r.status).toBe(501);
   expect(JSON.parse(r.text).errors[0]).toMatch(/armtwin up/);
   expect(onFirst).toContain('model:refused:host');
+});
+
+test('with a users file a refused read never carries a Basic challenge (no browser log-in dialog over the HUD)', async () => {
+  const users = parseUsers(
+    JSON.stringify({
+      users: [{ name: 'vic', role: 'viewer', password: hashPassword('pw', { iterations: 10 }) }],
+    }),
+  );
+  const api = createApi({
+    auth: { logins: new LoginThrottle(users), apiToken: '', anonymous: 'anywhere' },
+    service: () => ({ health: () => ({ ok: true }), metrics: () => 'up 1\n', history: null }),
+    modelDirs: [],
+    modelCopies: null,
+    onFirst: () => {},
+  });
+  const srv = http.createServer((req, res) => void api.handle(req, res));
+  await new Promise<void>((r) => srv.listen(0, '127.0.0.1', r));
+  const url = `http://127.0.0.1:${(srv.address() as AddressInfo).port}/api/metrics`;
+  const refused = await fetch(url);
+  expect(refused.status).toBe(401);
+  expect(refused.headers.get('www-authenticate')).toBe('Bearer realm="armtwin"');
+  const viewer = await fetch(url, {
+    headers: { authorization: `Basic ${Buffer.from('vic:pw').toString('base64')}` },
+  });
+  expect(await viewer.text()).toBe('up 1\n');
+  await new Promise((r) => srv.close(r));
+});
+
+test('robot folders are served from the models folders at /models/, nothing outside them', async () => {
+  fs.mkdirSync(path.join(models, 'r1'));
+  fs.writeFileSync(path.join(models, 'r1', 'profile.json'), '{"name":"r1"}');
+  expect(await call('GET', '/models/r1/profile.json')).toMatchObject({
+    status: 200,
+    text: '{"name":"r1"}',
+  });
+  expect((await call('GET', '/models/r1/none.stl')).status).toBe(404);
+  // Sent as written (a URL would resolve the dots itself).
+  const escape = await new Promise<number>((resolve, reject) =>
+    http
+      .get(
+        {
+          host: '127.0.0.1',
+          port: new URL(base).port,
+          path: '/models/r1/%2e%2e/%2e%2e/etc/passwd',
+        },
+        (res) => {
+          res.resume();
+          resolve(res.statusCode ?? 0);
+        },
+      )
+      .on('error', reject),
+  );
+  expect(escape).toBe(403);
 });

@@ -1,4 +1,7 @@
-/** @armtwin/ik: the analytic IK and FK of the 5-axis arm (PROTOCOL.md §4). No I/O. */
+/**
+ * @armtwin/ik: the analytic IK and FK of the 5-axis arm (PROTOCOL.md §4) and the numeric IK of
+ * any serial chain. No I/O.
+ */
 export {
   DEMO_ARM,
   findServo,
@@ -36,6 +39,4 @@ export {
   type IkCode,
   type IkResult,
 } from './ik.ts';
-export * from './profile/index.ts';
 export * from './numeric/index.ts';
-export * from './import/index.ts';

@@ -4,7 +4,7 @@
  * offline queue (QoS 1 messages published while disconnected, and those not yet acknowledged)
  * survive a move, because only the stream under it changes: at every (re)connect mqtt.js asks
  * the stream builder for a stream, and the builder asks the policy (`BrokerFailover`,
- * `@armtwin/protocol`) which broker that is. Each broker's own builder is mqtt.js's, made by
+ * `./brokers.ts`) which broker that is. Each broker's own builder is mqtt.js's, made by
  * `connect(url, { manualConnect: true })`, so every scheme mqtt.js knows (mqtt, mqtts, ws, wss)
  * works as it does with one broker.
  *
@@ -20,7 +20,7 @@ import {
   DEFAULT_BROKER_LIST_OPTIONS,
   type BrokerListOptions,
   type BrokerMove,
-} from '@armtwin/protocol';
+} from './brokers.ts';
 import { probeBroker, type ConnectFn, type ProbeConnected } from './probe.ts';
 
 export interface BrokerLinkOptions extends BrokerListOptions {

@@ -1,2 +1,3 @@
+export * from './brokers.ts';
 export * from './connectBrokers.ts';
 export * from './probe.ts';

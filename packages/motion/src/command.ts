@@ -10,7 +10,7 @@
  *   line to 150 0 80 [pitch -90]                       Cartesian: a straight line to it
  *   plan <any of the above>                            plan only (execute: false)
  */
-import type { Profile } from '@armtwin/ik';
+import type { Profile } from '@armtwin/robot';
 import { validateRequest, type MotionRequest, type RequestTarget } from './request.ts';
 
 export type CommandResult = { ok: true; request: MotionRequest } | { ok: false; message: string };

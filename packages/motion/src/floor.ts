@@ -12,11 +12,10 @@ import {
   chainFkFrames,
   createArmPoints,
   createFkFrames,
-  jointFromServo,
-  servoFromPwm,
   type Chain,
   type FkFrames,
 } from '@armtwin/ik';
+import { jointFromServo, servoFromPwm } from '@armtwin/robot';
 import type { Plan } from './plan.ts';
 import { analyticJointsInto, type MotionRobot } from './robot.ts';
 

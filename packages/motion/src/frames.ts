@@ -6,7 +6,7 @@
  * nothing. A servo that speaks angles (profile `"units": "angle"`) gets `#IIIA±ddd.ddTtttt!`
  * instead, its exact pulse-equivalent turned into its angle and rounded to the wire's 0.01°.
  */
-import type { ServoTableEntry } from '@armtwin/ik';
+import type { ServoTableEntry } from '@armtwin/robot';
 import {
   MOVE_MS_MAX,
   angleFromPwm,

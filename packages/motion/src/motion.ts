@@ -5,7 +5,7 @@
  * target and step) or `failed` (20, a field the profile does not know). `replanFrom` plans the
  * targets not yet reached from where the arm actually is (pose checking's re-plan).
  */
-import { servoFromPwm, servoWithinLimits } from '@armtwin/ik';
+import { servoFromPwm, servoWithinLimits } from '@armtwin/robot';
 import { planCartesian, type CartesianWaypoint } from './cartesian-plan.ts';
 import {
   CODE_BELOW_FLOOR,

@@ -5,7 +5,7 @@
  * actual pose; otherwise carry on with the next pose. Deviations are in servo units: degrees
  * for a revolute servo, mm for a prismatic axis.
  */
-import { servoFromPwm } from '@armtwin/ik';
+import { servoFromPwm } from '@armtwin/robot';
 import { DEFAULT_EXECUTE_OPTIONS, type ExecuteOptions } from './options.ts';
 import { samplePlan, type Plan } from './plan.ts';
 import type { MotionRobot } from './robot.ts';

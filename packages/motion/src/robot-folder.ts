@@ -6,7 +6,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chainFromUrdf, parseProfile, type Profile } from '@armtwin/ik';
+import { chainFromUrdf, parseProfile, type Profile } from '@armtwin/robot';
 import { createMotionRobot, type MotionRobot } from './robot.ts';
 
 /** The robots' folders shipped with armtwin: `public/models` at the repository root. */

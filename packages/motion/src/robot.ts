@@ -7,22 +7,24 @@
  */
 import {
   NumericIkSolver,
-  armProfileFromProfile,
   chainFk,
   createIkResult,
   forwardKinematics,
-  jointFromServo,
-  servoFromJoint,
-  servoFromPwm,
-  servoTable,
   solveIkInto,
   type ArmProfile,
   type Chain,
   type NumericTarget,
+} from '@armtwin/ik';
+import {
+  armProfileFromProfile,
+  jointFromServo,
+  servoFromJoint,
+  servoFromPwm,
+  servoTable,
   type Profile,
   type ProfileServo,
   type ServoTableEntry,
-} from '@armtwin/ik';
+} from '@armtwin/robot';
 import { PWM_CENTRE, US_PER_DEG } from '@armtwin/protocol';
 
 /** A tip target: position in mm (base frame, z up) and, optionally, the tool's pitch from horizontal (deg, −90 = down). */

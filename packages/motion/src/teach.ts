@@ -17,7 +17,7 @@
  *    inside the tolerance adds none.
  * Pure: no I/O. The result says how far the taught plan is from the recording (max and mean).
  */
-import { servoFromPwm } from '@armtwin/ik';
+import { servoFromPwm } from '@armtwin/robot';
 import { tipPose, type MotionRobot } from './robot.ts';
 
 export interface TeachOptions {

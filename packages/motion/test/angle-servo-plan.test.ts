@@ -7,7 +7,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
-import { parseProfile, pwmFromServo } from '@armtwin/ik';
+import { parseProfile, pwmFromServo } from '@armtwin/robot';
 import { createReader, type Frame } from '@armtwin/protocol';
 import { createMotionRobot, planJoint, toMoveFrames } from '../src/index.ts';
 import { home, limitProblems } from './fixtures.ts';

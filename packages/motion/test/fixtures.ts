@@ -2,7 +2,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chainFromUrdf, parseProfile } from '@armtwin/ik';
+import { chainFromUrdf, parseProfile } from '@armtwin/robot';
 import { createMotionRobot, topSpeed, type MotionRobot, type Plan } from '../src/index.ts';
 
 const MODELS = path.resolve(fileURLToPath(import.meta.url), '../../../../public/models');

@@ -5,7 +5,7 @@
  */
 import fs from 'node:fs';
 import { describe, expect, test } from 'vitest';
-import { parseProfile } from '@armtwin/ik';
+import { parseProfile } from '@armtwin/robot';
 import {
   CODE_BELOW_FLOOR,
   checkFloor,

@@ -6,7 +6,7 @@
  */
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { servoFromPwm } from '@armtwin/ik';
+import { servoFromPwm } from '@armtwin/robot';
 import { US_PER_DEG } from '@armtwin/protocol';
 import {
   DEFAULT_TEACH_OPTIONS,

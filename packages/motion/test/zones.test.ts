@@ -7,7 +7,7 @@
 import fs from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, test } from 'vitest';
-import { parseProfile, type ProfileKeepOut, type Zone } from '@armtwin/ik';
+import { parseProfile, type ProfileKeepOut, type Zone } from '@armtwin/robot';
 import {
   CODE_IN_ZONE,
   CODE_SELF_COLLISION,

@@ -18,6 +18,27 @@ describe('backoffDelay', () => {
 });
 
 describe('solveLinear', () => {
+  it('solves a small system and refuses a singular one', () => {
+    expect(
+      solveLinear(
+        [
+          [2, 1],
+          [1, 3],
+        ],
+        [3, 5],
+      ),
+    ).toEqual([0.8, 1.4].map((v) => expect.closeTo(v, 9) as number));
+    expect(
+      solveLinear(
+        [
+          [1, 2],
+          [2, 4],
+        ],
+        [1, 2],
+      ),
+    ).toBeNull();
+  });
+
   it('refuses a system whose pivot is below the given size', () => {
     const a = [
       [1e-20, 0],

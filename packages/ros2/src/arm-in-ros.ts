@@ -18,12 +18,12 @@ import { readRobotFolder, MODELS_DIR } from '@armtwin/motion/robot-folder';
 import {
   encodeStop,
   linkOptions,
-  parseBrokerList,
   parseHolder,
   topic,
   holderTopic,
   userTopic,
 } from '@armtwin/protocol';
+import { parseBrokerList } from '@armtwin/link';
 import { Ros2Bridge } from './bridge-process.ts';
 import { ClaimKeeper } from './claim-keeper.ts';
 import { FrameStreamer } from './frame-streamer.ts';
@@ -42,6 +42,8 @@ export interface ArmInRosCounts {
   stops: number;
   refused: Record<TrajectoryRefusal, number>;
   badHolder: number;
+  /** Trajectory frames dropped because the broker was not connected. */
+  notConnected: number;
 }
 
 export interface ArmInRos {
@@ -50,6 +52,8 @@ export interface ArmInRos {
   readonly bridge: Ros2Bridge;
   readonly mqtt: BrokerClient;
   readonly claims: ClaimKeeper;
+  /** Resolves with the reason if the rclpy process ends before `stop()`. */
+  readonly lost: Promise<string>;
   stop(): Promise<void>;
 }
 
@@ -67,6 +71,7 @@ export async function startArmInRos(options: Partial<ArmInRosOptions> = {}): Pro
       TRAJECTORY_REFUSALS.map((r) => [r, 0]),
     ) as ArmInRosCounts['refused'],
     badHolder: 0,
+    notConnected: 0,
   };
 
   const bridge = await Ros2Bridge.start({
@@ -83,8 +88,19 @@ export async function startArmInRos(options: Partial<ArmInRosOptions> = {}): Pro
     ...(o.username ? { username: o.username, password: o.password ?? '' } : {}),
     ...linkOptions(),
   });
-  const send = (payload: string) => mqtt.publish(control, payload, { qos: 1 });
-  const streamer = new FrameStreamer(o.clock, send);
+  // A move is sent only while connected: queued in the client, it would reach the arm late.
+  const send = (payload: string) => {
+    if (mqtt.connected) mqtt.publish(control, payload, { qos: 1 });
+    else {
+      counts.notConnected++;
+      streamer.cancel();
+      o.onFirst(
+        'not-connected',
+        `not connected to the broker: a trajectory for ${o.armId} was dropped`,
+      );
+    }
+  };
+  const streamer: FrameStreamer = new FrameStreamer(o.clock, send);
   const claims = new ClaimKeeper(o.user, o.take, o.clock, (payload) =>
     mqtt.publish(userTopic(o.armId, 'claim', o.user), payload, { qos: 1 }),
   );
@@ -114,6 +130,7 @@ export async function startArmInRos(options: Partial<ArmInRosOptions> = {}): Pro
       if (record.user !== null && !claims.holds) streamer.cancel();
     }
   });
+  mqtt.on('error', (err) => o.onFirst(`mqtt:${err.message}`, `mqtt: ${err.message}`));
   mqtt.on('connect', () => {
     mqtt.subscribe([status, holder], { qos: 1 });
   });
@@ -145,13 +162,19 @@ export async function startArmInRos(options: Partial<ArmInRosOptions> = {}): Pro
     `${o.armId} in ROS 2 (domain ${bridge.domain}): ${topics.jointStates}, ${topics.robotDescription}, ${topics.jointTrajectory}`,
   );
 
+  let stopping = false;
+  const lost = bridge.exited.then((code) =>
+    stopping ? '' : `the ROS 2 bridge process exited (${code})`,
+  );
   return {
     topics,
     counts,
+    lost,
     bridge,
     mqtt,
     claims,
     async stop() {
+      stopping = true;
       streamer.cancel();
       claims.release();
       await mqtt.endAsync();

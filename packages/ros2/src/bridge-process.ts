@@ -131,6 +131,11 @@ export class Ros2Bridge {
     return bridge;
   }
 
+  /** The process id (for a CPU meter). */
+  get pid(): number {
+    return this.proc.pid ?? -1;
+  }
+
   /** Subscribes `topic`; resolves once the subscription exists. `durable`: a latched topic. */
   async subscribe<T extends Ros2MessageType>(
     topic: string,

@@ -4,7 +4,7 @@
  * the profile's polarity and offset applied), named as the URDF names the joint. One JointState
  * per status payload that moved anything, once every servo has reported. Pure: fed payloads.
  */
-import { jointFromServo, servoFromPwm, type Profile } from '@armtwin/ik';
+import { jointFromServo, servoFromPwm, type Profile } from '@armtwin/robot';
 import { exactPwmFromServo } from '@armtwin/motion';
 import { createReader, type Frame, type Reader } from '@armtwin/protocol';
 import type { JointStateMsg } from './wire.ts';

@@ -9,7 +9,7 @@
  * Refused whole, with a reason: a joint the profile does not have, a point without every
  * position, times that do not increase, a position no frame can carry. Pure.
  */
-import { servoFromJoint, type Profile } from '@armtwin/ik';
+import { servoFromJoint, type Profile } from '@armtwin/robot';
 import {
   exactPwmFromServo,
   toMoveFrames,

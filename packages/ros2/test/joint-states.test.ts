@@ -1,6 +1,6 @@
 /** Status payloads as ROS 2 joint states: radians (metres), URDF names, once every servo is known. */
 import { expect, test } from 'vitest';
-import { jointFromPwm } from '@armtwin/ik';
+import { jointFromPwm } from '@armtwin/robot';
 import { JointStateBuilder } from '../src/joint-states.ts';
 import { armtwin5, track6 } from './profiles.ts';
 

@@ -10,7 +10,7 @@
  * serial port around it.
  */
 import { SerialPort } from 'serialport';
-import type { Profile } from '@armtwin/ik';
+import type { Profile } from '@armtwin/robot';
 import { SYSTEM_CLOCK, type Clock } from '@armtwin/protocol';
 import {
   createEmulatedBus,

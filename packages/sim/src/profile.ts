@@ -13,9 +13,11 @@
 import {
   armProfileFromProfile,
   chainFromUrdf,
+  MAX_PROFILE_ANNOUNCEMENT_BYTES,
+  profileAnnouncement,
   pulseEquivalentArm,
   type Profile,
-} from '@armtwin/ik';
+} from '@armtwin/robot';
 import { numericKms, zonesKeepOut } from '@armtwin/controller';
 import { createMotionRobot, type MotionRobot } from '@armtwin/motion';
 import { MODELS_DIR, PROFILE_NAME, readRobotFolder } from '@armtwin/motion/robot-folder';
@@ -24,11 +26,6 @@ import type { SimModelOptions } from './options.ts';
 
 export { MODELS_DIR, PROFILE_NAME };
 export const DEFAULT_PROFILE = 'armtwin5';
-/**
- * Largest announcement published on `arm/{id}/profile`, bytes: well under the broker's packet
- * bound (`maxPacketBytes`, 64 KiB) and the sim's own payload bound. track6's is about 3 KB.
- */
-export const MAX_PROFILE_ANNOUNCEMENT_BYTES = 32768;
 
 export interface SimProfile {
   profile: Profile;
@@ -60,7 +57,7 @@ export function simProfile(profile: Profile, raw: unknown, urdf?: string): SimPr
     keepOut: zonesKeepOut(robot),
   };
   if (!analytic) model.kms = numericKms(robot);
-  const announcement = JSON.stringify({ name: profile.name, title: profile.title, profile: raw });
+  const announcement = profileAnnouncement(profile.name, profile.title, raw);
   if (Buffer.byteLength(announcement) > MAX_PROFILE_ANNOUNCEMENT_BYTES)
     throw new Error(
       `profile ${profile.name}: ${Buffer.byteLength(announcement)} bytes is too large to announce (at most ${MAX_PROFILE_ANNOUNCEMENT_BYTES})`,

@@ -6,13 +6,8 @@
  */
 import type { Logger } from 'pino';
 import { connectBrokers } from '@armtwin/link';
-import {
-  describeBroker,
-  linkOptions,
-  OPERATOR_LEASE_MS,
-  parseBrokerList,
-  redactBrokerUrl,
-} from '@armtwin/protocol';
+import { linkOptions, OPERATOR_LEASE_MS } from '@armtwin/protocol';
+import { describeBroker, parseBrokerList, redactBrokerUrl } from '@armtwin/link';
 import type { BenchFault, BusProtocol } from '@armtwin/servo-bus';
 import { startBusSim, type BusSimCore } from './bus-sim.ts';
 import type { Fault } from './faults.ts';

@@ -5,7 +5,8 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { describe, expect, test } from 'vitest';
-import { DEMO_ARM, parseProfile, type ArmProfile } from '@armtwin/ik';
+import { DEMO_ARM, type ArmProfile } from '@armtwin/ik';
+import { parseProfile } from '@armtwin/robot';
 import fc from 'fast-check';
 import { createReader, encodeAngle, type Frame, type Group } from '@armtwin/protocol';
 import { FakeClock } from '@armtwin/protocol/fake-clock';

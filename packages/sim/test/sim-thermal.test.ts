@@ -6,16 +6,15 @@
  * tests/integration/thermal-model.test.ts does the same through MQTT and InfluxDB.
  */
 import { describe, expect, test } from 'vitest';
+import { TEMP_WARNING_C, type Frame } from '@armtwin/protocol';
 import {
   fitThermal,
-  TEMP_WARNING_C,
   thermalTraces,
   ThermalWatch,
-  type Frame,
   type ServoSamples,
   type ThermalParams,
   type TimedValue,
-} from '@armtwin/protocol';
+} from '@armtwin/thermal';
 import { applyFault, NO_FAULTS, type Fault } from '../src/faults.ts';
 import { SimModel } from '../src/model.ts';
 import { DEFAULT_SIM_MODEL_OPTIONS, type SimModelOptions } from '../src/options.ts';

@@ -6,7 +6,7 @@
  */
 import fs from 'node:fs';
 import { describe, expect, test } from 'vitest';
-import { parseProfile } from '@armtwin/ik';
+import { parseProfile } from '@armtwin/robot';
 import { exactPwmFromServo } from '@armtwin/motion';
 import { createReader, type Frame, type Group } from '@armtwin/protocol';
 import { SimModel } from '../src/model.ts';

@@ -4,7 +4,7 @@
  */
 import fs from 'node:fs';
 import path from 'node:path';
-import { parseProfile, type Profile } from '@armtwin/ik';
+import { parseProfile, type Profile } from '@armtwin/robot';
 import { REPO_ROOT } from '../../helpers/services.ts';
 import { ArmObserver, startSim, until, type SimProcess } from './sim.ts';
 

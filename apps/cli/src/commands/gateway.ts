@@ -184,7 +184,14 @@ the joints are. The arm is offline while no joint state arrives.`,
               healthRate: flags.healthRate,
               baudRate: flags.baud ?? DEFAULT_BUS_GATEWAY_OPTIONS.baudRate,
             });
-      await untilSignal(log);
+      const lost = await Promise.race([
+        untilSignal(log).then(() => ''),
+        'lost' in gw ? gw.lost : new Promise<string>(() => {}),
+      ]);
       await gw.stop();
+      if (lost) {
+        log.error(lost);
+        process.exitCode = 1;
+      }
     });
 }

@@ -8,7 +8,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import type { Command } from 'commander';
-import { applyCalibration, parseProfile } from '@armtwin/ik';
+import { applyCalibration, parseProfile } from '@armtwin/robot';
 import {
   lerobotCalibrationOf,
   matchLerobotCalibration,

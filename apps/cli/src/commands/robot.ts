@@ -1,6 +1,6 @@
 import { InvalidArgumentError, type Command } from 'commander';
-import { IMPORT_NAME, planImport } from '@armtwin/ik';
-import { importSource, RobotExistsError, writeRobotFolder } from '@armtwin/ik/import-node';
+import { IMPORT_NAME, planImport } from '@armtwin/robot';
+import { importSource, RobotExistsError, writeRobotFolder } from '@armtwin/robot/import-node';
 import { MODELS_DIR } from '@armtwin/sim';
 import { registerRobotCalibration } from './robot-calibration.ts';
 

@@ -88,8 +88,12 @@ export function registerRos2(program: Command): void {
         onFirst: firstOnly(log),
         onInfo: (message) => log.info(message),
       });
-      await untilSignal(log);
+      const lost = await Promise.race([untilSignal(log).then(() => ''), arm.lost]);
       await arm.stop();
       log.info({ ...arm.counts, bridgeErrors: arm.bridge.errors }, 'stopped');
+      if (lost) {
+        log.error(lost);
+        process.exitCode = 1;
+      }
     });
 }

@@ -1,7 +1,9 @@
+import fs from 'node:fs';
 import path from 'node:path';
 import { InvalidArgumentError, type Command } from 'commander';
 import { DEFAULT_PROFILE, PROFILE_NAME } from '@armtwin/sim';
 import { DEFAULT_MODEL_COPIES_OPTIONS, parseExtraSources, runUp } from '@armtwin/up';
+import { startArmInRos, type ArmInRos } from '@armtwin/ros2';
 import { loadCliConfig } from '../config.ts';
 import { createLogger, firstOnly } from '../log.ts';
 import { armId, number } from './options.ts';
@@ -43,6 +45,7 @@ interface UpFlags {
   models?: string;
   cspSources?: string[];
   modelIdle?: number;
+  ros2?: boolean;
 }
 
 export function registerUp(program: Command): void {
@@ -82,6 +85,10 @@ export function registerUp(program: Command): void {
       `a model copy (/api/arms/{id}/model) with nothing sent to it stops after this long (default ${DEFAULT_MODEL_COPIES_OPTIONS.idleMs / 60_000})`,
       number('model idle time', 0.1, 1440),
     )
+    .option(
+      '--ros2',
+      'show every simulated arm in ROS 2 as `armtwin ros2 --arm ID` does (ROS_DOMAIN_ID; anonymous demo only; docs/ros2.md)',
+    )
     .option('--no-web', 'do not build the HUD when apps/web/dist is missing')
     .option('--no-middleware', 'do not start the middleware')
     .option(
@@ -108,6 +115,10 @@ Ctrl-C stops everything: the arm says offline, the middleware flushes, influxd s
     )
     .action(async (flags: UpFlags) => {
       const env = loadCliConfig();
+      if (flags.ros2 && (flags.users ?? env.usersFile))
+        program.error(
+          '--ros2 is for the anonymous demo: with users, run `armtwin ros2 --username …`',
+        );
       const log = createLogger('up', env.logLevel);
       const say = (msg: string) => process.stderr.write(`armtwin: ${msg}\n`);
       const up = await runUp({
@@ -133,11 +144,45 @@ Ctrl-C stops everything: the arm says offline, the middleware flushes, influxd s
         say,
         onFirst: firstOnly(log),
       });
+      let inRos: ArmInRos[] = [];
+      try {
+        if (flags.ros2) inRos = await showInRos2(up.broker.url, flags, firstOnly(log), say);
+      } catch (err) {
+        say(`ros2: ${(err as Error).message}`);
+        await up.stop();
+        process.exitCode = 1;
+        return;
+      }
       process.stdout.write(`\n  armtwin is running: open ${up.url}\n  (Ctrl-C to stop)\n\n`);
       await untilSignal();
       say('stopping…');
+      for (const arm of inRos) await arm.stop();
       await up.stop();
       say('stopped');
       process.exitCode = 0;
     });
+}
+
+/** `--ros2`: each simulated arm as `armtwin ros2 --arm ID --profile P` would show it. */
+function showInRos2(
+  mqttUrl: string,
+  flags: UpFlags,
+  onFirst: (kind: string, message: string) => void,
+  say: (msg: string) => void,
+): Promise<ArmInRos[]> {
+  const arms = flags.arms ?? [{ id: flags.arm, profile: DEFAULT_PROFILE }];
+  const extra = flags.models ? path.resolve(flags.models) : undefined;
+  return Promise.all(
+    arms.map((a) =>
+      startArmInRos({
+        mqttUrl,
+        armId: a.id,
+        profile: a.profile,
+        modelsDir:
+          extra && fs.existsSync(path.join(extra, a.profile, 'profile.json')) ? extra : undefined,
+        onFirst,
+        onInfo: (message) => say(`ros2: ${message}`),
+      }),
+    ),
+  );
 }

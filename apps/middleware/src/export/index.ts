@@ -5,7 +5,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import type { Writable } from 'node:stream';
-import { parseUrdfJoints } from '@armtwin/ik';
+import { parseUrdfJoints } from '@armtwin/robot';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { csvLines } from './csv.ts';
 import { streamWritable, writeMcap, type McapCounts, type RecordingRobot } from './mcap.ts';

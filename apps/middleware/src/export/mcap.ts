@@ -13,7 +13,7 @@
 import type { Writable } from 'node:stream';
 import { McapWriter, type IWritable } from '@mcap/core';
 import { FrameTransforms, JointStates, Log } from '@foxglove/schemas/jsonschema';
-import type { Profile, UrdfJoint } from '@armtwin/ik';
+import type { Profile, UrdfJoint } from '@armtwin/robot';
 import type { Recording } from './recording.ts';
 import { jointSamples, linkTransforms, type JointSample } from './robot-motion.ts';
 

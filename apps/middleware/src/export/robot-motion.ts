@@ -8,15 +8,12 @@
  */
 import {
   createMat4,
-  jointFromPwm,
-  jointFromServo,
   mat4FromXyzRpy,
   mat4RotateAxisInPlace,
   mat4TranslateAxisInPlace,
   type Mat4,
-  type Profile,
-  type UrdfJoint,
 } from '@armtwin/ik';
+import { jointFromPwm, jointFromServo, type Profile, type UrdfJoint } from '@armtwin/robot';
 import type { ServoRow } from './recording.ts';
 
 export interface JointSample {

@@ -2,7 +2,7 @@
  * The history API's limits, declared once. `createHistoryHandler` merges what it is given
  * over `DEFAULT_HISTORY_OPTIONS`; the README quotes these values.
  */
-import type { ThermalFitOptions } from '@armtwin/protocol';
+import type { ThermalFitOptions } from '@armtwin/thermal';
 
 export interface HistoryOptions {
   /** Most points per series that `/history/series` and `/history/pose` return. */

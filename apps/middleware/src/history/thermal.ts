@@ -15,7 +15,7 @@ import {
   thermalTraces,
   type ServoSamples,
   type TimedValue,
-} from '@armtwin/protocol';
+} from '@armtwin/thermal';
 import type { EndpointContext } from './endpoints.ts';
 import type { HistoryParams } from './params.ts';
 import { samplesBy } from './shape.ts';

@@ -7,7 +7,7 @@
 import type * as THREE from 'three';
 import type { URDFRobot } from 'urdf-loader';
 import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import type { ProfileKeepOut } from '@armtwin/ik';
+import type { ProfileKeepOut } from '@armtwin/robot';
 import type { JointMap } from '../core/robots/robotSpec.ts';
 import type { GhostSource } from './sceneHooks.ts';
 import type { MeshFailure } from './loadRobot.ts';

@@ -5,7 +5,7 @@
  * changes (`show`), never per frame.
  */
 import * as THREE from 'three';
-import type { ProfileKeepOut, Zone } from '@armtwin/ik';
+import type { ProfileKeepOut, Zone } from '@armtwin/robot';
 
 /** Side of the square a plane zone is drawn as, m (planes are infinite). */
 const PLANE_DRAWN_M = 2;

@@ -15,7 +15,7 @@ import {
   applyCalibration,
   MAX_CALIBRATION_REQUEST_BYTES,
   parseCalibrationRequest,
-} from '@armtwin/ik';
+} from '@armtwin/robot';
 import { profileWriteRoute, type RobotWriteOptions } from './robot-write.ts';
 
 export const calibrationRoute = (o: RobotWriteOptions) =>

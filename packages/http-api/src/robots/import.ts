@@ -10,8 +10,8 @@
  * set; 413 for a body over `MAX_IMPORT_BYTES`.
  */
 import type http from 'node:http';
-import { IMPORT_NAME, MAX_IMPORT_BYTES, planImport } from '@armtwin/ik';
-import { RobotExistsError, writeRobotFolder, zipSource } from '@armtwin/ik/import-node';
+import { IMPORT_NAME, MAX_IMPORT_BYTES, planImport } from '@armtwin/robot';
+import { RobotExistsError, writeRobotFolder, zipSource } from '@armtwin/robot/import-node';
 import {
   callerMay,
   countedAnswer,

@@ -11,7 +11,7 @@
  * non-operator log-in; 404 for an unknown robot; 413 for a body over
  * `MAX_KEEP_OUT_REQUEST_BYTES`.
  */
-import { applyKeepOut, MAX_KEEP_OUT_REQUEST_BYTES } from '@armtwin/ik';
+import { applyKeepOut, MAX_KEEP_OUT_REQUEST_BYTES } from '@armtwin/robot';
 import { profileWriteRoute, type RobotWriteOptions } from './robot-write.ts';
 
 export const keepOutRoute = (o: RobotWriteOptions) =>

@@ -5,7 +5,7 @@
  * moves more than `maxStep`, and clamps q + Δq into the limits. A step that lowers the error is
  * taken and λ shrinks; one that does not is refused and λ grows.
  */
-import type { Chain } from './chain.ts';
+import type { Chain } from './chain-types.ts';
 import { chainFkFrames, createFkFrames, type FkFrames } from './fk.ts';
 import type { NumericIkOptions, NumericTarget } from './options.ts';
 import { axisError, choleskySolve, rotationError } from './pose-error.ts';

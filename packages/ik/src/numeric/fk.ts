@@ -12,7 +12,7 @@ import {
   mat4TranslateAxisInPlace,
   type Mat4,
 } from './mat4.ts';
-import type { Chain } from './chain.ts';
+import type { Chain } from './chain-types.ts';
 
 /** Per-joint world data filled by `chainFkFrames`. */
 export interface FkFrames {

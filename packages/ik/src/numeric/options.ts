@@ -99,3 +99,22 @@ export interface NumericIkResult {
   /** Random restarts used. */
   restarts: number;
 }
+
+/**
+ * The target a tip transform `m` (4×4 column-major, mm) describes, in `mode`: its position,
+ * rotation (`pose`) or the world direction of `toolAxis` (`axis`).
+ */
+export function targetFromTransform(
+  m: ArrayLike<number>,
+  mode: TargetMode,
+  toolAxis: readonly [number, number, number] = DEFAULT_NUMERIC_IK_OPTIONS.toolAxis,
+): NumericTarget {
+  const t: NumericTarget = { mode, x: m[12]!, y: m[13]!, z: m[14]! };
+  if (mode === 'pose')
+    t.rotation = [m[0]!, m[1]!, m[2]!, m[4]!, m[5]!, m[6]!, m[8]!, m[9]!, m[10]!];
+  if (mode === 'axis') {
+    const [ax, ay, az] = toolAxis;
+    t.axis = [0, 1, 2].map((r) => m[r]! * ax + m[4 + r]! * ay + m[8 + r]! * az);
+  }
+  return t;
+}

@@ -10,7 +10,7 @@
  *   10 orientation unreachable: the position is reachable within the limits, the orientation
  *      (or tool axis) asked for is not, limits or not.
  */
-import type { Chain } from './chain.ts';
+import type { Chain } from './chain-types.ts';
 import { DlsAttempt } from './dls.ts';
 import { chainFkFrames, createFkFrames } from './fk.ts';
 import {

@@ -10,10 +10,9 @@ import {
   chainFkFrames,
   createArmPoints,
   createFkFrames,
-  jointFromServo,
-  servoFromPwm,
   type FkFrames,
 } from '@armtwin/ik';
+import { jointFromServo, servoFromPwm } from '@armtwin/robot';
 import { analyticJointsInto, type MotionRobot } from '../robot.ts';
 
 export interface ArmLinks {

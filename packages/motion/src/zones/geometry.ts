@@ -4,7 +4,7 @@
  * segments. A link is a capsule (a segment and a radius), so it touches a zone when the least
  * signed distance along its segment is below its radius.
  */
-import type { Zone } from '@armtwin/ik';
+import type { Zone } from '@armtwin/robot';
 
 /** Signed distance (mm) from (x, y, z) to the zone: > 0 outside, < 0 inside. */
 export function zoneDistance(zone: Zone, x: number, y: number, z: number): number {

@@ -6,7 +6,7 @@
  * move is checked along its straight joint-space path, sampled so no servo turns more than
  * `pathStepDeg` (or slides more than `pathStepMm`) between two checked poses.
  */
-import { servoFromPwm, type ProfileKeepOut } from '@armtwin/ik';
+import { servoFromPwm, type ProfileKeepOut } from '@armtwin/robot';
 import type { Plan } from '../plan.ts';
 import type { MotionRobot } from '../robot.ts';
 import { armLinks } from './arm-links.ts';

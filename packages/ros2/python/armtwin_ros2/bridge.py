@@ -48,7 +48,9 @@ def qos(durable):
             reliability=ReliabilityPolicy.RELIABLE,
             durability=DurabilityPolicy.TRANSIENT_LOCAL,
         )
-    return QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
+    # Deeper than rclpy's usual 10: this process only carries messages, and a burst (a 1 kHz
+    # stream while the JSON side is busy) should wait here, not be overwritten in the history.
+    return QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE)
 
 
 class Bridge:

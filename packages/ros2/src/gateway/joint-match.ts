@@ -3,7 +3,7 @@
  * servo's joint is in the message, the profile joints it lacks, and the joints it has that the
  * profile does not drive (a gripper's mimic joint, a mobile base's wheels: ignored). Pure.
  */
-import type { Profile } from '@armtwin/ik';
+import type { Profile } from '@armtwin/robot';
 
 export interface JointMatch {
   /** For each profile servo, its index in the message's `name` (-1: missing). */

@@ -8,7 +8,7 @@
  * decides nothing: the core has already checked every goal. Pure.
  */
 import type { ControllerDriver, Goal, ReadAnswer } from '@armtwin/controller';
-import { jointFromServo, servoFromPwm, type Profile } from '@armtwin/ik';
+import { jointFromServo, servoFromPwm, type Profile } from '@armtwin/robot';
 import { exactPwmFromServo } from '@armtwin/motion';
 import { encodeAngle } from '@armtwin/protocol';
 import type { JointTrajectoryMsg } from '../wire.ts';

@@ -20,7 +20,7 @@ import {
   type KeepOutCheck,
   type KmsSolver,
 } from '@armtwin/controller';
-import { servoFromJoint, type Profile } from '@armtwin/ik';
+import { servoFromJoint, type Profile } from '@armtwin/robot';
 import { exactPwmFromServo, type MotionRobot } from '@armtwin/motion';
 import {
   ANGLE_DEG_MAX,

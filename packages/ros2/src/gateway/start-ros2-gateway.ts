@@ -13,11 +13,13 @@ import {
   connectGatewayMqtt,
   DEFAULT_GATEWAY_OPTIONS,
   gatewayPublish,
+  leaveGatewayMqtt,
   wireGatewayMqtt,
   type GatewayOptions,
 } from '@armtwin/gateway';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
-import { armTopics, holderTopic, SYSTEM_CLOCK } from '@armtwin/protocol';
+import { armTopics, SYSTEM_CLOCK } from '@armtwin/protocol';
+import { profileAnnouncement } from '@armtwin/robot';
 import { Ros2Bridge } from '../bridge-process.ts';
 import type { JointStateMsg } from '../wire.ts';
 import { DEFAULT_ROS2_GATEWAY_OPTIONS, Ros2GatewayCore } from './ros2-gateway-core.ts';
@@ -56,6 +58,8 @@ export interface Ros2Gateway {
   core: Ros2GatewayCore;
   client: MqttClient;
   bridge: Ros2Bridge;
+  /** Resolves with the reason if the rclpy process ends before `stop()` (the arm is then offline). */
+  lost: Promise<string>;
   stop(): Promise<void>;
 }
 
@@ -119,7 +123,7 @@ export async function startRos2Gateway(
   // No await from the client's creation to its wiring: its first connect must not be missed.
   const control = wireGatewayMqtt(client, o, core);
   core.fromJointState(firstState);
-  const announcement = JSON.stringify({ name: profile.name, title: profile.title, profile: raw });
+  const announcement = profileAnnouncement(profile.name, profile.title, raw);
   client.on('connect', () =>
     client.publish(topics.profile, announcement, { qos: 1, retain: true }),
   );
@@ -146,21 +150,20 @@ export async function startRos2Gateway(
     },
     'ROS 2 gateway running',
   );
+  let stopping = false;
   return {
     core,
     client,
     bridge,
+    lost: bridge.exited.then((code) =>
+      stopping ? '' : `the ROS 2 bridge process exited (${code})`,
+    ),
     async stop() {
+      stopping = true;
       motion.stop();
       core.stop();
       control.reset();
-      if (client.connected) {
-        await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
-        await client
-          .publishAsync(holderTopic(o.armId), '', { qos: 1, retain: true })
-          .catch(() => {});
-      }
-      await client.endAsync().catch(() => {});
+      await leaveGatewayMqtt(client, o.armId);
       await bridge.close();
       log?.info({ counters: core.counters, bridge: bridge.errors }, 'gateway stopped');
     },

@@ -24,7 +24,7 @@ import {
   type CalibrationResult,
   type Profile,
   type ProfileServo,
-} from '@armtwin/ik';
+} from '@armtwin/robot';
 import { encodeAngleMove, encodeGroup, MOVE_MS_MAX } from '@armtwin/protocol';
 import type { GhostSource } from '../store/viewSources.ts';
 import type { ArmStore } from '../store/ArmStore.ts';

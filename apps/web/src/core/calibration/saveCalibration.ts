@@ -4,7 +4,7 @@
  * writes the robot's profile.json (keeping a backup); the bus gateway running it takes the new
  * calibration at once and announces it, and the twin follows the announcement.
  */
-import type { ServoCalibrationFields } from '@armtwin/ik';
+import type { ServoCalibrationFields } from '@armtwin/robot';
 import type { HudSettings } from '../config/settings.ts';
 import { putRobotFile } from '../robots/putRobotFile.ts';
 

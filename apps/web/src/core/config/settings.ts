@@ -4,7 +4,8 @@
  * `?broker=ws://127.0.0.1:9001&arm=arm1&alpha=1.5`; the Connection panel saves the rest in
  * localStorage (never the password). Pure apart from `loadSettings`/`saveSettings`.
  */
-import { DEMO_ARM_ID, isValidArmId, parseBrokerList } from '@armtwin/protocol';
+import { DEMO_ARM_ID, isValidArmId } from '@armtwin/protocol';
+import { parseBrokerList } from '@armtwin/link';
 import { isTwinMode, type TwinMode } from '../store/TwinPredictor.ts';
 
 export interface HudSettings {

@@ -3,7 +3,7 @@
  * Status panel, and whether a (re)connect is a move to another broker (a failover, or the move
  * back to the first). Pure: fed the client's `brokers.choice` at every connect.
  */
-import { describeBroker, type BrokerChoice } from '@armtwin/protocol';
+import { describeBroker, type BrokerChoice } from '@armtwin/link';
 
 export class BrokerTracker {
   /** "Broker 2 of 2: ws://…" while connected with a list of several brokers, '' with one. */

@@ -2,7 +2,7 @@
  * The part of mqtt.js's MqttClient the page's links use, and the factory that makes one. The
  * page hands in mqtt.js (src/ui/app/createHud.ts); a unit test hands in a fake.
  */
-import type { BrokerChoice } from '@armtwin/protocol';
+import type { BrokerChoice } from '@armtwin/link';
 import type { ConnectOptions } from './connectOptions.ts';
 
 export interface MqttLike {

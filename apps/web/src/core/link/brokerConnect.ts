@@ -7,7 +7,7 @@
  */
 import mqtt, { type IClientOptions } from 'mqtt';
 import { connectBrokers } from '@armtwin/link';
-import { parseBrokerList } from '@armtwin/protocol';
+import { parseBrokerList } from '@armtwin/link';
 import type { ConnectOptions } from './connectOptions.ts';
 import type { MqttLike } from './MqttLike.ts';
 

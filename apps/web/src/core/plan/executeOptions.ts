@@ -5,7 +5,7 @@
  * (`DEFAULT_EXECUTE_OPTIONS`: 5°, 20 mm) plus that allowance, from the plan's fastest servo.
  * Pure.
  */
-import { servoFromPwm } from '@armtwin/ik';
+import { servoFromPwm } from '@armtwin/robot';
 import {
   DEFAULT_EXECUTE_OPTIONS,
   type ExecuteOptions,

@@ -6,7 +6,7 @@
  * 3D model and the replay, posed through its joint map), and the planner's robot is built (a
  * numeric profile needs its URDF's chain). Plain object; `onChange` tells the page to re-render.
  */
-import { chainFromUrdf, type Profile } from '@armtwin/ik';
+import { chainFromUrdf, type Profile } from '@armtwin/robot';
 import { createMotionRobot, type MotionRobot } from '@armtwin/motion';
 import type { ArmStore } from '../store/ArmStore.ts';
 import { DEFAULT_PROFILE, PROFILE_WAIT_MS } from './defaultProfile.ts';

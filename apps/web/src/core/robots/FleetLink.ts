@@ -13,7 +13,7 @@ import {
   parseTopic,
   unhandled,
 } from '@armtwin/protocol';
-import type { Profile } from '@armtwin/ik';
+import { parseAnnouncement, type Profile } from '@armtwin/robot';
 import type { MotionRequest } from '@armtwin/motion';
 import { connectOptions, type ConnectOptions } from '../link/connectOptions.ts';
 import type { MqttLike } from '../link/MqttLike.ts';
@@ -24,7 +24,6 @@ import {
   type FirstErrors,
 } from '../store/readerErrors.ts';
 import type { HudSettings } from '../config/settings.ts';
-import { parseAnnouncement } from './announcement.ts';
 import {
   EMPTY_FLEET,
   reduceFleet,

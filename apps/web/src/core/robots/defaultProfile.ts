@@ -3,7 +3,7 @@
  * `armtwin gateway`): armtwin5, the 5-axis arm of PROTOCOL.md §4. Bundled (not fetched), so the
  * store and the panels have a servo list from the first render.
  */
-import { parseProfile, type Profile } from '@armtwin/ik';
+import { parseProfile, type Profile } from '@armtwin/robot';
 import armtwin5 from '../../../../../public/models/armtwin5/profile.json';
 
 export const DEFAULT_PROFILE_NAME = 'armtwin5';

@@ -10,15 +10,15 @@
  *   (radians, or metres for a prismatic axis): `value = scale·angle + bias`.
  * - `sliders`: the jog sliders, in joint units (degrees, or millimetres for a prismatic axis).
  */
+import { type ArmProfile } from '@armtwin/ik';
 import {
   jointFromPwm,
   pwmFromServo,
   servoFromPwm,
   servoModelArm,
-  type ArmProfile,
   type Profile,
   type ProfileServo,
-} from '@armtwin/ik';
+} from '@armtwin/robot';
 import { PWM_CENTRE, PWM_MAX, PWM_MIN, SERVO_RANGE_DEG } from '@armtwin/protocol';
 
 const US_PER_DEG = (PWM_MAX - PWM_MIN) / SERVO_RANGE_DEG;

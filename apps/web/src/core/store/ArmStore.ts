@@ -13,7 +13,7 @@ import { PWM_CENTRE, US_PER_DEG, angleFromPwm, type Reader } from '@armtwin/prot
 import type { ArmProfile } from '@armtwin/ik';
 import { HealthHistory } from './HealthHistory.ts';
 import { HealthRow } from './HealthRow.ts';
-import { DEFAULT_THERMAL_PARAMS, ThermalWatch } from '@armtwin/protocol';
+import { DEFAULT_THERMAL_PARAMS, ThermalWatch } from '@armtwin/thermal';
 import { PoseTweens } from './PoseTweens.ts';
 import { TwinPredictor, type TwinMode } from './TwinPredictor.ts';
 import { TrackingErrors } from './trackingError.ts';

@@ -4,7 +4,7 @@
  * the thermal model's predicted temperatures once the report is read. Allocates nothing after
  * construction.
  */
-import type { ThermalWatch } from '@armtwin/protocol';
+import type { ThermalWatch } from '@armtwin/thermal';
 import type { HealthHistory } from './HealthHistory.ts';
 
 export class HealthRow {

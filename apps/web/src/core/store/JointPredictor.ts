@@ -189,7 +189,11 @@ export class JointPredictor {
       p = a0 + this.reportVelocity() * (until - this.s0);
     }
     const target = this.target;
-    if (!Number.isNaN(target) && (target - a0) * (p - target) > 0) p = target;
+    // Past the target on the far side from the newest report, or from where the command found
+    // the joint when that report is on the target itself (reports and targets are whole pulses,
+    // so an arriving joint often is exactly there).
+    const side = a0 !== target ? target - a0 : target - this.from;
+    if (!Number.isNaN(target) && side * (p - target) > 0) p = target;
     return Math.min(this.maxDeg, Math.max(this.minDeg, p));
   }
 

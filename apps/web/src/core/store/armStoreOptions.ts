@@ -1,6 +1,6 @@
 /** The ArmStore's settings and defaults (./ArmStore.ts), its connection states and counters. */
 import { DEMO_ARM, type ArmProfile } from '@armtwin/ik';
-import type { ThermalWatchOptions } from '@armtwin/protocol';
+import type { ThermalWatchOptions } from '@armtwin/thermal';
 import type { TwinMode, TwinPredictorOptions } from './TwinPredictor.ts';
 import { emptyDropCounters, type DropCounters } from './readerErrors.ts';
 

@@ -8,8 +8,8 @@ import {
   voltageLevel,
   worstLevel,
   type HealthLevel,
-  type ThermalState,
 } from '@armtwin/protocol';
+import { type ThermalState } from '@armtwin/thermal';
 
 export interface ServoHealth {
   temperatureLevel: HealthLevel | 'unknown';

@@ -5,7 +5,7 @@
  */
 import type { ThermalModelAnswer } from '@armtwin/api';
 import type { ServoSpec } from '@armtwin/ik';
-import { DEFAULT_THERMAL_PARAMS, type ThermalWatch } from '@armtwin/protocol';
+import { DEFAULT_THERMAL_PARAMS, type ThermalWatch } from '@armtwin/thermal';
 
 /**
  * The history the HUD fits its models from (the middleware's range syntax) and its name: long

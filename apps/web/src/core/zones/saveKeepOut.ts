@@ -5,7 +5,7 @@
  * profile.json; the simulator and the bus gateway take them from the file at once and announce
  * the profile again, and this page draws and checks them from that announcement.
  */
-import type { ProfileKeepOut } from '@armtwin/ik';
+import type { ProfileKeepOut } from '@armtwin/robot';
 import type { HudSettings } from '../config/settings.ts';
 import { putRobotFile } from '../robots/putRobotFile.ts';
 

@@ -4,7 +4,7 @@
  * rest (min below max, a non-zero normal, a unique name) is the profile parser's to say, on
  * the server, by zone and field.
  */
-import type { Zone, ZoneShape } from '@armtwin/ik';
+import type { Zone, ZoneShape } from '@armtwin/robot';
 
 /** The number fields of each shape, in the order the form shows them. */
 export const SHAPE_FIELDS: Record<ZoneShape, readonly string[]> = {

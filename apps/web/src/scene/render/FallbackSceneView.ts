@@ -10,7 +10,7 @@
  * by the worker view (console), as before. Every other member forwards to the current view.
  */
 import type * as THREE from 'three';
-import type { ProfileKeepOut } from '@armtwin/ik';
+import type { ProfileKeepOut } from '@armtwin/robot';
 import type { JointMap } from '../../core/robots/robotSpec.ts';
 import type { GhostSource } from '../sceneHooks.ts';
 import type { DrawnRobot, RenderThread, SceneView } from '../SceneView.ts';

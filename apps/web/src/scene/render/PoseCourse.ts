@@ -100,15 +100,16 @@ interface AheadSource {
 
 /**
  * The course to send with a sample taken for page time `now`: its instant on the epoch clock
- * (`timeOrigin` is the page's `performance.timeOrigin`) and the poses after it.
+ * (`timeOrigin` is the page's `performance.timeOrigin`) and the poses after it (written into
+ * `poses` when given: `steps × count` long).
  */
 export function courseAfter(
   p: AheadSource,
   now: number,
   timeOrigin: number,
   o: PoseCourseOptions = DEFAULT_POSE_COURSE_OPTIONS,
+  poses: Float64Array = new Float64Array(o.steps * p.count),
 ): PoseCourseInput {
-  const poses = new Float64Array(o.steps * p.count);
   p.poseAhead(now, o.stepMs, o.steps, poses);
   return { at: timeOrigin + now, stepMs: o.stepMs, poses };
 }

@@ -13,7 +13,7 @@
  */
 import * as THREE from 'three';
 import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import type { ProfileKeepOut } from '@armtwin/ik';
+import type { ProfileKeepOut } from '@armtwin/robot';
 import type { ArmStore } from '../../core/store/ArmStore.ts';
 import type { TargetPreview } from '../../core/store/TargetPreview.ts';
 import type { SiblingSource } from '../ReplaySibling.ts';
@@ -284,7 +284,9 @@ export class SceneClient implements SceneView {
     // Picking and waypoint raycasts read world matrices, which no render updates on this side.
     this.scene.updateMatrixWorld();
     this.camera.updateMatrixWorld();
-    if (any) this.send(m);
+    if (!any) return;
+    this.send(m);
+    this.changes.posted(m);
   }
 
   private onMessage(m: FromWorker): void {

@@ -4,7 +4,8 @@
  * orbit camera and picking; the runtime draws. Everything here is
  * structured-clone data: plain numbers, strings, arrays and typed arrays, no three.js objects.
  */
-import type { ArmProfile, ProfileKeepOut } from '@armtwin/ik';
+import type { ArmProfile } from '@armtwin/ik';
+import type { ProfileKeepOut } from '@armtwin/robot';
 import type { PoseCourseInput } from './PoseCourse.ts';
 import type { JointMap } from '../../core/robots/robotSpec.ts';
 import type { MeshFailure } from '../loadRobot.ts';

@@ -6,7 +6,7 @@
  * is open. An operator's right; the emergency stop stays where it is and wins over any jog.
  */
 import { useEffect, useState } from 'react';
-import type { ServoCalibrationFields } from '@armtwin/ik';
+import type { ServoCalibrationFields } from '@armtwin/robot';
 import { useHud } from '../../hud/HudContext.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { TorqueControl } from '../Torque/TorqueControl.tsx';

@@ -1,5 +1,5 @@
 /** The wizard's result for one servo beside the profile's values in force, and Save. */
-import type { CalibrationResult, ProfileServo, ServoCalibrationFields } from '@armtwin/ik';
+import type { CalibrationResult, ProfileServo, ServoCalibrationFields } from '@armtwin/robot';
 
 interface Props {
   servo: ProfileServo;

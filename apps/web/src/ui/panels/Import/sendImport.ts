@@ -3,7 +3,7 @@
  * right, answered by packages/http-api/src/robots/import.ts) with the page's log-in. Too big is refused
  * here at once, before anything is sent.
  */
-import { MAX_IMPORT_BYTES } from '@armtwin/ik';
+import { MAX_IMPORT_BYTES } from '@armtwin/robot';
 import { authHeaders } from '../../../core/auth/whoami.ts';
 import type { HudSettings } from '../../../core/config/settings.ts';
 

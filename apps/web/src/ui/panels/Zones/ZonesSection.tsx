@@ -7,7 +7,7 @@
  * checks them from that announcement: one source of truth (docs/protocol.md, "Keep-out zones").
  */
 import { useState } from 'react';
-import { ZONE_SHAPES, type Zone, type ZoneShape } from '@armtwin/ik';
+import { ZONE_SHAPES, type Zone, type ZoneShape } from '@armtwin/robot';
 import { useHud } from '../../hud/HudContext.ts';
 import { saveKeepOut } from '../../../core/zones/saveKeepOut.ts';
 import { describeZone, SHAPE_FIELDS, zoneFromFields } from '../../../core/zones/zoneFields.ts';
