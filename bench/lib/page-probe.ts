@@ -101,11 +101,12 @@ export function installProbe(maxFrames: number): boolean {
       }
     };
   }
-  // A frame drawn by the render worker: its hook runs when the page hears of it (later, and the
-  // page may have sampled a newer pose since), with the worker's draw time and the joint values
-  // it drew; those are the frame's instant and angles (URDF value = scale·angle + bias).
+  // A frame drawn by the scene runtime (in the render worker or on this thread): its hook runs
+  // when the page hears of it (later, and the page may have sampled a newer pose since), with
+  // the runtime's draw time and the joint values it drew, as its report says; those are the
+  // frame's instant and angles (URDF value = scale·angle + bias).
   const map = hook.robots?.active?.spec?.joints;
-  const fromWorker = viewer.thread === 'worker' && !!map && !!viewer.jointValues;
+  const fromWorker = !!map && !!viewer.jointValues;
   const record = (now?: number) => {
     if (!on || k >= maxFrames) return;
     wall[k] = fromWorker && now !== undefined ? performance.timeOrigin + now : epoch();

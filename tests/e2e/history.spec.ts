@@ -39,7 +39,7 @@ interface HistoryHook {
       record: object | null;
       clock: { position: number; playing: boolean };
     };
-    viewer: { scene: { getObjectByName(n: string): unknown } };
+    viewer: { drawnWorld: { getObjectByName(n: string): unknown } };
   };
 }
 
@@ -56,7 +56,7 @@ const replayAngle = (page: Page, i: number) =>
 const siblingJointDeg = (page: Page, joint: string) =>
   page.evaluate((j) => {
     const hook = (window as unknown as HistoryHook).__armtwin!;
-    const robot = hook.viewer.scene.getObjectByName('replay sibling') as
+    const robot = hook.viewer.drawnWorld.getObjectByName('replay sibling') as
       { visible: boolean; joints: Record<string, { angle: number }> } | undefined;
     return robot?.visible ? (robot.joints[j]!.angle * 180) / Math.PI : null;
   }, joint);

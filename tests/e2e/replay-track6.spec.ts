@@ -35,14 +35,14 @@ interface Track6Hook {
     joints(which?: 'robot' | 'ghost' | 'sibling'): number[];
     robots: { active: { spec: { name: string }; source: string } };
     replay: { record: object | null };
-    viewer: { scene: { getObjectByName(n: string): unknown } };
+    viewer: { drawnWorld: { getObjectByName(n: string): unknown } };
   };
 }
 
 /** The sibling's URDF joint values by joint name (null while hidden), and where it stands. */
 const sibling = (page: Page, names: string[]) =>
   page.evaluate((ns) => {
-    const robot = (window as unknown as Track6Hook).__armtwin!.viewer.scene.getObjectByName(
+    const robot = (window as unknown as Track6Hook).__armtwin!.viewer.drawnWorld.getObjectByName(
       'replay sibling',
     ) as
       | {

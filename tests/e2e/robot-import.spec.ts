@@ -31,7 +31,7 @@ interface ImportWindow {
     robots: { active: { spec: { name: string } } };
     viewer: {
       meshFailures: readonly { url: string; message: string }[];
-      world: { traverse(fn: (o: { isMesh?: boolean }) => void): void };
+      drawnWorld: { traverse(fn: (o: { isMesh?: boolean }) => void): void };
       liveRobot: {
         updateMatrixWorld(force: boolean): void;
         traverse(fn: (o: Object3DLike) => void): void;
@@ -138,7 +138,7 @@ for (const r of ROBOTS)
       page.evaluate(() => {
         const a = (window as unknown as ImportWindow).__armtwin!;
         let meshes = 0;
-        a.viewer.world.traverse((o) => {
+        a.viewer.drawnWorld.traverse((o) => {
           if (o.isMesh) meshes++;
         });
         return {

@@ -7,6 +7,7 @@ import { ArmStore } from '../src/core/store/ArmStore.ts';
 import { applyQuery, defaultSettings } from '../src/core/config/settings.ts';
 import { DEMO_ARM } from '@armtwin/ik';
 import { angleFromPwm } from '@armtwin/protocol';
+import { drawnLeadMs } from '../src/scene/render/SceneReports.ts';
 
 /** The controller's motion (packages/sim/src/servos.ts): linear to the target, speed-limited. */
 function simMove(from: number, to: number, durMs: number, vmaxDegPerMs: number) {
@@ -201,9 +202,7 @@ describe('ArmStore in predict mode', () => {
     expect(s.predictionLeadMs).toBeGreaterThan(0);
     // A renderer that draws later along the course (the worker) adds its own lead.
     const sampled = s.predictionLeadMs;
-    s.drawnAheadMs = 12;
-    expect(s.predictionLeadMs).toBeCloseTo(sampled + 12, 9);
-    s.drawnAheadMs = 0;
+    expect(drawnLeadMs(s, { aheadMs: 12 })).toBeCloseTo(sampled + 12, 9);
     s.noteControl('#255PDST!', 1031);
     s.ingest(`$TIM:${EPOCH + 40}!${state([1520, ...rest.slice(1)])}`, 1041);
     s.ingest(`$TIM:${EPOCH + 60}!${state([1520, ...rest.slice(1)])}`, 1061);

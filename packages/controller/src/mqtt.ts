@@ -6,6 +6,9 @@
  * `arm/{id}/status`, the holder record retained on `arm/{id}/holder`, events on
  * `arm/{id}/audit` (with the core's keep-out refusals, `auditKeepOut`).
  *
+ * `operatorDeadman` (./deadman.ts): the deadman on `arm/{id}/operator`, stopping a moving arm
+ * through the driver when the operator lets go or its lease runs out.
+ *
  * `startMotionService`: motion requests; subscribes
  * `arm/{id}/request` and `arm/{id}/request/+`, hands each request to `MotionRequests`, publishes
  * the feedback on `arm/{id}/feedback` (QoS 1, stamped `t`), and steps a running execution every
@@ -28,6 +31,8 @@ import { auditKeepOut } from './audit.ts';
 import type { ControllerCore } from './core.ts';
 import { CODE_INVALID, type MotionFeedback } from '@armtwin/motion';
 import type { MotionRequests } from './motion.ts';
+
+export { operatorDeadman } from './deadman.ts';
 
 /**
  * A `ControlArbiter` for arm `armId` on this client: `forward` hands a payload that may reach

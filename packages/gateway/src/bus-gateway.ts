@@ -18,6 +18,7 @@ import {
   type KeepOutCheck,
   type KmsSolver,
 } from '@armtwin/controller';
+import { operatorDeadman } from '@armtwin/controller/mqtt';
 import type { MotionRobot } from '@armtwin/motion';
 import {
   armTopics,
@@ -117,15 +118,16 @@ export class BusGatewayCore {
       { kms: this.o.kms, keepOut: this.o.keepOut },
     );
     this.input = new ControlInput(this.controller, { onFirst: io.onFirst }, io.now());
-    this.operator = new OperatorWatch(
+    this.operator = operatorDeadman(
       io,
-      (reason) => {
+      () => {
         const out: string[] = [];
-        if (!this.controller.operatorLeft(io.now(), out)) return;
+        if (!this.controller.operatorLeft(io.now(), out)) return false;
         this.counters.deadmanStops++;
         this.status(out);
-        if (reason === 'lapsed') io.onFirst('deadman:lapsed', 'operator stopped beating: holding');
+        return true;
       },
+      io.onFirst,
       this.o.operatorLeaseMs,
     );
   }

@@ -24,7 +24,7 @@ import {
   type Clock,
 } from '@armtwin/protocol';
 import { MotionRequests, type ControlArbiter } from '@armtwin/controller';
-import { mqttArbiter, startMotionService } from '@armtwin/controller/mqtt';
+import { mqttArbiter, operatorDeadman, startMotionService } from '@armtwin/controller/mqtt';
 import { parseFaults } from './faults.ts';
 import type { SimProfile } from './profile.ts';
 import { SimRunner, type PayloadKind, type SimRunnerOptions } from './runner.ts';
@@ -97,17 +97,10 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
     options,
   );
 
-  const operator = new OperatorWatch(
+  const operator = operatorDeadman(
     clock,
-    (reason) => {
-      if (!runner.operatorLeft()) return;
-      onFirst(
-        `deadman:${reason}`,
-        reason === 'lapsed'
-          ? 'operator stopped beating while the arm moved: every servo stopped'
-          : 'operator gone while the arm moved: every servo stopped',
-      );
-    },
+    () => runner.operatorLeft(),
+    onFirst,
     options.operatorLeaseMs ?? OPERATOR_LEASE_MS,
   );
 

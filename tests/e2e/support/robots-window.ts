@@ -9,7 +9,6 @@ import type { Page } from '@playwright/test';
 export interface RobotsWindow {
   __armtwin?: {
     joints(which?: 'robot' | 'ghost'): number[];
-    target: { ghostShows: string };
     robots: {
       active: { spec: { name: string }; motion: unknown; source: string };
       runner: { state: string; replans: number; pauses: number; sent: number };

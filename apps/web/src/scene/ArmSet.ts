@@ -1,8 +1,7 @@
 /**
  * The arms drawn from one robot's URDF: the live arm with its tracking paint, the ghost and,
  * when a replay is given, the replay's sibling, all posed through the robot's joint map. Built
- * and swapped the same way by the page's Viewer (./Viewer.ts) and the render worker's scene
- * (./render/WorkerScene.ts).
+ * and swapped by the scene runtime (./render/SceneRuntime.ts).
  */
 import type * as THREE from 'three';
 import type { JointMap } from '../core/robots/robotSpec.ts';

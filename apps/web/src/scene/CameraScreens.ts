@@ -4,10 +4,11 @@
  * camera's picture as a texture; and "view through this camera": the 3D view takes the
  * camera's pose (its calibration, else its announcement) and vertical field of view, the live
  * picture fills the view behind everything, opaque, with the camera's own aspect, the floor and
- * grid step aside, and the twin is drawn translucent over the picture (./TranslucentTwin.ts),
+ * grid step aside, and the twin is drawn translucent over the picture (the scene runtime does
+ * that when it is told a camera is looked through: ./render/SceneRuntime.ts, ./TranslucentTwin.ts),
  * so a twin that does not match the arm is seen at a glance; the ghost and the other overlays
  * draw as ever. Leaving puts everything back as it was. While calibrating by eye the view
- * follows a draft placement (`preview`). Plain object on the Viewer's one frame loop; it tells
+ * follows a draft placement (`preview`). Plain object on the 3D view's one frame loop; it tells
  * the decoders which cameras are shown (screens in view, the one looked through); textures are
  * uploaded only when the player drew a new frame, at most `TEXTURE_HZ` times a second.
  */
@@ -15,7 +16,6 @@ import * as THREE from 'three';
 import type { CameraPose } from '@armtwin/camera/client';
 import { placementOf, type ArmCamera, type CameraPlacement } from '../core/cameras/CameraHub.ts';
 import type { CameraDecoders } from '../core/cameras/CameraDecoders.ts';
-import { TranslucentTwin } from './TranslucentTwin.ts';
 import { twinPoints, type TwinPoint } from './twinPoints.ts';
 import type { SceneView } from './SceneView.ts';
 
@@ -54,7 +54,8 @@ export class CameraScreens {
   private draft: CameraPlacement | null = null;
   /** The live picture behind everything while viewing through. */
   private backdrop: THREE.Mesh<THREE.PlaneGeometry, THREE.MeshBasicMaterial> | null = null;
-  private readonly twin = new TranslucentTwin();
+  /** The live arm the view was last placed for (a new model frames the orbit camera anew). */
+  private followed: object | null = null;
   /** Scene objects hidden while viewing through (floor, grid, …), to show again on leaving. */
   private hidden: THREE.Object3D[] = [];
   private saved: { position: THREE.Vector3; target: THREE.Vector3; fov: number } | null = null;
@@ -187,13 +188,13 @@ export class CameraScreens {
   }
 
   /**
-   * Keeps the twin translucent, and the view at the camera, when another model loads while
-   * viewing through (loading frames the orbit camera on the new model).
+   * Keeps the view at the camera when another model loads while viewing through (loading frames
+   * the orbit camera on the new model).
    */
   private followViewed(): boolean {
     const robot = this.viewer.liveRobot;
-    if (!robot || robot === this.twin.root) return false;
-    this.twin.apply(robot);
+    if (!robot || robot === this.followed) return false;
+    this.followed = robot;
     this.applyPlacement();
     return true;
   }
@@ -232,8 +233,7 @@ export class CameraScreens {
     backdrop.name = `camera-backdrop-${camId}`;
     scene.add(backdrop);
     this.backdrop = backdrop;
-    const robot = this.viewer.liveRobot;
-    if (robot) this.twin.apply(robot);
+    this.followed = this.viewer.liveRobot;
     this.applyPlacement(placement);
   }
 
@@ -283,7 +283,7 @@ export class CameraScreens {
       this.backdrop.material.dispose();
       this.backdrop = null;
     }
-    this.twin.restore();
+    this.followed = null;
     for (const o of this.hidden) o.visible = true;
     this.hidden = [];
     const screen = this.screens.get(this.viewing);

@@ -1,6 +1,6 @@
 /**
- * When the 3D view's loop draws, and at what resolution, for the page's Viewer (./Viewer.ts)
- * and the render worker's scene (./render/WorkerScene.ts) alike: a frame when something moved
+ * When the 3D view's loop draws, and at what resolution, for the scene runtime
+ * (./render/SceneRuntime.ts), in the render worker or on the main thread: a frame when something moved
  * (or while warming up), the resolution lowered while such frames are slow (ResolutionGovernor),
  * and one full-resolution frame once things have rested a moment, so a lowered resolution only
  * ever shows while things move.

@@ -3,7 +3,7 @@
  * IK solution of the Cartesian target (refused by a keep-out zone: its offending link red), a
  * refused jog's pose (its offending link red), else the pose this HUD last commanded (store/ghostPose.ts),
  * hidden when that is where the live arm already is or when the Ghost panel turns it off. Posed
- * every frame by the Viewer's loop by mutation: the inputs to `ghostPose` are one object,
+ * every frame by the 3D view's loop by mutation: the inputs to `ghostPose` are one object,
  * refilled in place, and the angles one array; nothing is allocated per frame.
  */
 import * as THREE from 'three';
@@ -52,7 +52,7 @@ export interface GhostStore {
   readonly rendered: Float64Array;
   readonly commandedPwm: Float64Array;
 }
-/** What the ghost reads of the target preview (and writes: `ghostShows`). */
+/** What the ghost reads of the target preview. */
 export type GhostTarget = Pick<
   TargetPreview,
   | 'active'
@@ -60,7 +60,6 @@ export type GhostTarget = Pick<
   | 'angles'
   | 'hitJoint'
   | 'ghostEnabled'
-  | 'ghostShows'
   | 'refused'
   | 'refusedAngles'
   | 'refusedJoint'
@@ -69,6 +68,8 @@ export type GhostTarget = Pick<
 export class Ghost {
   /** The URDF joint whose child link is painted red now ('' = none). */
   painted = '';
+  /** What the ghost shows now (the runtime reports it; the Ghost panel's legend says it). */
+  shows: 'nothing' | 'preview' | 'commanded' | 'plan' | 'refused' = 'nothing';
   private readonly saved = new Map<THREE.Mesh, THREE.Material | THREE.Material[]>();
   private readonly angles: Float64Array;
   /** `ghostPose`'s inputs, refilled each frame (the store's arrays are replaced on `configure`). */
@@ -116,7 +117,7 @@ export class Ghost {
         : source?.sample(now, this.angles)
           ? 'plan'
           : ghostPose(this.refill(), this.angles);
-    t.ghostShows = shows;
+    this.shows = shows;
     const robot = this.posed.robot;
     const visible = shows !== 'nothing';
     let changed = this.paint(

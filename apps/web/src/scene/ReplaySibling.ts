@@ -2,7 +2,7 @@
  * The replay's "sibling": a third, translucent amber copy of the active robot standing beside
  * the live one (`SIBLING_OFFSET_M`) that follows the record. It poses through the same joint map
  * as the live arm and the ghost (./PosedRobot.ts), so any robot's record replays. Driven
- * from the Viewer's one frame loop: `update(now)` asks the ReplayPlayer for the pose and sets
+ * from the 3D view's one frame loop: `update(now)` asks the ReplayPlayer for the pose and sets
  * the joints by mutation; it returns true when something must be redrawn. No allocation per
  * frame.
  */

@@ -1,7 +1,7 @@
 /**
- * What the page's other parts use of the 3D view, whichever draws it: the Viewer on the main
- * thread (./Viewer.ts) or the render worker through its page-side host
- * (./render/WorkerViewer.ts). The scene graph, camera, orbit controls and canvas here are the
+ * What the page's other parts use of the 3D view, wherever its runtime draws (the render worker
+ * or the main thread), through the page side of the runtime (./render/SceneClient.ts), or the
+ * view that falls back from one to the other (./render/FallbackSceneView.ts). The scene graph, camera, orbit controls and canvas here are the
  * page's: picking and dragging (FloorPicker, the Plan panel's WaypointEditor) raycast them.
  */
 import type * as THREE from 'three';
@@ -12,6 +12,7 @@ import type { JointMap } from '../core/robots/robotSpec.ts';
 import type { GhostSource } from './sceneHooks.ts';
 import type { MeshFailure } from './loadRobot.ts';
 import type { RenderThread } from '../core/config/renderThread.ts';
+import type { ReadonlySceneReports } from './render/SceneReports.ts';
 
 /** Which of the drawn robots: the live arm, the ghost, the replay's sibling. */
 export type DrawnRobot = 'robot' | 'ghost' | 'sibling';
@@ -35,6 +36,8 @@ export interface SceneView {
   readonly frameCostMs: number;
   readonly software: boolean;
   readonly renderedFrames: number;
+  /** What the runtime said of its last drawn frame (read-only: nothing feeds it to the store). */
+  readonly reports: ReadonlySceneReports;
   ghostSource: GhostSource | null;
   /** Called every frame; a hook returning true asks for a render. */
   readonly frameHooks: Set<(now: number) => boolean>;

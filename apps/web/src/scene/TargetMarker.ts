@@ -1,7 +1,7 @@
 /**
  * The Cartesian target in 3D: the stage's marker (a sphere and a stem to the floor) follows the
  * TargetPreview, green when the local IK reaches it, red when not. Checked every frame by the
- * Viewer's loop; the marker changes only when the target does.
+ * 3D view's loop; the marker changes only when the target does.
  */
 import type { TargetPreview } from '../core/store/TargetPreview.ts';
 import type { Stage } from './stage.ts';

@@ -3,7 +3,7 @@
  * arm's z-up world. Dragging a sphere moves it over the horizontal plane at its height (with
  * Shift held, up and down instead); with "place" on, a click on the floor adds a waypoint.
  * Pointer-downs are taken in the capture phase on the view's container, so the orbit camera and
- * the floor-click target never see a drag that grabbed a sphere (nor, while placing, any click). Runs from the Viewer's one
+ * the floor-click target never see a drag that grabbed a sphere (nor, while placing, any click). Runs from the 3D view's one
  * frame loop (`update`): the meshes change only when the waypoints' version does.
  */
 import * as THREE from 'three';

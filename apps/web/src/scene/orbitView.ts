@@ -1,6 +1,6 @@
 /**
- * The 3D view's camera and orbit controls as they start, the same on the page's Viewer, the
- * render worker's page-side host and the worker's stand-in controls: where the camera stands,
+ * The 3D view's camera and orbit controls as they start, the same on the page side
+ * (./render/SceneClient.ts) and in the scene runtime's stand-in controls: where the camera stands,
  * what it orbits, how far it may go (frameCamera, ../robots/sceneHooks.ts, scales these to a
  * robot larger than the default view shows).
  */

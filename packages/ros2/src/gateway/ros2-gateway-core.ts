@@ -20,6 +20,7 @@ import {
   type KeepOutCheck,
   type KmsSolver,
 } from '@armtwin/controller';
+import { operatorDeadman } from '@armtwin/controller/mqtt';
 import { servoFromJoint, type Profile } from '@armtwin/robot';
 import { exactPwmFromServo, type MotionRobot } from '@armtwin/motion';
 import {
@@ -102,14 +103,16 @@ export class Ros2GatewayCore implements Ros2DriverTarget {
       { kms: this.o.kms, keepOut: this.o.keepOut },
     );
     this.input = new ControlInput(this.controller, { onFirst: io.onFirst }, io.now());
-    this.operator = new OperatorWatch(
+    this.operator = operatorDeadman(
       io,
       () => {
         const out: string[] = [];
-        if (!this.controller.operatorLeft(io.now(), out)) return;
+        if (!this.controller.operatorLeft(io.now(), out)) return false;
         this.counters.deadmanStops++;
         this.status(out);
+        return true;
       },
+      io.onFirst,
       this.o.operatorLeaseMs,
     );
   }

@@ -1,7 +1,7 @@
 /**
  * Where the 3D view is drawn (`?render=`): `worker` draws it in a Web Worker through an
  * OffscreenCanvas (scene/render/), so WebGL never holds up the page's main thread; `main`
- * draws it on the page's thread (scene/Viewer.ts). A browser without
+ * draws it on the page's thread (scene/render/inThreadScene.ts). A browser without
  * `HTMLCanvasElement.transferControlToOffscreen` (or without module workers) always gets `main`.
  * With software WebGL the worker paces its frames (scene/FramePacer.ts `SOFTWARE_PACING`), so
  * drawing on the CPU never takes the machine's cores from the stop, MQTT and the rest;

@@ -1,6 +1,6 @@
 /**
  * The ghost's plan preview: the ghost runs along `plan.samples` again and again (a pause at the
- * end), drawn by the Viewer's one frame loop (`sample` fills the store's degrees; no allocation).
+ * end), drawn by the 3D view's one frame loop (`sample` fills the store's degrees; no allocation).
  */
 import { samplePlan, type Plan } from '@armtwin/motion';
 import { angleFromPwm } from '@armtwin/protocol';

@@ -89,11 +89,6 @@ export class ArmStore {
   kmsReply: number | null = null;
   kmsReplies = 0;
   lastControllerError = '';
-  /**
-   * How much later than the page samples the 3D view's frame shows its pose, ms: the render
-   * worker draws along the predicted course (scene/render/PoseCourse.ts); 0 on the page's thread.
-   */
-  drawnAheadMs = 0;
   /** First message per reader error kind, for the Status panel. */
   readonly firstError: FirstErrors = {};
 
@@ -270,15 +265,11 @@ export class ArmStore {
 
   /**
    * How far the predicted pose is ahead of the newest report, ms (0 when not predicting): the
-   * sample's lead, and the renderer's own where it draws later along the course (`drawnAheadMs`).
+   * sample's lead (the renderer's own, where it draws later along the course, is in its reports:
+   * scene/render/SceneReports.ts).
    */
   get predictionLeadMs(): number {
-    return this.predicting ? this.predictor.leadMs + this.drawnAheadMs : 0;
-  }
-
-  /** The frame drawn from the last `sample` is done at `now` (the predictor learns the lag). */
-  frameShown(now: number): void {
-    this.predictor.shown(now);
+    return this.predicting ? this.predictor.leadMs : 0;
   }
 
   setTwinMode(mode: TwinMode): void {

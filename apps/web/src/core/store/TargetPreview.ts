@@ -25,8 +25,6 @@ export class TargetPreview {
   hitMessage = '';
   /** Whether the ghost is drawn at all (the Ghost panel's switch). */
   ghostEnabled = true;
-  /** What the ghost shows this frame; written by the 3D view, read by the Ghost panel. */
-  ghostShows: 'nothing' | 'preview' | 'commanded' | 'plan' | 'refused' = 'nothing';
   /**
    * A jog refused by a keep-out zone or self-collision: the pose it would have reached (servo
    * angles, degrees) and the URDF joint whose child link the ghost paints red. Shown until the

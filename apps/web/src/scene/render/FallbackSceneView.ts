@@ -109,6 +109,9 @@ export class FallbackSceneView implements SceneView {
   get renderedFrames(): number {
     return this.current.renderedFrames;
   }
+  get reports(): SceneView['reports'] {
+    return this.current.reports;
+  }
   /** The bench's probe wraps `renderer.render` (the WebGL renderer, or the worker view's stand-in). */
   get renderer(): unknown {
     return (this.current as unknown as { renderer?: unknown }).renderer;

@@ -1,5 +1,5 @@
 /**
- * What the page's state says that the render worker has not been sent yet (./WorkerViewer.ts):
+ * What the page's state says that the render worker has not been sent yet (./SceneClient.ts):
  * the store's drawn angles (with the predicted course after them), arm profile, commanded pulses
  * and tracking paint, the target, the plan preview and the replay sibling's pose, each copied
  * into the frame's `FrameInput` when it differs from what the worker was last posted

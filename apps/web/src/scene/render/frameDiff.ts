@@ -1,6 +1,6 @@
 /**
  * Whether what the page sends the render worker changed since it was last sent
- * (./WorkerViewer.ts): pure comparisons, no allocation. NaN equals NaN here (an unset servo
+ * (./SceneClient.ts): pure comparisons, no allocation. NaN equals NaN here (an unset servo
  * that stays unset is no change).
  */
 import type { TargetState } from './messages.ts';

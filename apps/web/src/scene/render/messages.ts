@@ -1,6 +1,7 @@
 /**
- * The messages between the page and the render worker (./renderWorker.ts). The page keeps MQTT,
- * the store, the panels, the orbit camera and picking; the worker draws. Everything here is
+ * The messages between the page (./SceneClient.ts) and the scene runtime's host (./sceneHost.ts),
+ * in the render worker or on the main thread. The page keeps MQTT, the store, the panels, the
+ * orbit camera and picking; the runtime draws. Everything here is
  * structured-clone data: plain numbers, strings, arrays and typed arrays, no three.js objects.
  */
 import type { ArmProfile } from '@armtwin/ik';
@@ -69,7 +70,8 @@ export interface FrameInput {
 export type ToWorker =
   | {
       type: 'init';
-      canvas: OffscreenCanvas;
+      /** The worker's canvas (transferred); absent where the host was given the page's own. */
+      canvas?: OffscreenCanvas;
       width: number;
       height: number;
       dpr: number;

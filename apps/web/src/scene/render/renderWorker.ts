@@ -1,9 +1,13 @@
 /**
- * The render worker: draws the 3D view on the OffscreenCanvas the page hands over
- * (./WorkerHost.ts), so WebGL never runs on the page's main thread and the emergency stop,
- * MQTT and the panels never wait for a frame. Workers have no DOMParser, which urdf-loader and
- * three's ColladaLoader parse XML with: linkedom's (a small standards-following DOM, its
- * worker build) stands in, with its Document, Element and Node. Messages: ./messages.ts.
+ * The render worker: hosts the scene runtime (./sceneHost.ts, ./SceneRuntime.ts) on the
+ * OffscreenCanvas the page hands over (./SceneClient.ts), so WebGL never runs on the page's main
+ * thread and the emergency stop, MQTT and the panels never wait for a frame. Workers have no
+ * DOMParser, which urdf-loader and three's ColladaLoader parse XML with: linkedom's (a small
+ * standards-following DOM, its worker build) stands in, with its Document, Element and Node.
+ * With software WebGL the frames are paced to a budget (`SOFTWARE_PACING`) unless the page asked
+ * for every frame; no warm-up burst here: a slow frame in the worker holds up nothing on the
+ * page, so the first frames are drawn at full resolution and the governor lowers it only once
+ * things move. Messages: ./messages.ts.
  */
 import {
   DOMParser as LinkedomParser,
@@ -11,13 +15,10 @@ import {
   Element as LinkedomElement,
   Node as LinkedomNode,
 } from 'linkedom/worker';
-import type { FromWorker, ToWorker } from './messages.ts';
-import { WorkerScene } from './WorkerScene.ts';
-import { webglRenderer, isSoftwareRenderer } from '../webglInfo.ts';
+import { SOFTWARE_PACING } from '../FramePacer.ts';
+import { hostScene, type ScenePort } from './sceneHost.ts';
 
-const scope = self as unknown as {
-  postMessage(m: FromWorker): void;
-  onmessage: ((e: MessageEvent<ToWorker>) => void) | null;
+const scope = self as unknown as ScenePort & {
   DOMParser?: unknown;
   Document?: unknown;
   Element?: unknown;
@@ -29,56 +30,4 @@ scope.Document ??= LinkedomDocument;
 scope.Element ??= LinkedomElement;
 scope.Node ??= LinkedomNode;
 
-const post = (m: FromWorker): void => scope.postMessage(m);
-let scene: WorkerScene | null = null;
-
-scope.onmessage = (e) => {
-  const m = e.data;
-  try {
-    switch (m.type) {
-      case 'init': {
-        const renderer = webglRenderer(() => new OffscreenCanvas(1, 1));
-        const software = isSoftwareRenderer(renderer);
-        scene = new WorkerScene(m.canvas, software, m.dpr, post, software && m.pace);
-        scene.resize(m.width, m.height, m.dpr);
-        post({ type: 'ready', software, renderer });
-        break;
-      }
-      case 'resize':
-        scene?.resize(m.width, m.height, m.dpr, m.seq);
-        break;
-      case 'zones':
-        if (scene) post({ type: 'zones', names: scene.showZones(m.keepOut) });
-        break;
-      case 'frame':
-        scene?.take(m);
-        break;
-      case 'extras':
-        scene?.setExtras(m.objects, m.sceneObjects, m.hidden);
-        break;
-      case 'texture':
-        if (scene) scene.setTexture(m.uuid, m.bitmap);
-        else m.bitmap.close();
-        break;
-      case 'load': {
-        const s = scene;
-        if (!s) break;
-        s.load(m.urdfUrl, m.joints, m.sibling).then(
-          ({ failures, framed }) => {
-            post({ type: 'loaded', id: m.id, failures, framed });
-            s.start();
-          },
-          (err: unknown) =>
-            post({
-              type: 'loadFailed',
-              id: m.id,
-              message: err instanceof Error ? err.message : String(err),
-            }),
-        );
-        break;
-      }
-    }
-  } catch (err) {
-    post({ type: 'error', message: err instanceof Error ? err.message : String(err) });
-  }
-};
+hostScene(scope, { pacing: (software, pace) => (software && pace ? SOFTWARE_PACING : {}) });

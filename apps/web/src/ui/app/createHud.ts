@@ -17,8 +17,8 @@ import type { ConnectOptions } from '../../core/link/connectOptions.ts';
 import { brokerConnect } from '../../core/link/brokerConnect.ts';
 import { loadSettings, type HudSettings } from '../../core/config/settings.ts';
 import { armQueryProblem } from '../../core/config/queryProblems.ts';
-import { Viewer } from '../../scene/Viewer.ts';
-import { WorkerViewer } from '../../scene/render/WorkerViewer.ts';
+import { SceneClient } from '../../scene/render/SceneClient.ts';
+import { IN_THREAD_HOSTING } from '../../scene/render/inThreadScene.ts';
 import type { SceneView } from '../../scene/SceneView.ts';
 import { FallbackSceneView } from '../../scene/render/FallbackSceneView.ts';
 import {
@@ -102,12 +102,13 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
   // here; a worker that fails before its first frame hands over to the main thread.
   let rendering = chooseRenderThread(window.location.search, canRenderOffscreen());
   let built = false; // the fallback may come while the viewer is built, before `hud` is
-  const mainView = () => new Viewer(els.view, store, target, sibling);
+  const mainView = () =>
+    new SceneClient(els.view, store, target, sibling, false, IN_THREAD_HOSTING);
   const viewer: SceneView =
     rendering.thread === 'worker'
       ? new FallbackSceneView(
           {
-            worker: () => new WorkerViewer(els.view, store, target, sibling, rendering.pace),
+            worker: () => new SceneClient(els.view, store, target, sibling, rendering.pace),
             main: mainView,
           },
           (reason) => {

@@ -18,7 +18,7 @@ import { FallbackSceneView } from '../../scene/render/FallbackSceneView.ts';
 export interface DebugHook {
   store: ArmStore;
   target: TargetPreview;
-  /** The 3D view: the main-thread Viewer, or the render worker's page-side host. */
+  /** The 3D view: the page side of the scene runtime (in the render worker or on this thread). */
   readonly viewer: SceneView;
   readonly link: ArmLink;
   /** Set once the first robot model has loaded and the 3D view runs. */

@@ -26,7 +26,7 @@ import type { ModeSwitch } from '../../core/modes/ModeSwitch.ts';
 /** The Plan panel's plain objects. */
 export interface PlanTools {
   readonly waypoints: Waypoints;
-  /** What the ghost runs along (the Viewer's ghost source). */
+  /** What the ghost runs along (the 3D view's ghost source). */
   readonly preview: PlanPreview;
   /** Streams a plan to the arm with pose checking. */
   readonly runner: PlanRunner;
@@ -44,7 +44,7 @@ export interface Hud {
   /** The current MQTT link (replaced when the Connection panel reconnects). */
   link: ArmLink;
   settings: HudSettings;
-  /** The History panel's replay, drawn as the sibling arm by the Viewer. */
+  /** The History panel's replay, drawn as the sibling arm in the 3D view. */
   replay: ReplayPlayer;
   /** Log-in state and the role's permissions (src/auth). */
   session: Session;
@@ -69,7 +69,7 @@ export interface Hud {
   /** Where the 3D view is drawn (the page's thread or a worker), and why (Status panel). */
   rendering: RenderChoice;
   /** The 3D view's own figures, read by the Status panel as it samples. */
-  view: Pick<SceneView, 'software' | 'frameCostMs'>;
+  view: Pick<SceneView, 'software' | 'frameCostMs' | 'reports'>;
 }
 
 export const HudContext = createContext<Hud | null>(null);

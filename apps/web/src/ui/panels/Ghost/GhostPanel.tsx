@@ -20,9 +20,9 @@ const WORDS = {
 } as const;
 
 export function GhostPanel() {
-  const { target } = useHud();
+  const { target, view } = useHud();
   const [enabled, setEnabled] = useState(target.ghostEnabled);
-  const shows = useSampled(() => target.ghostShows);
+  const shows = useSampled(() => view.reports.ghostShows);
   return (
     <section className="panel ghost" aria-labelledby="ghost-title">
       <h2 id="ghost-title">Ghost</h2>

@@ -20,6 +20,7 @@ import {
 import { gapWords } from '../../../core/link/GapTracker.ts';
 import { droppedWords } from '../../../core/store/readerErrors.ts';
 import { SOFTWARE_PACING } from '../../../scene/FramePacer.ts';
+import { drawnLeadMs } from '../../../scene/render/SceneReports.ts';
 
 export function StatusPanel() {
   const { store, settings, link, robots, cameras, rendering, view } = useHud();
@@ -54,7 +55,7 @@ export function StatusPanel() {
       controllerError: store.lastControllerError,
       twinMode: store.opts.twinMode,
       predicting: store.predicting,
-      leadMs: Math.round(store.predictionLeadMs),
+      leadMs: Math.round(drawnLeadMs(store, view.reports)),
       rendering: renderWords({
         ...rendering,
         software: view.software,

@@ -1,13 +1,15 @@
 /**
- * The 3D view drawn by the render worker (./renderWorker.ts), as the page sees it: the same
- * SceneView the main-thread Viewer offers. The page keeps what must answer at once or read its
- * own state — the orbit camera (OrbitControls on the real canvas element, which still gets the
- * pointer and wheel events after `transferControlToOffscreen`), floor picking, the Plan panel's
- * waypoint raycasts (against this page-side scene), the store and the replay — and, on its own
- * light requestAnimationFrame loop, sends the worker only what changed (`FrameInput`): the drawn
- * angles, commanded pulses, target, plan preview, sibling pose and camera. WebGL and the meshes
- * live only in the worker. What the worker drew comes back with each frame (joint values, the
- * ghost's state) for the debug hook, the Ghost panel and the bench's probe.
+ * The page side of the 3D view, wherever the scene runtime (./SceneRuntime.ts) is hosted: in the
+ * render worker (./renderWorker.ts) or on the main thread (./inThreadScene.ts), behind the same
+ * messages (./messages.ts). It is the SceneView the page's other parts use. The page keeps what
+ * must answer at once or read its own state — the orbit camera (OrbitControls on the canvas
+ * element, which still gets the pointer and wheel events after `transferControlToOffscreen`),
+ * floor picking, the Plan panel's waypoint raycasts (against this page-side scene), the store and
+ * the replay — and, on its own light requestAnimationFrame loop, sends the runtime only what
+ * changed (`FrameInput`): the drawn angles, commanded pulses, target, plan preview, sibling pose
+ * and camera. What the runtime drew comes back with each frame and is kept, read-only, in
+ * `reports` (./SceneReports.ts) for the debug hook, the Status and Ghost panels and the bench's
+ * probe; nothing of it is written into the store.
  */
 import * as THREE from 'three';
 import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
@@ -24,19 +26,44 @@ import type { MeshFailure } from '../loadRobot.ts';
 import type { DrawnRobot, SceneView } from '../SceneView.ts';
 import { createOrbitControls, createViewCamera } from '../orbitView.ts';
 import type { FrameInput, FromWorker, ToWorker } from './messages.ts';
+import type { RenderThread } from '../SceneView.ts';
+import { SceneReports, type ReadonlySceneReports } from './SceneReports.ts';
+import type { SceneRuntime } from './SceneRuntime.ts';
 import { cameraState } from './snapshots.ts';
 import { ExtrasSender } from './ExtrasSender.ts';
 import { FrameChanges } from './FrameChanges.ts';
 
-/** Where the render worker comes from (a test or another bundler may hand in its own). */
-export type MakeRenderWorker = () => Worker;
+/** The page's end of the runtime's port: a Worker, or ./inThreadScene.ts's channel. */
+export interface SceneChannel {
+  postMessage(m: ToWorker, transfer: Transferable[]): void;
+  onmessage: ((e: MessageEvent<FromWorker>) => void) | null;
+  onerror: ((e: ErrorEvent) => void) | null;
+  terminate(): void;
+  /** The runtime itself where it runs on this thread (its live arm is readable then). */
+  readonly runtime?: SceneRuntime | null;
+}
 
-/** The worker, bundled by Vite from ./renderWorker.ts. */
-export const makeRenderWorker: MakeRenderWorker = () =>
-  new Worker(new URL('./renderWorker.ts', import.meta.url), { type: 'module', name: 'render' });
+/** Where the runtime is hosted: opens its channel for the page's `canvas`. */
+export interface SceneHosting {
+  readonly thread: RenderThread;
+  /** Whether the canvas is handed over (`transferControlToOffscreen`) with `init`. */
+  readonly offscreen: boolean;
+  open(canvas: HTMLCanvasElement): SceneChannel;
+}
 
-export class WorkerViewer implements SceneView {
-  readonly thread = 'worker' as const;
+/** The render worker, bundled by Vite from ./renderWorker.ts. */
+export const WORKER_HOSTING: SceneHosting = {
+  thread: 'worker',
+  offscreen: true,
+  open: () =>
+    new Worker(new URL('./renderWorker.ts', import.meta.url), {
+      type: 'module',
+      name: 'render',
+    }) as unknown as SceneChannel,
+};
+
+export class SceneClient implements SceneView {
+  readonly thread: RenderThread;
   readonly scene = new THREE.Scene();
   readonly camera = createViewCamera();
   readonly controls: OrbitControls;
@@ -47,25 +74,21 @@ export class WorkerViewer implements SceneView {
   readonly renderer = { render: (_scene: THREE.Scene, _camera: THREE.Camera): void => {} };
   ghostSource: GhostSource | null = null;
   meshFailures: readonly MeshFailure[] = [];
-  renderedFrames = 0;
-  pixelRatio = 1;
-  frameCostMs = 0;
+  /** What the runtime said of its last drawn frame (read-only for everyone else). */
+  readonly reports: ReadonlySceneReports;
+  private readonly report = new SceneReports();
   software = false;
   /** WebGL's renderer string in the worker ('' until it answered). */
   webglRenderer = '';
-  ghostPainted = '';
-  /** The last error the worker reported ('' = none). */
+  /** The last error the runtime reported ('' = none). */
   lastError = '';
-  /** What the worker's tracking paint shows (as the main-thread Viewer's `tracking`). */
-  tracking: { levels: readonly string[] } | null = null;
-  /** Called with the reason when the worker fails (./FallbackSceneView.ts falls back). */
+  /** Called with the reason when the runtime fails (./FallbackSceneView.ts falls back). */
   onFailure: ((reason: string) => void) | null = null;
   private zoneNames: string[] = [];
-  private drawn: Record<DrawnRobot, number[]> = { robot: [], ghost: [], sibling: [] };
   private readonly stage: Stage;
   private readonly picker: FloorPicker;
   private readonly failureNote: MeshFailureNote;
-  private readonly worker: Worker;
+  private readonly worker: SceneChannel;
   private readonly loads = new Map<number, { resolve(): void; reject(e: Error): void }>();
   private loadId = 0;
   private frame = 0;
@@ -82,17 +105,19 @@ export class WorkerViewer implements SceneView {
 
   constructor(
     private readonly container: HTMLElement,
-    private readonly store: ArmStore,
-    private readonly target: TargetPreview,
+    store: ArmStore,
+    target: TargetPreview,
     private readonly replay: SiblingSource | null = null,
     /** Whether software WebGL's frames are paced (../FramePacer.ts; `?frames=full`: not). */
     private readonly pace = true,
-    makeWorker: MakeRenderWorker = makeRenderWorker,
+    hosting: SceneHosting = WORKER_HOSTING,
   ) {
+    this.thread = hosting.thread;
+    this.reports = this.report;
     const canvas = document.createElement('canvas');
     canvas.setAttribute('aria-label', '3D view of the arm');
     canvas.setAttribute('role', 'img');
-    canvas.dataset.render = 'worker';
+    canvas.dataset.render = hosting.thread;
     canvas.style.display = 'block';
     canvas.style.width = '100%';
     canvas.style.height = '100%';
@@ -104,11 +129,11 @@ export class WorkerViewer implements SceneView {
     this.changes = new FrameChanges(store, target, replay);
     this.picker = new FloorPicker(canvas, this.camera, this.stage, target);
     this.failureNote = new MeshFailureNote(container);
-    this.worker = makeWorker();
+    this.worker = hosting.open(canvas);
     this.worker.onmessage = (e: MessageEvent<FromWorker>) => this.onMessage(e.data);
     this.worker.onerror = (e) => this.fail(`render worker: ${e.message || 'failed to start'}`);
     this.resizeObserver = new ResizeObserver(() => this.resize());
-    const offscreen = canvas.transferControlToOffscreen();
+    const offscreen = hosting.offscreen ? canvas.transferControlToOffscreen() : undefined;
     const { width, height } = this.size();
     this.send(
       {
@@ -119,23 +144,49 @@ export class WorkerViewer implements SceneView {
         dpr: window.devicePixelRatio || 1,
         pace: this.pace,
       },
-      [offscreen],
+      offscreen ? [offscreen] : [],
     );
+  }
+
+  get renderedFrames(): number {
+    return this.report.frames;
+  }
+  get pixelRatio(): number {
+    return this.report.pixelRatio;
+  }
+  get frameCostMs(): number {
+    return this.report.costMs;
+  }
+  get ghostPainted(): string {
+    return this.report.ghostPainted;
+  }
+  /** What the runtime's tracking paint shows. */
+  get tracking(): { levels: readonly string[] } | null {
+    const levels = this.report.trackingLevels;
+    return levels ? { levels } : null;
   }
 
   get world(): THREE.Group {
     return this.stage.world;
   }
-  /** The page holds no copy of the robot's meshes: they live in the worker. */
-  get liveRobot(): null {
-    return null;
+  /**
+   * The world the runtime draws (its live arm, ghost, sibling) where it runs on this thread; null
+   * from a worker. End-to-end checks and console users look at the drawn meshes there.
+   */
+  get drawnWorld(): THREE.Group | null {
+    return this.worker.runtime?.world ?? null;
+  }
+
+  /** The live arm's model where the runtime runs on this thread; null from a worker. */
+  get liveRobot(): SceneView['liveRobot'] {
+    return this.worker.runtime?.liveRobot ?? null;
   }
   get zones(): { readonly names: string[] } {
     return { names: this.zoneNames };
   }
 
   jointValues(which: DrawnRobot = 'robot'): number[] {
-    return this.drawn[which].slice();
+    return this.report.drawn(which);
   }
 
   showZones(keepOut: ProfileKeepOut | undefined): void {
@@ -169,7 +220,6 @@ export class WorkerViewer implements SceneView {
 
   dispose(): void {
     this.running = false;
-    this.store.drawnAheadMs = 0; // a fallback's page-side frames add no lead of their own
     cancelAnimationFrame(this.frame);
     this.resizeObserver.disconnect();
     window.removeEventListener('resize', this.resize);
@@ -268,15 +318,7 @@ export class WorkerViewer implements SceneView {
         this.zoneNames = m.names;
         break;
       case 'rendered': {
-        // A frame drawn before the latest resize was wiped by it: not yet a frame on screen.
-        if (m.sizeSeq === this.sizeSeq) this.renderedFrames = m.frames;
-        this.pixelRatio = m.pixelRatio;
-        this.frameCostMs = m.costMs;
-        this.store.drawnAheadMs = m.aheadMs;
-        this.drawn = { robot: m.robot, ghost: m.ghost, sibling: m.sibling };
-        this.ghostPainted = m.ghostPainted;
-        this.tracking = m.trackingLevels ? { levels: m.trackingLevels } : null;
-        this.target.ghostShows = m.ghostShows;
+        this.report.take(m, this.sizeSeq);
         this.renderer.render(this.scene, this.camera);
         const now = m.at - performance.timeOrigin;
         // No display lead is learnt here: the worker poses each frame for its own instant

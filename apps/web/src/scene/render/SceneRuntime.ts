@@ -1,20 +1,22 @@
 /**
- * The 3D view as the render worker draws it (./renderWorker.ts): the same stage, live arm,
- * ghost, replay sibling, target marker and keep-out zones as the page's Viewer (../Viewer.ts),
- * built from the same classes, on an OffscreenCanvas, with the worker's own requestAnimationFrame
- * loop. What they read (the store's drawn angles, the target, the plan preview, the sibling's
- * pose, the orbit camera) arrives from the page as `FrameInput` messages and is copied into
- * small stand-ins (./FrameMirror.ts), so Ghost, TargetMarker and ReplaySibling run unchanged. It
- * renders only when something moved, lowers the resolution while frames are slow and draws one
- * full-resolution frame once things rest, as the Viewer does (../FramePacer.ts); with software
- * WebGL it paces its frames to the budget there (`SOFTWARE_PACING`).
+ * The 3D view's one runtime: the stage, live arm, ghost, replay sibling, target marker, keep-out
+ * zones and the cameras' screens, drawn on a canvas with its own requestAnimationFrame loop, the
+ * steps of a frame in one order. One class, two hosts behind the same messages (./sceneHost.ts):
+ * the render worker (./renderWorker.ts, an OffscreenCanvas) and, where no worker can draw, the
+ * page's main thread behind a port pair (./inThreadScene.ts, the page's own canvas). What it
+ * reads (the store's drawn angles, the target, the plan preview, the sibling's pose, the orbit
+ * camera) arrives from the page as `FrameInput` messages and is copied into small stand-ins
+ * (./FrameMirror.ts), so Ghost, TargetMarker and ReplaySibling run unchanged. It renders only
+ * when something moved, lowers the resolution while frames are slow and draws one
+ * full-resolution frame once things rest (../FramePacer.ts); each drawn frame is reported
+ * (`rendered`), and the page reads the report (./SceneReports.ts).
  */
 import * as THREE from 'three';
 import { frameCamera } from '../sceneHooks.ts';
 import type { JointMap } from '../../core/robots/robotSpec.ts';
 import { createStage, type Stage } from '../stage.ts';
 import type { MeshFailure } from '../loadRobot.ts';
-import { FramePacer, SOFTWARE_PACING } from '../FramePacer.ts';
+import { FramePacer, type FramePacerOptions } from '../FramePacer.ts';
 import { TargetMarker } from '../TargetMarker.ts';
 import { TranslucentTwin } from '../TranslucentTwin.ts';
 import { ZonesView } from '../ZonesView.ts';
@@ -27,7 +29,7 @@ import type { FrameInput, FramedCamera, FromWorker, TrackingState } from './mess
 
 type Rendered = Extract<FromWorker, { type: 'rendered' }>;
 
-export class WorkerScene {
+export class SceneRuntime {
   readonly renderer: THREE.WebGLRenderer;
   readonly scene = new THREE.Scene();
   readonly camera = createViewCamera();
@@ -42,12 +44,7 @@ export class WorkerScene {
   private readonly marker: TargetMarker;
   private readonly zones: ZonesView;
   private readonly extras: WorkerExtras;
-  /**
-   * When to draw and at what resolution. No warm-up burst here (the Viewer draws 8 frames back
-   * to back after loading so the resolution fits the machine before the page waits on it): a
-   * slow frame in the worker holds up nothing on the page, so the first frames are drawn at full
-   * resolution and the governor lowers it only once things move.
-   */
+  /** When to draw and at what resolution (the host says how: ./sceneHost.ts). */
   private readonly pacer: FramePacer;
   /** The live arm (painted by tracking error, as the page's store says), ghost and sibling. */
   private arms: ArmSet | null = null;
@@ -67,17 +64,17 @@ export class WorkerScene {
   private sizeSeq = 0;
   private frames = 0;
   private running = false;
+  private frame = 0;
 
   constructor(
-    canvas: OffscreenCanvas,
+    canvas: OffscreenCanvas | HTMLCanvasElement,
     readonly software: boolean,
     dpr: number,
     private readonly post: (m: FromWorker) => void,
-    /** Pace the frames (software WebGL, unless the page asked for every frame). */
-    paced = false,
+    pacing: Partial<FramePacerOptions> = {},
   ) {
     this.renderer = createRenderer(software, canvas);
-    this.pacer = new FramePacer(this.renderer, Math.min(dpr || 1, 2), paced ? SOFTWARE_PACING : {});
+    this.pacer = new FramePacer(this.renderer, Math.min(dpr || 1, 2), pacing);
     this.camera.lookAt(this.controls.target);
     this.stage = createStage(this.scene);
     this.extras = new WorkerExtras(this.scene, this.stage.world);
@@ -166,15 +163,32 @@ export class WorkerScene {
     if (m.invalidate) this.needsRender = this.shadowsDirty = true;
   }
 
+  /** The arm's z-up world as drawn (the live arm, ghost, sibling, zones): an in-thread page reads it. */
+  get world(): THREE.Group {
+    return this.stage.world;
+  }
+
+  /** The live arm's URDF model (null before a robot loads): an in-thread host's page reads it. */
+  get liveRobot(): ArmSet['live']['robot'] | null {
+    return this.arms?.live.robot ?? null;
+  }
+
   start(): void {
     if (this.running) return;
     this.running = true;
-    requestAnimationFrame(this.tick);
+    this.frame = requestAnimationFrame(this.tick);
+  }
+
+  /** Stops the loop and lets the WebGL context go (an in-thread host's end; a worker ends whole). */
+  stop(): void {
+    this.running = false;
+    cancelAnimationFrame(this.frame);
+    this.renderer.dispose();
   }
 
   private readonly tick = (): void => {
     if (!this.running) return;
-    requestAnimationFrame(this.tick);
+    this.frame = requestAnimationFrame(this.tick);
     const now = performance.now();
     const mir = this.mirror;
     const a = this.arms;
@@ -197,7 +211,6 @@ export class WorkerScene {
     this.renderer.render(this.scene, this.camera);
     this.mirror.drawn(performance.timeOrigin + performance.now());
     this.frames++;
-    const t = this.mirror.target;
     const a = this.arms;
     const report: Rendered = {
       type: 'rendered',
@@ -210,7 +223,7 @@ export class WorkerScene {
       robot: a?.live.values() ?? [],
       ghost: a?.ghost.posed.values() ?? [],
       sibling: a?.sibling?.posed.values() ?? [],
-      ghostShows: t.ghostShows,
+      ghostShows: a?.ghost.shows ?? 'nothing',
       ghostPainted: a?.ghost.painted ?? '',
       trackingLevels: a ? a.tracking.levels.slice() : null,
     };
