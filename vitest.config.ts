@@ -11,6 +11,8 @@ const SERIAL_LINE = [
   'tests/integration/gateway-pty.test.ts',
   'tests/integration/brokers-gateway.test.ts',
   'tests/integration/servo-bus-sdk.test.ts',
+  'tests/integration/gateway-doctor.test.ts',
+  'tests/integration/lerobot-plugin.test.ts',
 ];
 const INTEGRATION = { testTimeout: 180_000, hookTimeout: 240_000 };
 

@@ -122,7 +122,7 @@ describe('armtwin gateway --bus feetech --doctor', () => {
     const w = await StatusWatcher.connect(broker().url, 'doc1');
     try {
       // The gateway runs: positions of the servos that answered come through.
-      await w.until(() => (w.angles(1).length ? true : undefined), 120_000, 'positions');
+      await w.until(() => (w.angleSamples(1).length ? true : undefined), 120_000, 'positions');
       expect(gw.output()).toMatch(
         /servo doctor: \[missing\] servos 4 of the profile did not answer/,
       );
