@@ -4,7 +4,9 @@
  * (`armtwin sim`) and the servo-bus gateway (`armtwin gateway --bus dynamixel`) driving an
  * emulated Dynamixel bus (`armtwin sim --bus dynamixel --serial`) over a socat pty pair, and a
  * ROS 2 arm (`armtwin gateway --ros2`, real rclpy and FastDDS, the arm a test node that executes
- * JointTrajectory as a joint_trajectory_controller would). A LeRobot driver is one more row. On each: a motion request executes; a move into a keep-out
+ * JointTrajectory as a joint_trajectory_controller would). LeRobot is a client of the
+ * controller, not a driver: its plugin sends commands over MQTT like any operator
+ * (tests/integration/lerobot-plugin.test.ts). On each: a motion request executes; a move into a keep-out
  * zone is refused, audited, and moves nothing; one operator at a time, handed over by a grant;
  * the deadman holds a moving arm when the operator's lease lapses; `#255PDST!` holds it at once.
  * The profile is armtwin5 with a table-top keep-out zone, written to a temporary models folder;
