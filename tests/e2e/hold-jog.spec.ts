@@ -144,9 +144,15 @@ test.describe('hold-to-jog', () => {
     expect(still).toBe(true);
     const during = o.controlMessages(stallStart + 200).filter((m) => m.at <= checkedBy);
     expect(during.map((m) => m.text).filter((t) => t.startsWith('#000P'))).toEqual([]);
-    const upAt = Date.now();
     await page.keyboard.up('q');
-    await until(() => o.commands(upAt).includes('#000PDST!'), 5000, 'the stop on key up');
+    // The stop comes on key up, or before it: the first keep-alive tick after the stall may find
+    // the arm's data stale and end the hold itself ("Stopped: … data is stale"). Nothing of the
+    // page's went out during the stall, so every stop since it began came after it.
+    await until(
+      () => o.commands(stallStart).includes('#000PDST!'),
+      5000,
+      'the stop after the stall',
+    );
     expect(await holdsStill(o, BASE)).toBe(true);
   });
 

@@ -37,21 +37,36 @@ const audits: AuditEvent[] = [];
 let holder: string | null | undefined;
 
 /**
- * The arm's position report of every servo as joint values (rad): the latest, or the one
- * stamped `time` (`$TIM`, which the bridge puts in the JointState's header).
+ * The arm's position report of every servo as joint values (rad): the latest full group, or the
+ * pose the status topic says at the payload stamped `time` (`$TIM`, which the bridge puts in the
+ * JointState's header): every position frame up to that payload, the newest per servo, as the
+ * bridge folds them (a payload that moves one servo is a joint state too).
  */
 function mqttJoints(time?: number): number[] | undefined {
-  for (let i = watch.items.length - 1; i >= 0; i--) {
-    const it = watch.items[i]!;
-    if (!('group' in it) || (time !== undefined && it.time !== time)) continue;
-    const pos = it.group.frames.filter((f) => f.type === 'position');
-    if (pos.length !== profile.servos.length) continue;
-    return profile.servos.map((s) => {
-      const f = pos.find((p) => p.id === s.id)!;
-      return jointFromPwm(s, f.type === 'position' ? f.pwm : NaN);
-    });
+  if (time === undefined) {
+    for (let i = watch.items.length - 1; i >= 0; i--) {
+      const it = watch.items[i]!;
+      if (!('group' in it)) continue;
+      const pos = it.group.frames.filter((f) => f.type === 'position');
+      if (pos.length === profile.servos.length)
+        return jointsOf(new Map(pos.map((f) => [f.id, f.pwm])));
+    }
+    return undefined;
   }
-  return undefined;
+  const pwm = new Map<number, number>();
+  let found = false;
+  for (const it of watch.items) {
+    if (found && it.time !== time) break;
+    const frames = 'group' in it ? it.group.frames : [it.frame];
+    for (const f of frames) if (f.type === 'position') pwm.set(f.id, f.pwm);
+    if (it.time === time) found = true;
+  }
+  return found ? jointsOf(pwm) : undefined;
+}
+
+function jointsOf(pwm: ReadonlyMap<number, number>): number[] | undefined {
+  if (!profile.servos.every((s) => pwm.has(s.id))) return undefined;
+  return profile.servos.map((s) => jointFromPwm(s, pwm.get(s.id)!));
 }
 
 /** The pose, once the last 10 position groups are all the same. */
@@ -149,9 +164,10 @@ test("the holder's trajectory moves the arm, and ROS 2 sees its joint states as 
     'a joint state',
   );
   expect(js.name).toEqual(profile.servos.map((s) => s.joint));
-  const q = mqttJoints(js.stamp_ms);
-  expect(q).toBeDefined();
-  js.position.forEach((v, i) => expect(Math.abs(v - q![i]!) * DEG).toBeLessThan(0.01));
+  // The bridge and this test's watcher are two MQTT subscribers: the watcher's copy of the
+  // same report may come after the joint state made from it.
+  const q = await watch.until(() => mqttJoints(js.stamp_ms), 10_000, 'the report of that stamp');
+  js.position.forEach((v, i) => expect(Math.abs(v - q[i]!) * DEG).toBeLessThan(0.01));
   expect(Math.abs(js.position[1]! + 0.5) * DEG).toBeLessThan(0.2);
 });
 

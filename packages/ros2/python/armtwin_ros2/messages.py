@@ -45,8 +45,14 @@ def _ms(value, field):
 
 
 def _time(ms):
-    sec, rest = divmod(int(round(ms * 1e6)), 1_000_000_000)
-    return sec, rest
+    # Whole milliseconds in integers: ms * 1e6 as a float is past 2**53 for today's epoch times,
+    # so a $TIM stamp came back a few hundred ns off (1795763457398 -> ...398.0002).
+    whole = int(ms // 1)
+    sec, msec = divmod(whole, 1000)
+    nsec = msec * 1_000_000 + int(round((ms - whole) * 1e6))
+    if nsec >= 1_000_000_000:
+        sec, nsec = sec + 1, nsec - 1_000_000_000
+    return sec, nsec
 
 
 def to_ros(kind, obj, now_ms):
@@ -88,7 +94,10 @@ def to_ros(kind, obj, now_ms):
 
 
 def _ms_of(t):
-    return t.sec * 1000 + t.nanosec / 1e6
+    # Exact for whole milliseconds (a $TIM stamp comes back as it went out).
+    msec, rest_ns = divmod(t.nanosec, 1_000_000)
+    ms = t.sec * 1000 + msec
+    return ms if rest_ns == 0 else ms + rest_ns / 1e6
 
 
 def from_ros(kind, m):
