@@ -81,7 +81,8 @@ test('an operator adds a table in the HUD: saved to the profile, drawn, and in f
   await form.getByLabel('Name').fill('table');
   await form.getByLabel('max x', { exact: true }).fill('400');
   await form.getByRole('button', { name: 'Add zone' }).click();
-  await expect(section.getByTestId('zones-note')).toContainText('saved');
+  // The refusal above reads "not saved (…)": wait for this zone's own answer.
+  await expect(section.getByTestId('zones-note')).toContainText('Zone "table": saved;');
   expect(JSON.parse(fs.readFileSync(file(), 'utf8')).keepOut.zones).toEqual([
     { name: 'table', shape: 'box', min: [150, -150, -20], max: [400, 150, 30] },
   ]);
