@@ -7,39 +7,23 @@
  * saved and says why; Remove takes a zone out again.
  */
 import fs from 'node:fs';
-import os from 'node:os';
-import path from 'node:path';
-import { REPO_ROOT } from '../helpers/services.ts';
 import { expect, shot, test, type HudWindow } from './fixtures.ts';
 import { ensureHudBuilt } from './support/build-hud.ts';
-import { demoPassword, startUp, type UpProcess } from './support/up.ts';
+import { demoPassword, startUpWithProfile, type UpProcess } from './support/up.ts';
 
 const PROFILE = 'zoned5';
-let up: UpProcess;
-let models = '';
-const file = () => path.join(models, PROFILE, 'profile.json');
+let up: UpProcess & { file: string };
+const file = () => up.file;
 
 // eslint-disable-next-line no-empty-pattern
 test.beforeAll(async ({}, testInfo) => {
   test.setTimeout(120_000);
   ensureHudBuilt();
-  models = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-e2e-zoned-'));
-  fs.cpSync(path.join(REPO_ROOT, 'public/models/armtwin5'), path.join(models, PROFILE), {
-    recursive: true,
-  });
-  const profile = JSON.parse(fs.readFileSync(file(), 'utf8')) as object;
-  fs.writeFileSync(file(), JSON.stringify({ ...profile, name: PROFILE }));
-  up = await startUp(path.join(testInfo.project.outputDir, `armtwin-up-zoned-${process.pid}.log`), [
-    '--models',
-    models,
-    '--arms',
-    `arm1:${PROFILE}`,
-  ]);
+  up = await startUpWithProfile(PROFILE, testInfo.project.outputDir);
 });
 
 test.afterAll(async () => {
   await up?.stop();
-  if (models) fs.rmSync(models, { recursive: true, force: true });
 });
 
 interface ZonesWindow {

@@ -6,44 +6,27 @@
  * urdf-loader must not clamp the drawn joint to the URDF's range. `armtwin up --models DIR`
  * simulates the arm and serves the folder; an operator's MQTT client sends the move.
  */
-import fs from 'node:fs';
-import os from 'node:os';
-import path from 'node:path';
 import type { Page } from '@playwright/test';
-import { REPO_ROOT } from '../helpers/services.ts';
 import { expect, shot, test, type HudWindow } from './fixtures.ts';
 import { ensureHudBuilt } from './support/build-hud.ts';
-import { ArmWatcher, demoPassword, startUp, type UpProcess } from './support/up.ts';
+import { ArmWatcher, demoPassword, startUpWithProfile, type UpProcess } from './support/up.ts';
 
 const PROFILE = 'wide5';
 let up: UpProcess;
-let models = '';
 
 // eslint-disable-next-line no-empty-pattern
 test.beforeAll(async ({}, testInfo) => {
   test.setTimeout(120_000);
   ensureHudBuilt();
-  models = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-e2e-wide-'));
-  const dir = path.join(models, PROFILE);
-  fs.cpSync(path.join(REPO_ROOT, 'public/models/armtwin5'), dir, { recursive: true });
-  const profile = JSON.parse(fs.readFileSync(path.join(dir, 'profile.json'), 'utf8')) as {
-    name: string;
-    servos: Record<string, unknown>[];
-  };
-  profile.name = PROFILE;
-  profile.servos[4] = { ...profile.servos[4], units: 'angle', min: -360, max: 360 };
-  fs.writeFileSync(path.join(dir, 'profile.json'), JSON.stringify(profile));
-  up = await startUp(path.join(testInfo.project.outputDir, `armtwin-up-wide-${process.pid}.log`), [
-    '--models',
-    models,
-    '--arms',
-    `arm1:${PROFILE}`,
-  ]);
+  up = await startUpWithProfile(PROFILE, testInfo.project.outputDir, (profile) => {
+    const servos = [...profile.servos];
+    servos[4] = { ...servos[4], units: 'angle', min: -360, max: 360 };
+    return { ...profile, servos };
+  });
 });
 
 test.afterAll(async () => {
   await up?.stop();
-  if (models) fs.rmSync(models, { recursive: true, force: true });
 });
 
 /** The URDF joint values the live arm is drawn with, rad. */

@@ -8,7 +8,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { LOOPBACK } from './ports.ts';
 import { REPO_ROOT } from './files.ts';
-import { startService, type ServiceProcess } from './process.ts';
+import { startService, type ServiceLifecycle, type ServiceProcess } from './process.ts';
 import { influxdConf } from '../../apps/middleware/src/local-influx.ts';
 
 /** The influxd that install-deps.sh builds (resolved from the repo root, not the cwd). */
@@ -29,7 +29,7 @@ export const DEFAULT_INFLUX_OPTIONS: Required<InfluxOptions> = {
   extraConfig: '',
 };
 
-export interface InfluxService {
+export interface InfluxService extends ServiceLifecycle {
   /** `http://127.0.0.1:<port>` */
   url: string;
   port: number;
@@ -38,22 +38,8 @@ export interface InfluxService {
   bucket: string;
   org: '';
   token: '';
-  /** The temp dir: config, meta, data, wal, log. */
-  dir: string;
-  confFile: string;
-  logFile: string;
-  readonly running: boolean;
-  /** Starts influxd again (same dir, same port) after stop() or kill(); data survives. */
-  start(): Promise<void>;
-  /** Clean shutdown (SIGTERM): an outage. The temp dir stays. */
-  stop(): Promise<void>;
-  restart(): Promise<void>;
-  /** SIGKILL: a crash. The temp dir stays. */
-  kill(): Promise<void>;
-  /** Final teardown: kill if running, keep logs if asked (returns where), remove the temp dir. */
-  dispose(opts?: { keepLogs?: boolean }): Promise<string | undefined>;
+  // The temp dir holds config, meta, data, wal and log; data survives stop() and kill().
 }
-
 
 async function ping(url: string): Promise<boolean> {
   const res = await fetch(`${url}/ping`, { signal: AbortSignal.timeout(1000) });

@@ -7,7 +7,12 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { LOOPBACK } from './ports.ts';
-import { startService, type ServiceProcess } from './process.ts';
+import {
+  startService,
+  type ServiceLifecycle,
+  type ServiceProcess,
+  type ServiceSpec,
+} from './process.ts';
 
 export interface MosquittoOptions {
   /** Extra mosquitto.conf lines, appended after the generated ones. */
@@ -24,7 +29,7 @@ export const DEFAULT_MOSQUITTO_OPTIONS: Required<MosquittoOptions> = {
   tcpNoDelay: true,
 };
 
-export interface MosquittoService {
+export interface MosquittoService extends ServiceLifecycle {
   host: string;
   /** MQTT (TCP) port. */
   port: number;
@@ -34,21 +39,8 @@ export interface MosquittoService {
   wsPort: number;
   /** `ws://127.0.0.1:<wsPort>` */
   wsUrl: string;
-  /** The temp dir: config, persistence file, log. */
-  dir: string;
-  confFile: string;
-  logFile: string;
-  readonly running: boolean;
-  /** Starts the broker again (same dir, same ports) after stop() or kill(). */
-  start(): Promise<void>;
-  /** Clean shutdown (SIGTERM): persistence is saved. The temp dir stays. */
-  stop(): Promise<void>;
-  /** stop() then start(): persistent sessions and their queued messages survive. */
-  restart(): Promise<void>;
-  /** SIGKILL: a crash. The temp dir stays. */
-  kill(): Promise<void>;
-  /** Final teardown: kill if running, keep logs if asked (returns where), remove the temp dir. */
-  dispose(opts?: { keepLogs?: boolean }): Promise<string | undefined>;
+  // The temp dir holds config, persistence file and log; a clean stop() saves persistence, so
+  // persistent sessions and their queued messages survive restart().
 }
 
 /** Resolves the mosquitto binary: PATH first, then /usr/sbin (not on a normal user's PATH). */
@@ -92,6 +84,26 @@ function mosquittoConf(
 }
 
 /** Starts a throwaway Mosquitto and waits until both listeners accept connections. */
+/**
+ * The Mosquitto that `armtwin deploy-mosquitto` wrote into `dir` (its `mosquitto.conf`), as a test
+ * service on `ports`: logging to stderr, and as root when the tests run as root (Mosquitto 2
+ * would switch to user "mosquitto", which cannot read the temp dir).
+ */
+export function deployedMosquittoSpec(dir: string, ports: number[]): ServiceSpec {
+  const conf = path.join(dir, 'mosquitto.conf');
+  if (process.getuid?.() === 0) fs.appendFileSync(conf, 'user root\n');
+  fs.appendFileSync(conf, 'log_dest stderr\nlog_type all\n');
+  return {
+    name: 'mosquitto',
+    command: mosquittoBinary(),
+    args: ['-c', conf],
+    dir,
+    host: LOOPBACK,
+    ports,
+    startTimeoutMs: 15_000,
+  };
+}
+
 export async function startMosquitto(opts: MosquittoOptions = {}): Promise<MosquittoService> {
   const o = { ...DEFAULT_MOSQUITTO_OPTIONS, ...opts };
   const command = mosquittoBinary();

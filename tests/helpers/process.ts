@@ -72,6 +72,25 @@ export interface ServiceSpec {
 const sleep = (ms: number) => new Promise((resolve) => setTimeout(resolve, ms));
 
 /** One service process that can be stopped, killed and started again in the same dir. */
+/** What a test may do with a service it started: the lifecycle every service helper offers. */
+export interface ServiceLifecycle {
+  /** The temp dir: config, data, log. */
+  dir: string;
+  confFile: string;
+  logFile: string;
+  readonly running: boolean;
+  /** Starts the service again (same dir, same ports) after stop() or kill(). */
+  start(): Promise<void>;
+  /** Clean shutdown (SIGTERM). The temp dir stays. */
+  stop(): Promise<void>;
+  /** stop() then start(). */
+  restart(): Promise<void>;
+  /** SIGKILL: a crash. The temp dir stays. */
+  kill(): Promise<void>;
+  /** Final teardown: kill if running, keep logs if asked (returns where), remove the temp dir. */
+  dispose(opts?: { keepLogs?: boolean }): Promise<string | undefined>;
+}
+
 export class ServiceProcess {
   readonly logFile: string;
   private child: ChildProcess | undefined;

@@ -23,7 +23,12 @@
  * killed when the test process exits or gets SIGINT/SIGTERM/SIGHUP, and (via
  * `setpriv --pdeathsig`) even when it is SIGKILLed.
  */
-export { startMosquitto, mosquittoBinary, DEFAULT_MOSQUITTO_OPTIONS } from './mosquitto.ts';
+export {
+  startMosquitto,
+  mosquittoBinary,
+  deployedMosquittoSpec,
+  DEFAULT_MOSQUITTO_OPTIONS,
+} from './mosquitto.ts';
 export type { MosquittoOptions, MosquittoService } from './mosquitto.ts';
 export { startInflux, influxQuery, INFLUXD, DEFAULT_INFLUX_OPTIONS } from './influx.ts';
 export type { InfluxOptions, InfluxService } from './influx.ts';

@@ -11,7 +11,7 @@ import path from 'node:path';
 import mqtt from 'mqtt';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { startService, type ServiceProcess } from '../helpers/process.ts';
-import { mosquittoBinary, REPO_ROOT } from '../helpers/services.ts';
+import { deployedMosquittoSpec, REPO_ROOT } from '../helpers/services.ts';
 import { makeTestCa, type TestCa } from '../helpers/tls.ts';
 import { ARMTWIN } from './sim-helpers.ts';
 import {
@@ -62,19 +62,7 @@ beforeAll(async () => {
       ],
       { cwd: REPO_ROOT, stdio: 'pipe' },
     );
-    const conf = path.join(dir, 'mosquitto.conf');
-    // Run as root, Mosquitto 2 switches to user "mosquitto", which cannot read our temp dir.
-    if (process.getuid?.() === 0) fs.appendFileSync(conf, 'user root\n');
-    fs.appendFileSync(conf, 'log_dest stderr\nlog_type all\n');
-    return {
-      name: 'mosquitto',
-      command: mosquittoBinary(),
-      args: ['-c', conf],
-      dir,
-      host: '127.0.0.1',
-      ports: p,
-      startTimeoutMs: 15_000,
-    };
+    return deployedMosquittoSpec(dir, p);
   });
 });
 

@@ -9,7 +9,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { startService, type ServiceProcess } from '../helpers/process.ts';
-import { mosquittoBinary, REPO_ROOT } from '../helpers/services.ts';
+import { deployedMosquittoSpec, REPO_ROOT } from '../helpers/services.ts';
 import { ARMTWIN, type Child } from './sim-helpers.ts';
 import { checkOneOperator, startSim, writeControlUsers } from './control-cases.ts';
 
@@ -44,18 +44,7 @@ beforeAll(async () => {
       { cwd: REPO_ROOT, stdio: 'pipe' },
     );
     acl = fs.readFileSync(path.join(dir, 'acl'), 'utf8');
-    const conf = path.join(dir, 'mosquitto.conf');
-    if (process.getuid?.() === 0) fs.appendFileSync(conf, 'user root\n');
-    fs.appendFileSync(conf, 'log_dest stderr\nlog_type all\n');
-    return {
-      name: 'mosquitto',
-      command: mosquittoBinary(),
-      args: ['-c', conf],
-      dir,
-      host: '127.0.0.1',
-      ports: p,
-      startTimeoutMs: 15_000,
-    };
+    return deployedMosquittoSpec(dir, p);
   });
 });
 

@@ -161,3 +161,48 @@ export class ArmWatcher {
     await this.client.endAsync(true);
   }
 }
+
+/** A bundled profile as JSON, loosely typed for a test to change. */
+export type ProfileJson = Record<string, unknown> & {
+  name: string;
+  servos: Record<string, unknown>[];
+};
+
+/**
+ * `armtwin up` with arm1 as `name`: a copy of the bundled armtwin5 (URDF, meshes, profile) in a
+ * models folder of its own, its profile changed by `edit`; `file` is the copy's profile.json,
+ * and `stop` also removes the folder.
+ */
+export async function startUpWithProfile(
+  name: string,
+  outputDir: string,
+  edit: (profile: ProfileJson) => ProfileJson = (p) => p,
+): Promise<UpProcess & { file: string }> {
+  const models = fs.mkdtempSync(path.join(os.tmpdir(), `armtwin-e2e-${name}-`));
+  const dir = path.join(models, name);
+  const file = path.join(dir, 'profile.json');
+  fs.cpSync(path.join(REPO_ROOT, 'public/models/armtwin5'), dir, { recursive: true });
+  const profile = JSON.parse(fs.readFileSync(file, 'utf8')) as ProfileJson;
+  fs.writeFileSync(file, JSON.stringify(edit({ ...profile, name })));
+  const removeModels = () => fs.rmSync(models, { recursive: true, force: true });
+  let up: UpProcess;
+  try {
+    up = await startUp(path.join(outputDir, `armtwin-up-${name}-${process.pid}.log`), [
+      '--models',
+      models,
+      '--arms',
+      `arm1:${name}`,
+    ]);
+  } catch (err) {
+    removeModels();
+    throw err;
+  }
+  return {
+    ...up,
+    file,
+    async stop() {
+      await up.stop();
+      removeModels();
+    },
+  };
+}
