@@ -5,22 +5,11 @@
  * Both IK kinds: armtwin5 (§4) and track6 (numeric, URDF chain).
  */
 import { describe, expect, test } from 'vitest';
-import type { Frame } from '@armtwin/protocol';
-import { createReader, type Group } from '@armtwin/protocol';
 import { SimModel } from '../src/model.ts';
+import { runPayload, T0 } from './run-payload.ts';
 import { loadSimProfile } from '../src/profile.ts';
 
-const T0 = 1_000_000;
-
-function run(model: SimModel, payload: string, t: number): string[] {
-  const out: string[] = [];
-  const reader = createReader({
-    onFrame: (f: Frame) => model.execute(f, t, out),
-    onGroup: (g: Group) => model.executeGroup(g, t, out),
-  });
-  reader.feed(payload);
-  return out;
-}
+const run = runPayload;
 
 describe('the floor in the simulator', () => {
   test('armtwin5: a joint move that puts the hand under the floor is $ERR:floor and moves nothing', () => {

@@ -8,21 +8,11 @@ import fs from 'node:fs';
 import { describe, expect, test } from 'vitest';
 import { parseProfile } from '@armtwin/robot';
 import { exactPwmFromServo } from '@armtwin/motion';
-import { createReader, type Frame, type Group } from '@armtwin/protocol';
 import { SimModel } from '../src/model.ts';
+import { runPayload, T0 } from './run-payload.ts';
 import { simProfile } from '../src/profile.ts';
 
-const T0 = 1_000_000;
-
-function run(model: SimModel, payload: string, t: number): string[] {
-  const out: string[] = [];
-  const reader = createReader({
-    onFrame: (f: Frame) => model.execute(f, t, out),
-    onGroup: (g: Group) => model.executeGroup(g, t, out),
-  });
-  reader.feed(payload);
-  return out;
-}
+const run = runPayload;
 
 /** armtwin5 as shipped, plus these zones. */
 function model(zones: unknown[]): SimModel {
