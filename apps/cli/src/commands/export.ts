@@ -1,6 +1,6 @@
 import fs from 'node:fs';
 import { once } from 'node:events';
-import { Option, type Command } from 'commander';
+import { InvalidArgumentError, Option, type Command } from 'commander';
 import { historyReader, influxSource, loadConfig } from '@armtwin/middleware';
 import {
   EXPORT_FORMATS,
@@ -8,13 +8,18 @@ import {
   loadRecordingRobot,
   type ExportFormat,
 } from '@armtwin/middleware/export';
+import { DEFAULT_FPS, exportLerobot } from '@armtwin/middleware/export/lerobot';
+
+const FORMATS = [...EXPORT_FORMATS, 'lerobot'] as const;
 
 interface ExportFlags {
   arm: string;
   from: string;
   to: string;
-  format: ExportFormat;
+  format: ExportFormat | 'lerobot';
   out: string;
+  fps: number;
+  task?: string;
   profile?: string;
   models?: string;
 }
@@ -31,21 +36,36 @@ function isoTime(name: string) {
   };
 }
 
+function wholeFps(value: string): number {
+  const n = Number(value);
+  if (!Number.isInteger(n) || n < 1 || n > 1000)
+    throw new InvalidArgumentError(`--fps must be a whole number from 1 to 1000, got "${value}"`);
+  return n;
+}
+
 export function registerExport(program: Command): void {
   program
     .command('export')
-    .description("write an arm's stored history over a time range as MCAP (Foxglove) or CSV")
+    .description(
+      "write an arm's stored history over a time range as MCAP (Foxglove), CSV or a LeRobot v3.0 dataset",
+    )
     .requiredOption('--arm <id>', 'arm id')
     .requiredOption('--from <iso-time>', 'start of the range (included)')
     .requiredOption('--to <iso-time>', 'end of the range (excluded)')
-    .addOption(
-      new Option('--format <format>', 'file format').choices(EXPORT_FORMATS).default('mcap'),
-    )
-    .requiredOption('--out <file>', 'file to write')
+    .addOption(new Option('--format <format>', 'file format').choices(FORMATS).default('mcap'))
+    .requiredOption('--out <file>', 'file to write (lerobot: a new or empty folder)')
     .option(
       '--profile <name>',
-      "the arm's robot profile: adds joint states and link transforms for a 3D panel (MCAP)",
+      "the arm's robot profile: adds joint states and link transforms for a 3D panel (MCAP); " +
+        'names the motors and their units (lerobot, required)',
     )
+    .option(
+      '--fps <n>',
+      'lerobot: frames per second the history is resampled to',
+      wholeFps,
+      DEFAULT_FPS,
+    )
+    .option('--task <text>', "lerobot: the episode's task, LeRobot's single_task (required)")
     .option('--models <dir>', 'the folder of robot profiles (default public/models)')
     .addHelpText(
       'after',
@@ -53,7 +73,12 @@ export function registerExport(program: Command): void {
 Reads InfluxDB with the middleware's settings: INFLUX_URL, INFLUX_TOKEN, INFLUX_ORG,
 INFLUX_BUCKET (README, Configuration).
 
-Example:
+lerobot: one episode, [--from, --to), resampled at --fps (last stored sample at or before
+each frame; see docs/dataset.md). No video yet: the dataset has no camera feature.
+
+Examples:
+  INFLUX_URL=http://127.0.0.1:8086 armtwin export --format lerobot --arm so101 --profile so101 \
+    --task "pick up the cube" --from 2026-11-24T06:00:00Z --to 2026-11-24T06:00:30Z --out ds/
   INFLUX_URL=http://127.0.0.1:8086 armtwin export --arm arm1 --profile armtwin5 \\
     --from 2026-11-24T06:00:00Z --to 2026-11-24T06:10:00Z --out arm1.mcap`,
     )
@@ -68,11 +93,30 @@ Example:
       }
       const config = loadConfig();
       if (!config.influxUrl) return cmd.error('INFLUX_URL is not set: nothing to read from');
+      const reader = historyReader(influxSource(config, 120_000), config.influxQueryLanguage);
+      if (flags.format === 'lerobot') {
+        if (!flags.profile) return cmd.error('--format lerobot needs --profile (motors and units)');
+        if (!flags.task?.trim())
+          return cmd.error("--format lerobot needs --task (the episode's task)");
+        const { profile } = loadRecordingRobot(flags.profile, flags.models);
+        const summary = await exportLerobot({
+          reader,
+          arm: flags.arm,
+          profile,
+          episodes: [{ startMs, stopMs, task: flags.task.trim() }],
+          fps: flags.fps,
+          out: flags.out,
+        });
+        process.stderr.write(
+          `${flags.out}: LeRobot v3.0 dataset, ${summary.episodes} episode(s), ${summary.frames} frames at ${flags.fps} fps, ${summary.tasks} task(s), no camera\n`,
+        );
+        return;
+      }
       const robot = flags.profile ? loadRecordingRobot(flags.profile, flags.models) : null;
       const out = fs.createWriteStream(flags.out);
       await once(out, 'open');
       const summary = await exportRecording({
-        reader: historyReader(influxSource(config, 120_000), config.influxQueryLanguage),
+        reader,
         arm: flags.arm,
         startMs,
         stopMs,
