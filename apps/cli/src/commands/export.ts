@@ -98,15 +98,20 @@ Examples:
         if (!flags.profile) return cmd.error('--format lerobot needs --profile (motors and units)');
         if (!flags.task?.trim())
           return cmd.error("--format lerobot needs --task (the episode's task)");
-        const { profile } = loadRecordingRobot(flags.profile, flags.models);
-        const summary = await exportLerobot({
-          reader,
-          arm: flags.arm,
-          profile,
-          episodes: [{ startMs, stopMs, task: flags.task.trim() }],
-          fps: flags.fps,
-          out: flags.out,
-        });
+        let summary;
+        try {
+          const { profile } = loadRecordingRobot(flags.profile, flags.models);
+          summary = await exportLerobot({
+            reader,
+            arm: flags.arm,
+            profile,
+            episodes: [{ startMs, stopMs, task: flags.task.trim() }],
+            fps: flags.fps,
+            out: flags.out,
+          });
+        } catch (err) {
+          return cmd.error(`armtwin export: ${(err as Error).message}`);
+        }
         process.stderr.write(
           `${flags.out}: LeRobot v3.0 dataset, ${summary.episodes} episode(s), ${summary.frames} frames at ${flags.fps} fps, ${summary.tasks} task(s), no camera\n`,
         );
