@@ -1,11 +1,13 @@
 /**
- * `armtwin export --format lerobot` from a real recording: a simulated SO-101 (`armtwin sim
- * --profile so101`) on Mosquitto is moved twice by angle-move groups while the middleware
- * stores its reports and the commands in influxd; a 3 s episode of that history is exported at
- * 30 fps, and LeRobot 0.6.1's own `LeRobotDataset` (tests/helpers/lerobot/dataset_check.py)
- * loads the folder: one episode of 90 frames, the SO follower's features and units, and every
- * frame's observation.state and action equal to the stored sample (resp. command) in force at
- * its timestamp, read back with InfluxQL. Bad flags are refused with a clear error.
+ * Episodes and `armtwin export --format lerobot` from a real recording: a simulated SO-101
+ * (`armtwin sim --profile so101`) on Mosquitto is moved twice by angle-move groups while the
+ * middleware stores its reports and the commands in influxd. An operator marks a ≥ 3 s episode
+ * through the middleware's HTTP API (`POST /api/arms/<id>/episodes` start, stop), and a second
+ * one that is discarded; `--episodes all` exports the kept one at 30 fps, and LeRobot 0.6.1's own
+ * `LeRobotDataset` (tests/helpers/lerobot/dataset_check.py) loads the folder: one episode of
+ * duration × fps frames with its task, the SO follower's features and units, and every frame's
+ * observation.state and action equal to the stored sample (resp. command) in force at its
+ * timestamp, read back with InfluxQL. Bad requests and flags are refused with a clear error.
  */
 import { execFile } from 'node:child_process';
 import fs from 'node:fs';
@@ -83,6 +85,9 @@ const exportTo = (out: string, ...extra: string[]) =>
 let sim: Child;
 let w: StatusWatcher;
 let startMs = 0;
+let stopMs = 0;
+let frames = 0;
+let api = '';
 let checked: Checked;
 let stderr = '';
 
@@ -91,7 +96,7 @@ async function stored(measurement: string): Promise<Map<number, [number, number]
   const from = (startMs - 10_000) * 1000;
   const rows = await select(
     { url: influx().url, db: influx().db },
-    `SELECT "angle", "id" FROM "${measurement}" WHERE "arm" = '${ARM}' AND time >= ${from}u AND time < ${(startMs + EPISODE_MS) * 1000}u AND "angle" > -1000`,
+    `SELECT "angle", "id" FROM "${measurement}" WHERE "arm" = '${ARM}' AND time >= ${from}u AND time < ${stopMs * 1000}u AND "angle" > -1000`,
   );
   const out = new Map<number, [number, number][]>();
   for (const [t, angle, id] of rows as [number, number, string][]) {
@@ -106,31 +111,53 @@ async function stored(measurement: string): Promise<Map<number, [number, number]
 const heldAt = (track: [number, number][] | undefined, t: number) =>
   track?.filter(([at]) => at <= t).at(-1)?.[1];
 
+/** POST an episode action; the status and answer. */
+async function mark(body: unknown): Promise<{ status: number; answer: Record<string, unknown> }> {
+  const res = await fetch(`${api}/episodes`, {
+    method: 'POST',
+    headers: { 'content-type': 'application/json' },
+    body: JSON.stringify(body),
+  });
+  return { status: res.status, answer: (await res.json()) as Record<string, unknown> };
+}
+type Mark = { startMs: number; stopMs: number | null; task: string; discarded: boolean };
+const episodeOf = (r: { answer: Record<string, unknown> }) => r.answer.episode as Mark;
+
+let listed: Mark[] = [];
+const refusals: { status: number; answer: Record<string, unknown> }[] = [];
+
 beforeAll(async () => {
-  await mws.spawn({ env: { FLUSH_INTERVAL_MS: '200' } });
+  const mw = await mws.spawn({ env: { FLUSH_INTERVAL_MS: '200' } });
+  api = `http://127.0.0.1:${mw.port}/api/arms/${ARM}`;
   sim = armtwin([
     'sim',
-    '--mqtt',
-    broker().url,
-    '--arm',
-    ARM,
-    '--profile',
-    'so101',
-    '--rate',
-    '50',
+    ...['--mqtt', broker().url, '--arm', ARM, '--profile', 'so101', '--report', 'angle'],
+    ...['--rate', '50'],
   ]);
   w = await StatusWatcher.connect(broker().url, ARM);
   await w.online();
   await w.until(() => (w.angleSamples(1).length > 10 ? true : undefined), 20_000, 'reports');
-  startMs = Date.now();
+  refusals.push(await mark({ action: 'stop' }));
+  const started = await mark({ action: 'start', task: `  ${TASK}\n` });
+  expect(started.status).toBe(201);
+  startMs = episodeOf(started).startMs;
+  refusals.push(await mark({ action: 'start', task: 'a second one at once' }));
   const move = (goal: number[]) => w.send(`$TIM:${Date.now()}!${group(goal, 800)}`);
   await new Promise((r) => setTimeout(r, 300));
   await move(GOALS[0]!);
   await new Promise((r) => setTimeout(r, 1300));
   await move(GOALS[1]!);
+  await new Promise((r) => setTimeout(r, Math.max(0, startMs + EPISODE_MS - Date.now())));
+  const stopped = await mark({ action: 'stop' });
+  expect(stopped.status).toBe(200);
+  stopMs = episodeOf(stopped).stopMs!;
+  frames = Math.floor(((stopMs - startMs) * FPS) / 1000);
+  expect(episodeOf(await mark({ action: 'start', task: 'thrown away' })).task).toBe('thrown away');
+  expect(episodeOf(await mark({ action: 'discard' })).discarded).toBe(true);
+  refusals.push(await mark({ action: 'start' }), await mark({ action: 'jump' }));
+  listed = ((await (await fetch(`${api}/episodes`)).json()) as { episodes: Mark[] }).episodes;
   // the whole episode stored: a report after its end is in influxd
-  const end = (startMs + EPISODE_MS) * 1000;
-  const q = `SELECT count("angle") FROM "servo" WHERE "arm" = '${ARM}' AND time >= ${end}u`;
+  const q = `SELECT count("angle") FROM "servo" WHERE "arm" = '${ARM}' AND time >= ${stopMs * 1000}u`;
   await waitForValue(
     async () => Number((await select({ url: influx().url, db: influx().db }, q))[0]?.[1] ?? 0) > 0,
     true,
@@ -139,18 +166,17 @@ beforeAll(async () => {
   const out = path.join(dir, 'ds');
   ({ stderr } = await exportTo(
     out,
-    ...['--profile', 'so101', '--task', TASK, '--fps', String(FPS)],
-    ...[
-      '--from',
-      new Date(startMs).toISOString(),
-      '--to',
-      new Date(startMs + EPISODE_MS).toISOString(),
-    ],
+    '--profile',
+    'so101',
+    '--episodes',
+    'all',
+    '--fps',
+    String(FPS),
   ));
   checked = runLerobotScript<Checked>('dataset_check.py', {
     root: out,
     repo_id: 'armtwin/so101ds',
-    frames: Array.from({ length: (EPISODE_MS * FPS) / 1000 }, (_, k) => k),
+    frames: Array.from({ length: frames }, (_, k) => k),
   });
 }, 180_000);
 
@@ -160,12 +186,33 @@ afterAll(async () => {
   fs.rmSync(dir, { recursive: true, force: true });
 });
 
+describe('episodes marked through the HTTP API', () => {
+  test('start, stop and discard are stored and listed; the episode is at least 3 s', () => {
+    expect(listed).toEqual([
+      { startMs, stopMs, task: TASK, discarded: false },
+      expect.objectContaining({ task: 'thrown away', discarded: true }),
+    ]);
+    expect(stopMs - startMs).toBeGreaterThanOrEqual(EPISODE_MS);
+  });
+
+  test('a second start, a stop with none open and a bad body are refused, saying why', () => {
+    expect(refusals.map((r) => r.status)).toEqual([409, 409, 400, 400]);
+    expect(refusals[0]!.answer.error).toBe('no episode is recording');
+    expect(refusals[1]!.answer.error).toMatch(
+      /^an episode is recording since .*: stop or discard it first$/,
+    );
+    expect(refusals[2]!.answer.error).toMatch(/needs a task/);
+    expect(refusals[3]!.answer.error).toMatch(/action must be/);
+  });
+});
+
 describe("armtwin export --format lerobot, loaded by LeRobot's own LeRobotDataset", () => {
   test('one episode of duration × fps frames, its task, the SO follower and no camera', () => {
-    expect(stderr).toContain(`1 episode(s), 90 frames at ${FPS} fps, 1 task(s), no camera`);
-    expect(checked.num_episodes).toBe(1);
-    expect(checked.num_frames).toBe((EPISODE_MS * FPS) / 1000);
-    expect(checked.episode_lengths).toEqual([90]);
+    expect(stderr).toContain(`1 episode(s), ${frames} frames at ${FPS} fps, 1 task(s), no camera`);
+    expect(checked.num_episodes).toBe(1); // the discarded one is left out
+    expect(checked.num_frames).toBe(frames);
+    expect(frames).toBeGreaterThanOrEqual((EPISODE_MS * FPS) / 1000);
+    expect(checked.episode_lengths).toEqual([frames]);
     expect(checked.fps).toBe(FPS);
     expect(checked.robot_type).toBe('so101_follower');
     expect(checked.camera_keys).toEqual([]);
@@ -231,6 +278,10 @@ describe("armtwin export --format lerobot, loaded by LeRobot's own LeRobotDatase
       );
     expect(await fail('--task', 'x')).toContain('--format lerobot needs --profile');
     expect(await fail('--profile', 'so101')).toContain('--format lerobot needs --task');
+    expect(await fail('--profile', 'so101', '--episodes', '3')).toContain(
+      'no stopped, kept episode in range',
+    );
+    expect(await fail('--profile', 'so101', '--episodes', 'x')).toContain('--episodes is "all"');
     expect(await fail('--profile', 'so101', '--task', 'x', '--fps', '0')).toContain(
       '--fps must be a whole number',
     );

@@ -8,20 +8,15 @@ import {
   loadRecordingRobot,
   type ExportFormat,
 } from '@armtwin/middleware/export';
-import { DEFAULT_FPS, exportLerobot } from '@armtwin/middleware/export/lerobot';
+import { DEFAULT_FPS } from '@armtwin/middleware/export/lerobot';
+import { runLerobotExport, type LerobotFlags } from './export-lerobot.ts';
 
 const FORMATS = [...EXPORT_FORMATS, 'lerobot'] as const;
 
-interface ExportFlags {
-  arm: string;
-  from: string;
-  to: string;
+interface ExportFlags extends LerobotFlags {
+  from?: string;
+  to?: string;
   format: ExportFormat | 'lerobot';
-  out: string;
-  fps: number;
-  task?: string;
-  profile?: string;
-  models?: string;
 }
 
 /** Epoch ms of an ISO 8601 time; a clear error for anything else. */
@@ -50,8 +45,8 @@ export function registerExport(program: Command): void {
       "write an arm's stored history over a time range as MCAP (Foxglove), CSV or a LeRobot v3.0 dataset",
     )
     .requiredOption('--arm <id>', 'arm id')
-    .requiredOption('--from <iso-time>', 'start of the range (included)')
-    .requiredOption('--to <iso-time>', 'end of the range (excluded)')
+    .option('--from <iso-time>', 'start of the range (included; mcap, csv: required)')
+    .option('--to <iso-time>', 'end of the range (excluded; mcap, csv: required)')
     .addOption(new Option('--format <format>', 'file format').choices(FORMATS).default('mcap'))
     .requiredOption('--out <file>', 'file to write (lerobot: a new or empty folder)')
     .option(
@@ -65,7 +60,14 @@ export function registerExport(program: Command): void {
       wholeFps,
       DEFAULT_FPS,
     )
-    .option('--task <text>', "lerobot: the episode's task, LeRobot's single_task (required)")
+    .option(
+      '--episodes <list>',
+      'lerobot: the marked episodes (all, or numbers 0,2 among the kept ones in --from/--to)',
+    )
+    .option(
+      '--task <text>',
+      "lerobot: the task, LeRobot's single_task (with --from/--to; overrides the marks' tasks)",
+    )
     .option('--models <dir>', 'the folder of robot profiles (default public/models)')
     .addHelpText(
       'after',
@@ -73,21 +75,23 @@ export function registerExport(program: Command): void {
 Reads InfluxDB with the middleware's settings: INFLUX_URL, INFLUX_TOKEN, INFLUX_ORG,
 INFLUX_BUCKET (README, Configuration).
 
-lerobot: one episode, [--from, --to), resampled at --fps (last stored sample at or before
-each frame; see docs/dataset.md). No video yet: the dataset has no camera feature.
+lerobot: the episodes marked through the HTTP API (POST /api/arms/<id>/episodes), or one
+episode [--from, --to) with --task, resampled at --fps (the last stored sample at or before
+each frame; docs/dataset.md). No video yet: the dataset has no camera feature.
 
 Examples:
-  INFLUX_URL=http://127.0.0.1:8086 armtwin export --format lerobot --arm so101 --profile so101 \
-    --task "pick up the cube" --from 2026-11-24T06:00:00Z --to 2026-11-24T06:00:30Z --out ds/
+  INFLUX_URL=http://127.0.0.1:8086 armtwin export --format lerobot --arm so101 --profile so101 \\
+    --episodes all --out ds/
   INFLUX_URL=http://127.0.0.1:8086 armtwin export --arm arm1 --profile armtwin5 \\
     --from 2026-11-24T06:00:00Z --to 2026-11-24T06:10:00Z --out arm1.mcap`,
     )
     .action(async (flags: ExportFlags, cmd: Command) => {
-      let startMs: number, stopMs: number;
+      let startMs: number | undefined, stopMs: number | undefined;
       try {
-        startMs = isoTime('from')(flags.from);
-        stopMs = isoTime('to')(flags.to);
-        if (stopMs <= startMs) throw new Error('--to must be after --from');
+        if (flags.from !== undefined) startMs = isoTime('from')(flags.from);
+        if (flags.to !== undefined) stopMs = isoTime('to')(flags.to);
+        if (startMs !== undefined && stopMs !== undefined && stopMs <= startMs)
+          throw new Error('--to must be after --from');
       } catch (err) {
         return cmd.error((err as Error).message);
       }
@@ -95,28 +99,15 @@ Examples:
       if (!config.influxUrl) return cmd.error('INFLUX_URL is not set: nothing to read from');
       const reader = historyReader(influxSource(config, 120_000), config.influxQueryLanguage);
       if (flags.format === 'lerobot') {
-        if (!flags.profile) return cmd.error('--format lerobot needs --profile (motors and units)');
-        if (!flags.task?.trim())
-          return cmd.error("--format lerobot needs --task (the episode's task)");
-        let summary;
         try {
-          const { profile } = loadRecordingRobot(flags.profile, flags.models);
-          summary = await exportLerobot({
-            reader,
-            arm: flags.arm,
-            profile,
-            episodes: [{ startMs, stopMs, task: flags.task.trim() }],
-            fps: flags.fps,
-            out: flags.out,
-          });
+          process.stderr.write(`${await runLerobotExport(reader, flags, { startMs, stopMs })}\n`);
         } catch (err) {
           return cmd.error(`armtwin export: ${(err as Error).message}`);
         }
-        process.stderr.write(
-          `${flags.out}: LeRobot v3.0 dataset, ${summary.episodes} episode(s), ${summary.frames} frames at ${flags.fps} fps, ${summary.tasks} task(s), no camera\n`,
-        );
         return;
       }
+      if (startMs === undefined || stopMs === undefined)
+        return cmd.error(`--format ${flags.format} needs --from and --to`);
       const robot = flags.profile ? loadRecordingRobot(flags.profile, flags.models) : null;
       const out = fs.createWriteStream(flags.out);
       await once(out, 'open');
