@@ -197,12 +197,12 @@ describe('episodes marked through the HTTP API', () => {
 
   test('a second start, a stop with none open and a bad body are refused, saying why', () => {
     expect(refusals.map((r) => r.status)).toEqual([409, 409, 400, 400]);
-    expect(refusals[0]!.answer.error).toBe('no episode is recording');
-    expect(refusals[1]!.answer.error).toMatch(
+    expect(refusals[0]!.answer.errors).toEqual(['no episode is recording']);
+    expect(String(refusals[1]!.answer.errors)).toMatch(
       /^an episode is recording since .*: stop or discard it first$/,
     );
-    expect(refusals[2]!.answer.error).toMatch(/needs a task/);
-    expect(refusals[3]!.answer.error).toMatch(/action must be/);
+    expect(String(refusals[2]!.answer.errors)).toMatch(/needs a task/);
+    expect(String(refusals[3]!.answer.errors)).toMatch(/action must be/);
   });
 });
 

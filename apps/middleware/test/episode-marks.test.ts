@@ -46,7 +46,7 @@ describe('episode actions', () => {
     ]);
     expect(decide('arm1', [], { action: 'stop' }, T)).toMatchObject({
       status: 409,
-      body: { error: 'no episode is recording' },
+      body: { errors: ['no episode is recording'] },
     });
   });
 

@@ -51,13 +51,13 @@ export function episodesRoute(o: {
       const reading = req.method === 'GET';
       if (!(await callerMay(reading ? o.mayRead : o.mayMark, req, res, answer))) return;
       if (!isValidArmId(arm))
-        return answer(res, 400, { ok: false, error: `not an arm id: ${arm}` }, 'refused:arm');
+        return answer(res, 400, { ok: false, errors: [`not an arm id: ${arm}`] }, 'refused:arm');
       const episodes = o.service()?.episodes;
       if (!episodes)
         return answer(
           res,
           503,
-          { ok: false, error: 'episodes need storage: set INFLUX_URL' },
+          { ok: false, errors: ['episodes need storage: set INFLUX_URL'] },
           'failed:storage',
         );
       if (reading) {
@@ -67,7 +67,7 @@ export function episodesRoute(o: {
           return answer(
             res,
             400,
-            { ok: false, error: 'from and to are ISO 8601 times' },
+            { ok: false, errors: ['from and to are ISO 8601 times'] },
             'refused:request',
           );
         return answer(
@@ -82,14 +82,14 @@ export function episodesRoute(o: {
         return answer(
           res,
           413,
-          { ok: false, error: `body over ${MAX_EPISODE_REQUEST_BYTES} bytes` },
+          { ok: false, errors: [`body over ${MAX_EPISODE_REQUEST_BYTES} bytes`] },
           'refused:size',
         );
       let json: unknown;
       try {
         json = JSON.parse(raw.toString('utf8'));
       } catch {
-        return answer(res, 400, { ok: false, error: 'the body is not JSON' }, 'refused:request');
+        return answer(res, 400, { ok: false, errors: ['the body is not JSON'] }, 'refused:request');
       }
       const r = await episodes.act(arm, json);
       const kind =

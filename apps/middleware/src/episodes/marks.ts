@@ -51,7 +51,7 @@ export const isOpen = (m: EpisodeMark) => m.stopMs === null && !m.discarded;
 
 export interface Decision {
   status: 200 | 201 | 409;
-  body: { ok: true; episode: EpisodeMark } | { ok: false; error: string };
+  body: { ok: true; episode: EpisodeMark } | { ok: false; errors: string[] };
   /** Lines to store (none for a refusal). */
   lines: string[];
 }
@@ -66,7 +66,7 @@ export function decide(
   const open = marks.find(isOpen);
   const refuse = (error: string): Decision => ({
     status: 409,
-    body: { ok: false, error },
+    body: { ok: false, errors: [error] },
     lines: [],
   });
   if (action.action === 'start') {

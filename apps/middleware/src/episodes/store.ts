@@ -25,7 +25,7 @@ export function episodeStore(o: {
   let queue: Promise<unknown> = Promise.resolve();
   const act = async (arm: string, body: unknown): Promise<EpisodeAnswer> => {
     const action = parseEpisodeAction(body);
-    if ('error' in action) return { status: 400, body: { ok: false, error: action.error } };
+    if ('error' in action) return { status: 400, body: { ok: false, errors: [action.error] } };
     const d = decide(arm, await readMarks(o.reader, arm), action, o.now());
     if (d.lines.length === 0) return d;
     o.storage.add(d.lines);
