@@ -54,7 +54,6 @@ export interface InfluxService {
   dispose(opts?: { keepLogs?: boolean }): Promise<string | undefined>;
 }
 
-
 async function ping(url: string): Promise<boolean> {
   const res = await fetch(`${url}/ping`, { signal: AbortSignal.timeout(1000) });
   return res.status === 204;
@@ -124,3 +123,12 @@ export async function startInflux(opts: InfluxOptions = {}): Promise<InfluxServi
     dispose: (d) => proc.dispose(d),
   };
 }
+
+/** The environment an `armtwin` command (export, the middleware) reads a test's influxd with. */
+export const influxCliEnv = (influx: { url: string; bucket: string }): NodeJS.ProcessEnv => ({
+  ...process.env,
+  INFLUX_URL: influx.url,
+  INFLUX_BUCKET: influx.bucket,
+  INFLUX_TOKEN: '',
+  INFLUX_ORG: '',
+});

@@ -18,6 +18,7 @@ import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { loadRecordingRobot } from '@armtwin/middleware/export';
 import { select, waitForValue } from '../../apps/middleware/test/support/harness.ts';
 import { REPO_ROOT } from '../helpers/files.ts';
+import { influxCliEnv } from '../helpers/influx.ts';
 import { runLerobotScript } from '../helpers/lerobot-python.ts';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
@@ -64,13 +65,7 @@ interface Checked {
 }
 
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-export-lerobot-'));
-const env = () => ({
-  ...process.env,
-  INFLUX_URL: influx().url,
-  INFLUX_BUCKET: influx().bucket,
-  INFLUX_TOKEN: '',
-  INFLUX_ORG: '',
-});
+const env = () => influxCliEnv(influx());
 const exportTo = (out: string, ...extra: string[]) =>
   run(
     process.execPath,
