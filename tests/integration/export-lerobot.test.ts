@@ -2,9 +2,9 @@
  * Episodes and `armtwin export --format lerobot` from a real recording: a simulated SO-101
  * (`armtwin sim --profile so101`) on Mosquitto is moved twice by angle-move groups while the
  * middleware stores its reports and the commands in influxd. An operator marks a ≥ 3 s episode
- * through the middleware's HTTP API (`POST /api/arms/<id>/episodes` start, stop), and a second
- * one that is discarded; `--episodes all` exports the kept one at 30 fps, and LeRobot 0.6.1's own
- * `LeRobotDataset` (tests/helpers/lerobot/dataset_check.py) loads the folder: one episode of
+ * through the middleware's HTTP API (`POST /api/arms/<id>/episodes` start, stop), and a
+ * second one that `armtwin episode` starts and discards; `--episodes all` exports the kept one
+ * at 30 fps, and LeRobot 0.6.1's own `LeRobotDataset` (tests/helpers/lerobot/dataset_check.py) loads the folder: one episode of
  * duration × fps frames with its task, the SO follower's features and units, and every frame's
  * observation.state and action equal to the stored sample (resp. command) in force at its
  * timestamp, read back with InfluxQL. Bad requests and flags are refused with a clear error.
@@ -120,6 +120,7 @@ const episodeOf = (r: { answer: Record<string, unknown> }) => r.answer.episode a
 
 let listed: Mark[] = [];
 const refusals: { status: number; answer: Record<string, unknown> }[] = [];
+let cliRefusal = '';
 
 beforeAll(async () => {
   const mw = await mws.spawn({ env: { FLUSH_INTERVAL_MS: '200' } });
@@ -147,8 +148,27 @@ beforeAll(async () => {
   expect(stopped.status).toBe(200);
   stopMs = episodeOf(stopped).stopMs!;
   frames = Math.floor(((stopMs - startMs) * FPS) / 1000);
-  expect(episodeOf(await mark({ action: 'start', task: 'thrown away' })).task).toBe('thrown away');
-  expect(episodeOf(await mark({ action: 'discard' })).discarded).toBe(true);
+  // the CLI marks through the same route
+  const cli = (...args: string[]) =>
+    run(
+      process.execPath,
+      [ARMTWIN, 'episode', ...args, '--arm', ARM, '--api', `http://127.0.0.1:${mw.port}/api`],
+      {
+        cwd: REPO_ROOT,
+        timeout: 60_000,
+      },
+    );
+  const thrown = JSON.parse((await cli('start', '--task', 'thrown away')).stdout) as {
+    episode: Mark;
+  };
+  expect(thrown.episode.task).toBe('thrown away');
+  expect((JSON.parse((await cli('discard')).stdout) as { episode: Mark }).episode.discarded).toBe(
+    true,
+  );
+  cliRefusal = await cli('stop').then(
+    () => '',
+    (err: { stderr: string }) => err.stderr,
+  );
   refusals.push(await mark({ action: 'start' }), await mark({ action: 'jump' }));
   listed = ((await (await fetch(`${api}/episodes`)).json()) as { episodes: Mark[] }).episodes;
   // the whole episode stored: a report after its end is in influxd
@@ -181,7 +201,7 @@ afterAll(async () => {
   fs.rmSync(dir, { recursive: true, force: true });
 });
 
-describe('episodes marked through the HTTP API', () => {
+describe('episodes marked through the HTTP API and `armtwin episode`', () => {
   test('start, stop and discard are stored and listed; the episode is at least 3 s', () => {
     expect(listed).toEqual([
       { startMs, stopMs, task: TASK, discarded: false },
@@ -198,6 +218,7 @@ describe('episodes marked through the HTTP API', () => {
     );
     expect(String(refusals[2]!.answer.errors)).toMatch(/needs a task/);
     expect(String(refusals[3]!.answer.errors)).toMatch(/action must be/);
+    expect(cliRefusal).toContain('armtwin episode stop: 409 no episode is recording');
   });
 });
 
