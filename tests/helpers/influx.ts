@@ -110,3 +110,12 @@ export async function startInflux(opts: InfluxOptions = {}): Promise<InfluxServi
     dispose: (d) => proc.dispose(d),
   };
 }
+
+/** The environment an `armtwin` command (export, the middleware) reads a test's influxd with. */
+export const influxCliEnv = (influx: { url: string; bucket: string }): NodeJS.ProcessEnv => ({
+  ...process.env,
+  INFLUX_URL: influx.url,
+  INFLUX_BUCKET: influx.bucket,
+  INFLUX_TOKEN: '',
+  INFLUX_ORG: '',
+});

@@ -18,7 +18,7 @@ import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { createHistoryHandler, historyReader } from '@armtwin/middleware/history';
 import { forwardKinematics, jointsFromServoAngles, type Quad } from '@armtwin/ik';
 import { angleFromPwm } from '@armtwin/protocol';
-import { influxQuery } from '../helpers/influx.ts';
+import { influxCliEnv, influxQuery } from '../helpers/influx.ts';
 import { REPO_ROOT } from '../helpers/files.ts';
 import { servoSdkPython } from '../helpers/servo-sdk-python.ts';
 import { useInflux } from '../helpers/use-services.ts';
@@ -88,13 +88,7 @@ async function influxRows(measurement: string): Promise<Record<string, unknown>[
 }
 
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-export-'));
-const env = () => ({
-  ...process.env,
-  INFLUX_URL: influx().url,
-  INFLUX_BUCKET: influx().bucket,
-  INFLUX_TOKEN: '',
-  INFLUX_ORG: '',
-});
+const env = () => influxCliEnv(influx());
 const exportTo = (file: string, ...extra: string[]) =>
   run(
     process.execPath,

@@ -1,5 +1,6 @@
 import { Command, CommanderError } from 'commander';
 import { registerDecode } from './commands/decode.ts';
+import { registerEpisode } from './commands/episode.ts';
 import { registerExport } from './commands/export.ts';
 import { registerIk } from './commands/ik.ts';
 import { registerSim } from './commands/sim.ts';
@@ -15,6 +16,7 @@ import { registerDeployMosquitto, registerPasswd } from './commands/security.ts'
 const COMMANDS: ((program: Command) => void)[] = [
   registerDecode,
   registerExport,
+  registerEpisode,
   registerIk,
   registerSim,
   registerGateway,

@@ -8,7 +8,7 @@
  */
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { LoginThrottle } from '@armtwin/auth';
-import { createApi, type ApiService } from '@armtwin/http-api';
+import { createApi, type ApiService, type EpisodeService } from '@armtwin/http-api';
 import type { HistoryHandler } from './history/index.ts';
 import { renderMetrics, type Metrics } from './metrics.ts';
 
@@ -30,6 +30,8 @@ export interface HttpSource {
   health(): HealthReport;
   /** The history API, or null when there is no storage to read from. */
   history?: HistoryHandler | null;
+  /** An arm's episode marks, or null when there is no storage. */
+  episodes?: EpisodeService | null;
   /** '' = open; else the bearer token /metrics and /history require. */
   apiToken?: string;
   /** The users file behind the failed-log-in throttle, or null. */
@@ -46,6 +48,7 @@ export function apiService(mw: HttpSource): ApiService {
     health: () => mw.health(),
     metrics: () => renderMetrics(mw.metrics),
     history: mw.history ?? null,
+    episodes: mw.episodes ?? null,
   };
 }
 

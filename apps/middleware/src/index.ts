@@ -20,6 +20,7 @@ import { createLogger, LogOnce, type Logger } from './log.ts';
 import { Metrics } from './metrics.ts';
 import { startMqtt, type ConnectFn } from './mqtt.ts';
 import { Storage } from './storage.ts';
+import { episodeStore } from './episodes/store.ts';
 import type { ApiService } from '@armtwin/http-api';
 import { startThermalAlerts } from './thermal-alerts-run.ts';
 
@@ -252,7 +253,15 @@ export async function startMiddleware(
           ),
       })
     : null;
-  const source = { metrics, health, history };
+  const episodes =
+    storage && config.influxUrl
+      ? episodeStore({
+          reader: historyReader(influxSource(config, 30_000), config.influxQueryLanguage),
+          storage,
+          now: () => clock.now(),
+        })
+      : null;
+  const source = { metrics, health, history, episodes };
   /** The kinds of refused or failed API requests told so far. */
   const apiKinds = new Set<string>();
   const handler = createHttpHandler({

@@ -81,6 +81,26 @@ export function ikLine(
 const stringField = (s: string): string =>
   `"${s.replace(/[\\"]/g, (c) => `\\${c}`).replace(/[\r\n]+/g, ' ')}"`;
 
+/** The series of an arm's episodes (an arm id needs no escaping: ARM_ID_PATTERN). */
+export const episodeSeries = (arm: string): string => `episode,arm=${arm}`;
+
+/**
+ * A field update of the episode that starts at `t` (its point's time): the task when it starts,
+ * `stop` (epoch ms) when it stops, `discarded` when it is thrown away. InfluxDB merges the
+ * fields of points of one series and time, so the episode is one point.
+ */
+export function episodeLine(
+  arm: string,
+  fields: { task?: string; stop?: number; discarded?: true },
+  t: Micros,
+): string {
+  const out: string[] = [];
+  if (fields.task !== undefined) out.push(`task=${stringField(fields.task)}`);
+  if (fields.stop !== undefined) out.push(`stop=${Math.round(fields.stop)}i`);
+  if (fields.discarded) out.push('discarded=true');
+  return `${episodeSeries(arm)} ${out.join(',')} ${t}`;
+}
+
 /** The series of an arm's control events of one kind (a kind is one of AUDIT_KINDS: no escaping). */
 export const auditSeries = (arm: string, kind: string): string => `audit,arm=${arm},kind=${kind}`;
 

@@ -9,6 +9,8 @@
  *   /robots/import                      POST a robot as a .zip (./robots/import.ts)
  *   /robots/{name}/calibration          PUT (./robots/calibration.ts)
  *   /robots/{name}/keep-out             PUT (./robots/keep-out.ts)
+ *   /arms/{id}/episodes                 GET, POST an arm's episode marks (./episodes.ts; 503
+ *                                       without the middleware's storage)
  *   /arms/{id}/model                    GET, POST, DELETE a model copy (./model-copies.ts; 501
  *                                       where no `modelCopies` host runs them)
  *   /models/{name}/…                    GET the robot folders' files (./model-files.ts)
@@ -23,6 +25,7 @@ import {
   type Right,
 } from './authorize.ts';
 import type { May, RouteCounters } from './counted-answer.ts';
+import { episodesRoute } from './episodes.ts';
 import { modelCopyRoute, type ModelCopyHost } from './model-copies.ts';
 import { modelFiles } from './model-files.ts';
 import { calibrationRoute } from './robots/calibration.ts';
@@ -56,7 +59,7 @@ export interface Api {
   /** The one log-in step. */
   authorize: Authorize;
   /** Answers counted by route and outcome (`written`, `refused:<why>`, …). */
-  counters: Record<'calibration' | 'keepOut' | 'import' | 'model', RouteCounters>;
+  counters: Record<'calibration' | 'keepOut' | 'import' | 'model' | 'episodes', RouteCounters>;
 }
 
 type Route = (
@@ -86,6 +89,12 @@ export function createApi(o: ApiOptions): Api {
     mayRead: may('view'),
     onFirst: o.onFirst,
   });
+  const episodes = episodesRoute({
+    service: o.service,
+    mayRead: may('data'),
+    mayMark: may('change'),
+    onFirst: o.onFirst,
+  });
 
   const router = Router();
   const route = (path: string, r: Route) =>
@@ -101,6 +110,7 @@ export function createApi(o: ApiOptions): Api {
     route('/robots/:name/calibration', (req, res, p) => calibration.handle(req, res, p.name!));
     route('/robots/:name/keep-out', (req, res, p) => keepOut.handle(req, res, p.name!));
   }
+  route('/arms/:id/episodes', (req, res, p) => episodes.handle(req, res, p.id!));
   route('/arms/:id/model', (req, res, p) => model.handle(req, res, p.id!));
 
   return {
@@ -110,6 +120,7 @@ export function createApi(o: ApiOptions): Api {
       keepOut: keepOut.counters,
       import: robotImport.counters,
       model: model.counters,
+      episodes: episodes.counters,
     },
     handle(req, res) {
       const path = (req.url ?? '/').replace(/^\/api(?=[/?]|$)/, '') || '/';

@@ -15,6 +15,12 @@ export {
   type Right,
 } from './authorize.ts';
 export type { RouteCounters } from './counted-answer.ts';
+export {
+  episodesRoute,
+  MAX_EPISODE_REQUEST_BYTES,
+  type EpisodeAnswer,
+  type EpisodeService,
+} from './episodes.ts';
 export type { ModelCopyHost } from './model-copies.ts';
 export { MAX_MODEL_REQUEST_BYTES, parseModelPose, type ModelPose } from './model-pose.ts';
 export { replaceProfileFile } from './robots/profile-file.ts';

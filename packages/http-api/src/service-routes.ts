@@ -7,6 +7,7 @@
 import type http from 'node:http';
 import { whoamiAnswer } from '@armtwin/auth';
 import { refusal, type AuthOptions, type Authorize } from './authorize.ts';
+import type { EpisodeService } from './episodes.ts';
 import { sendJson } from './send-json.ts';
 
 /** What the middleware lends the API. */
@@ -20,6 +21,8 @@ export interface ApiService {
    * a path it does not know), or null when there is no storage to read from.
    */
   history: ((req: http.IncomingMessage, res: http.ServerResponse) => Promise<boolean>) | null;
+  /** An arm's episode marks (./episodes.ts), or null/absent when there is no storage. */
+  episodes?: EpisodeService | null;
 }
 
 const MIDDLEWARE_MISSING = { ok: false, storage: false, error: 'the middleware is not running' };

@@ -147,3 +147,39 @@ test('robot folders are served from the models folders at /models/, nothing outs
   );
   expect(escape).toBe(403);
 });
+
+test('episodes: GET lists and POST marks through the middleware; without storage 503', async () => {
+  service = { health: () => ({ ok: true }), metrics: () => '', history: null };
+  expect(await call('GET', '/api/arms/arm1/episodes')).toMatchObject({ status: 503 });
+  expect(await call('PUT', '/api/arms/arm1/episodes')).toMatchObject({
+    status: 405,
+    allow: 'GET, POST',
+  });
+  const asked: unknown[] = [];
+  service.episodes = {
+    list: async (arm, from, to) => (asked.push([arm, from, to]), [{ startMs: 1 }]),
+    act: async (arm, body) => (asked.push([arm, body]), { status: 201, body: { ok: true } }),
+  };
+  const listed = await call('GET', '/api/arms/arm1/episodes?from=2026-11-27T08:00:00Z');
+  expect(JSON.parse(listed.text)).toEqual({ ok: true, episodes: [{ startMs: 1 }] });
+  expect(await call('POST', '/api/arms/arm1/episodes', '{"action":"stop"}')).toMatchObject({
+    status: 201,
+  });
+  expect(asked).toEqual([
+    ['arm1', Date.UTC(2026, 10, 27, 8), undefined],
+    ['arm1', { action: 'stop' }],
+  ]);
+  const bad = [
+    await call('POST', '/api/arms/arm1/episodes', 'not json'),
+    await call('GET', '/api/arms/arm1/episodes?to=yesterday'),
+    await call('GET', '/api/arms/Bad_Arm/episodes'),
+    await call('POST', '/api/arms/arm1/episodes', 'x'.repeat(5000)),
+  ];
+  expect(bad.map((r) => [r.status, JSON.parse(r.text).errors[0]])).toEqual([
+    [400, 'the body is not JSON'],
+    [400, 'from and to are ISO 8601 times'],
+    [400, 'not an arm id: Bad_Arm'],
+    [413, 'body over 4096 bytes'],
+  ]);
+  expect(asked).toHaveLength(2);
+});

@@ -1,6 +1,6 @@
 import fs from 'node:fs';
 import { once } from 'node:events';
-import { Option, type Command } from 'commander';
+import { InvalidArgumentError, Option, type Command } from 'commander';
 import { historyReader, influxSource, loadConfig } from '@armtwin/middleware';
 import {
   EXPORT_FORMATS,
@@ -8,15 +8,15 @@ import {
   loadRecordingRobot,
   type ExportFormat,
 } from '@armtwin/middleware/export';
+import { DEFAULT_FPS } from '@armtwin/middleware/export/lerobot';
+import { runLerobotExport, type LerobotFlags } from './export-lerobot.ts';
 
-interface ExportFlags {
-  arm: string;
-  from: string;
-  to: string;
-  format: ExportFormat;
-  out: string;
-  profile?: string;
-  models?: string;
+const FORMATS = [...EXPORT_FORMATS, 'lerobot'] as const;
+
+interface ExportFlags extends LerobotFlags {
+  from?: string;
+  to?: string;
+  format: ExportFormat | 'lerobot';
 }
 
 /** Epoch ms of an ISO 8601 time; a clear error for anything else. */
@@ -31,20 +31,42 @@ function isoTime(name: string) {
   };
 }
 
+function wholeFps(value: string): number {
+  const n = Number(value);
+  if (!Number.isInteger(n) || n < 1 || n > 1000)
+    throw new InvalidArgumentError(`--fps must be a whole number from 1 to 1000, got "${value}"`);
+  return n;
+}
+
 export function registerExport(program: Command): void {
   program
     .command('export')
-    .description("write an arm's stored history over a time range as MCAP (Foxglove) or CSV")
-    .requiredOption('--arm <id>', 'arm id')
-    .requiredOption('--from <iso-time>', 'start of the range (included)')
-    .requiredOption('--to <iso-time>', 'end of the range (excluded)')
-    .addOption(
-      new Option('--format <format>', 'file format').choices(EXPORT_FORMATS).default('mcap'),
+    .description(
+      "write an arm's stored history over a time range as MCAP (Foxglove), CSV or a LeRobot v3.0 dataset",
     )
-    .requiredOption('--out <file>', 'file to write')
+    .requiredOption('--arm <id>', 'arm id')
+    .option('--from <iso-time>', 'start of the range (included; mcap, csv: required)')
+    .option('--to <iso-time>', 'end of the range (excluded; mcap, csv: required)')
+    .addOption(new Option('--format <format>', 'file format').choices(FORMATS).default('mcap'))
+    .requiredOption('--out <file>', 'file to write (lerobot: a new or empty folder)')
     .option(
       '--profile <name>',
-      "the arm's robot profile: adds joint states and link transforms for a 3D panel (MCAP)",
+      "the arm's robot profile: adds joint states and link transforms for a 3D panel (MCAP); " +
+        'names the motors and their units (lerobot, required)',
+    )
+    .option(
+      '--fps <n>',
+      'lerobot: frames per second the history is resampled to',
+      wholeFps,
+      DEFAULT_FPS,
+    )
+    .option(
+      '--episodes <list>',
+      'lerobot: the marked episodes (all, or numbers 0,2 among the kept ones in --from/--to)',
+    )
+    .option(
+      '--task <text>',
+      "lerobot: the task, LeRobot's single_task (with --from/--to; overrides the marks' tasks)",
     )
     .option('--models <dir>', 'the folder of robot profiles (default public/models)')
     .addHelpText(
@@ -53,26 +75,44 @@ export function registerExport(program: Command): void {
 Reads InfluxDB with the middleware's settings: INFLUX_URL, INFLUX_TOKEN, INFLUX_ORG,
 INFLUX_BUCKET (README, Configuration).
 
-Example:
+lerobot: the episodes marked through the HTTP API (POST /api/arms/<id>/episodes), or one
+episode [--from, --to) with --task, resampled at --fps (the last stored sample at or before
+each frame; docs/dataset.md). No video yet: the dataset has no camera feature.
+
+Examples:
+  INFLUX_URL=http://127.0.0.1:8086 armtwin export --format lerobot --arm so101 --profile so101 \\
+    --episodes all --out ds/
   INFLUX_URL=http://127.0.0.1:8086 armtwin export --arm arm1 --profile armtwin5 \\
     --from 2026-11-24T06:00:00Z --to 2026-11-24T06:10:00Z --out arm1.mcap`,
     )
     .action(async (flags: ExportFlags, cmd: Command) => {
-      let startMs: number, stopMs: number;
+      let startMs: number | undefined, stopMs: number | undefined;
       try {
-        startMs = isoTime('from')(flags.from);
-        stopMs = isoTime('to')(flags.to);
-        if (stopMs <= startMs) throw new Error('--to must be after --from');
+        if (flags.from !== undefined) startMs = isoTime('from')(flags.from);
+        if (flags.to !== undefined) stopMs = isoTime('to')(flags.to);
+        if (startMs !== undefined && stopMs !== undefined && stopMs <= startMs)
+          throw new Error('--to must be after --from');
       } catch (err) {
         return cmd.error((err as Error).message);
       }
       const config = loadConfig();
       if (!config.influxUrl) return cmd.error('INFLUX_URL is not set: nothing to read from');
+      const reader = historyReader(influxSource(config, 120_000), config.influxQueryLanguage);
+      if (flags.format === 'lerobot') {
+        try {
+          process.stderr.write(`${await runLerobotExport(reader, flags, { startMs, stopMs })}\n`);
+        } catch (err) {
+          return cmd.error(`armtwin export: ${(err as Error).message}`);
+        }
+        return;
+      }
+      if (startMs === undefined || stopMs === undefined)
+        return cmd.error(`--format ${flags.format} needs --from and --to`);
       const robot = flags.profile ? loadRecordingRobot(flags.profile, flags.models) : null;
       const out = fs.createWriteStream(flags.out);
       await once(out, 'open');
       const summary = await exportRecording({
-        reader: historyReader(influxSource(config, 120_000), config.influxQueryLanguage),
+        reader,
         arm: flags.arm,
         startMs,
         stopMs,

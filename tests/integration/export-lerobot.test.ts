@@ -1,0 +1,308 @@
+/**
+ * Episodes and `armtwin export --format lerobot` from a real recording: a simulated SO-101
+ * (`armtwin sim --profile so101`) on Mosquitto is moved twice by angle-move groups while the
+ * middleware stores its reports and the commands in influxd. An operator marks a ≥ 3 s episode
+ * through the middleware's HTTP API (`POST /api/arms/<id>/episodes` start, stop), and a
+ * second one that `armtwin episode` starts and discards; `--episodes all` exports the kept one
+ * at 30 fps, and LeRobot 0.6.1's own `LeRobotDataset` (tests/helpers/lerobot/dataset_check.py) loads the folder: one episode of
+ * duration × fps frames with its task, the SO follower's features and units, and every frame's
+ * observation.state and action equal to the stored sample (resp. command) in force at its
+ * timestamp, read back with InfluxQL. Bad requests and flags are refused with a clear error.
+ */
+import { execFile } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { promisify } from 'node:util';
+import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+import { loadRecordingRobot } from '@armtwin/middleware/export';
+import { select, waitForValue } from '../../apps/middleware/test/support/harness.ts';
+import { REPO_ROOT } from '../helpers/files.ts';
+import { influxCliEnv } from '../helpers/influx.ts';
+import { runLerobotScript } from '../helpers/lerobot-python.ts';
+import { useInflux, useMosquitto } from '../helpers/use-services.ts';
+import { useMiddlewares } from '../helpers/use-middlewares.ts';
+import { ARMTWIN, StatusWatcher, armtwin, type Child } from './sim-helpers.ts';
+
+const run = promisify(execFile);
+const broker = useMosquitto();
+const influx = useInflux();
+const mws = useMiddlewares('export-lerobot', () => ({ mqttUrl: broker().url, influx: influx() }));
+
+const ARM = 'so101ds';
+const FPS = 30;
+const EPISODE_MS = 3000;
+const TASK = 'wave the gripper over the cube';
+const { profile } = loadRecordingRobot('so101');
+/** Two goals, servo angles in degrees for servos 1..6 (the gripper's limits are −10..100). */
+const GOALS = [
+  [30, -20, 15, 10, -40, 45],
+  [-25, 10, -30, 0, 20, 0],
+];
+const gripperPct = (deg: number) => ((deg + 10) / 110) * 100;
+const lerobotUnits = (goal: number[]) => goal.map((d, i) => (i === 5 ? gripperPct(d) : d));
+
+const group = (goal: number[], ms: number) =>
+  `{${goal.map((d, i) => `#00${i + 1}A${d < 0 ? '-' : '+'}${Math.abs(d).toFixed(2).padStart(6, '0')}T${String(ms).padStart(4, '0')}!`).join('')}}`;
+
+interface Checked {
+  num_episodes: number;
+  num_frames: number;
+  fps: number;
+  features: Record<string, { dtype: string; shape: number[]; names: string[] | null }>;
+  robot_type: string;
+  camera_keys: string[];
+  episode_lengths: number[];
+  frames: {
+    index: number;
+    frame_index: number;
+    episode_index: number;
+    timestamp: number;
+    task: string;
+    state: number[];
+    action: number[];
+  }[];
+}
+
+const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-export-lerobot-'));
+const env = () => influxCliEnv(influx());
+const exportTo = (out: string, ...extra: string[]) =>
+  run(
+    process.execPath,
+    [ARMTWIN, 'export', '--format', 'lerobot', '--arm', ARM, '--out', out, ...extra],
+    {
+      cwd: REPO_ROOT,
+      env: env(),
+      timeout: 60_000,
+    },
+  );
+
+let sim: Child;
+let w: StatusWatcher;
+let startMs = 0;
+let stopMs = 0;
+let frames = 0;
+let api = '';
+let checked: Checked;
+let stderr = '';
+
+/** InfluxQL rows [µs, angle] per servo id of `measurement`, in time order. */
+async function stored(measurement: string): Promise<Map<number, [number, number][]>> {
+  const from = (startMs - 10_000) * 1000;
+  const rows = await select(
+    { url: influx().url, db: influx().db },
+    `SELECT "angle", "id" FROM "${measurement}" WHERE "arm" = '${ARM}' AND time >= ${from}u AND time < ${stopMs * 1000}u AND "angle" > -1000`,
+  );
+  const out = new Map<number, [number, number][]>();
+  for (const [t, angle, id] of rows as [number, number, string][]) {
+    const list = out.get(Number(id)) ?? [];
+    list.push([t, angle]);
+    out.set(Number(id), list);
+  }
+  return out;
+}
+
+/** The value in force at µs `t`: the last of `track` at or before it. */
+const heldAt = (track: [number, number][] | undefined, t: number) =>
+  track?.filter(([at]) => at <= t).at(-1)?.[1];
+
+/** POST an episode action; the status and answer. */
+async function mark(body: unknown): Promise<{ status: number; answer: Record<string, unknown> }> {
+  const res = await fetch(`${api}/episodes`, {
+    method: 'POST',
+    headers: { 'content-type': 'application/json' },
+    body: JSON.stringify(body),
+  });
+  return { status: res.status, answer: (await res.json()) as Record<string, unknown> };
+}
+type Mark = { startMs: number; stopMs: number | null; task: string; discarded: boolean };
+const episodeOf = (r: { answer: Record<string, unknown> }) => r.answer.episode as Mark;
+
+let listed: Mark[] = [];
+const refusals: { status: number; answer: Record<string, unknown> }[] = [];
+let cliRefusal = '';
+
+beforeAll(async () => {
+  const mw = await mws.spawn({ env: { FLUSH_INTERVAL_MS: '200' } });
+  api = `http://127.0.0.1:${mw.port}/api/arms/${ARM}`;
+  sim = armtwin([
+    'sim',
+    ...['--mqtt', broker().url, '--arm', ARM, '--profile', 'so101', '--report', 'angle'],
+    ...['--rate', '50'],
+  ]);
+  w = await StatusWatcher.connect(broker().url, ARM);
+  await w.online();
+  await w.until(() => (w.angleSamples(1).length > 10 ? true : undefined), 20_000, 'reports');
+  refusals.push(await mark({ action: 'stop' }));
+  const started = await mark({ action: 'start', task: `  ${TASK}\n` });
+  expect(started.status).toBe(201);
+  startMs = episodeOf(started).startMs;
+  refusals.push(await mark({ action: 'start', task: 'a second one at once' }));
+  const move = (goal: number[]) => w.send(`$TIM:${Date.now()}!${group(goal, 800)}`);
+  await new Promise((r) => setTimeout(r, 300));
+  await move(GOALS[0]!);
+  await new Promise((r) => setTimeout(r, 1300));
+  await move(GOALS[1]!);
+  await new Promise((r) => setTimeout(r, Math.max(0, startMs + EPISODE_MS - Date.now())));
+  const stopped = await mark({ action: 'stop' });
+  expect(stopped.status).toBe(200);
+  stopMs = episodeOf(stopped).stopMs!;
+  frames = Math.floor(((stopMs - startMs) * FPS) / 1000);
+  // the CLI marks through the same route
+  const cli = (...args: string[]) =>
+    run(
+      process.execPath,
+      [ARMTWIN, 'episode', ...args, '--arm', ARM, '--api', `http://127.0.0.1:${mw.port}/api`],
+      {
+        cwd: REPO_ROOT,
+        timeout: 60_000,
+      },
+    );
+  const thrown = JSON.parse((await cli('start', '--task', 'thrown away')).stdout) as {
+    episode: Mark;
+  };
+  expect(thrown.episode.task).toBe('thrown away');
+  expect((JSON.parse((await cli('discard')).stdout) as { episode: Mark }).episode.discarded).toBe(
+    true,
+  );
+  cliRefusal = await cli('stop').then(
+    () => '',
+    (err: { stderr: string }) => err.stderr,
+  );
+  refusals.push(await mark({ action: 'start' }), await mark({ action: 'jump' }));
+  listed = ((await (await fetch(`${api}/episodes`)).json()) as { episodes: Mark[] }).episodes;
+  // the whole episode stored: a report after its end is in influxd
+  const q = `SELECT count("angle") FROM "servo" WHERE "arm" = '${ARM}' AND time >= ${stopMs * 1000}u`;
+  await waitForValue(
+    async () => Number((await select({ url: influx().url, db: influx().db }, q))[0]?.[1] ?? 0) > 0,
+    true,
+    20_000,
+  );
+  const out = path.join(dir, 'ds');
+  ({ stderr } = await exportTo(
+    out,
+    '--profile',
+    'so101',
+    '--episodes',
+    'all',
+    '--fps',
+    String(FPS),
+  ));
+  checked = runLerobotScript<Checked>('dataset_check.py', {
+    root: out,
+    repo_id: 'armtwin/so101ds',
+    frames: Array.from({ length: frames }, (_, k) => k),
+  });
+}, 180_000);
+
+afterAll(async () => {
+  await w?.close();
+  await sim?.stop();
+  fs.rmSync(dir, { recursive: true, force: true });
+});
+
+describe('episodes marked through the HTTP API and `armtwin episode`', () => {
+  test('start, stop and discard are stored and listed; the episode is at least 3 s', () => {
+    expect(listed).toEqual([
+      { startMs, stopMs, task: TASK, discarded: false },
+      expect.objectContaining({ task: 'thrown away', discarded: true }),
+    ]);
+    expect(stopMs - startMs).toBeGreaterThanOrEqual(EPISODE_MS);
+  });
+
+  test('a second start, a stop with none open and a bad body are refused, saying why', () => {
+    expect(refusals.map((r) => r.status)).toEqual([409, 409, 400, 400]);
+    expect(refusals[0]!.answer.errors).toEqual(['no episode is recording']);
+    expect(String(refusals[1]!.answer.errors)).toMatch(
+      /^an episode is recording since .*: stop or discard it first$/,
+    );
+    expect(String(refusals[2]!.answer.errors)).toMatch(/needs a task/);
+    expect(String(refusals[3]!.answer.errors)).toMatch(/action must be/);
+    expect(cliRefusal).toContain('armtwin episode stop: 409 no episode is recording');
+  });
+});
+
+describe("armtwin export --format lerobot, loaded by LeRobot's own LeRobotDataset", () => {
+  test('one episode of duration × fps frames, its task, the SO follower and no camera', () => {
+    expect(stderr).toContain(`1 episode(s), ${frames} frames at ${FPS} fps, 1 task(s), no camera`);
+    expect(checked.num_episodes).toBe(1); // the discarded one is left out
+    expect(checked.num_frames).toBe(frames);
+    expect(frames).toBeGreaterThanOrEqual((EPISODE_MS * FPS) / 1000);
+    expect(checked.episode_lengths).toEqual([frames]);
+    expect(checked.fps).toBe(FPS);
+    expect(checked.robot_type).toBe('so101_follower');
+    expect(checked.camera_keys).toEqual([]);
+    const names = profile.servos.map((s) => `${s.name}.pos`);
+    expect(names).toEqual([
+      ...['shoulder_pan.pos', 'shoulder_lift.pos', 'elbow_flex.pos'],
+      ...['wrist_flex.pos', 'wrist_roll.pos', 'gripper.pos'],
+    ]);
+    expect(checked.features['observation.state']).toEqual({ dtype: 'float32', shape: [6], names });
+    expect(checked.features.action).toEqual({ dtype: 'float32', shape: [6], names });
+    for (const f of ['timestamp', 'frame_index', 'episode_index', 'index', 'task_index'])
+      expect(checked.features[f]).toBeDefined();
+    expect(checked.frames.map((f) => f.task)).toEqual(checked.frames.map(() => TASK));
+    expect(checked.frames.map((f) => f.frame_index)).toEqual(checked.frames.map((_, k) => k));
+    checked.frames.forEach((f, k) => expect(f.timestamp).toBeCloseTo(k / FPS, 5));
+  });
+
+  test('observation.state is the stored report in force at each frame, in LeRobot units', async () => {
+    const reports = await stored('servo');
+    for (const f of checked.frames) {
+      const t = startMs * 1000 + Math.floor((f.frame_index * 1e6) / FPS);
+      const want = profile.servos.map((s, i) => {
+        const deg = heldAt(reports.get(s.id), t);
+        expect(deg, `servo ${s.id} at frame ${f.frame_index}`).toBeDefined();
+        return i === 5 ? gripperPct(deg!) : deg!;
+      });
+      f.state.forEach((v, i) => expect(v).toBeCloseTo(want[i]!, 3));
+    }
+    // the arm really moved: the last frame is at the second goal
+    checked.frames
+      .at(-1)!
+      .state.forEach((v, i) => expect(v).toBeCloseTo(lerobotUnits(GOALS[1]!)[i]!, 1));
+    expect(checked.frames[0]!.state).not.toEqual(checked.frames.at(-1)!.state);
+  });
+
+  test('action is the commanded target held between commands (the state before the first)', async () => {
+    const commands = await stored('command');
+    expect([...commands.values()].map((c) => c.length)).toEqual([2, 2, 2, 2, 2, 2]);
+    const firstAt = commands.get(1)![0]![0];
+    const secondAt = commands.get(1)![1]![0];
+    for (const f of checked.frames) {
+      const t = startMs * 1000 + Math.floor((f.frame_index * 1e6) / FPS);
+      const want = t < firstAt ? f.state : lerobotUnits(GOALS[t < secondAt ? 0 : 1]!);
+      f.action.forEach((v, i) => expect(v).toBeCloseTo(want[i]!, 3));
+    }
+    expect(checked.frames.some((f) => startMs * 1000 + (f.frame_index * 1e6) / FPS < firstAt)).toBe(
+      true,
+    );
+  });
+
+  test('bad flags are refused with what to do', async () => {
+    const fail = (...args: string[]) =>
+      exportTo(
+        path.join(dir, 'bad'),
+        '--from',
+        '2026-11-24T06:00:00Z',
+        '--to',
+        '2026-11-24T06:00:05Z',
+        ...args,
+      ).then(
+        () => '',
+        (err: { stderr: string }) => err.stderr,
+      );
+    expect(await fail('--task', 'x')).toContain('--format lerobot needs --profile');
+    expect(await fail('--profile', 'so101')).toContain('--format lerobot needs --task');
+    expect(await fail('--profile', 'so101', '--episodes', '3')).toContain(
+      'no stopped, kept episode in range',
+    );
+    expect(await fail('--profile', 'so101', '--episodes', 'x')).toContain('--episodes is "all"');
+    expect(await fail('--profile', 'so101', '--task', 'x', '--fps', '0')).toContain(
+      '--fps must be a whole number',
+    );
+    fs.mkdirSync(path.join(dir, 'bad'), { recursive: true });
+    fs.writeFileSync(path.join(dir, 'bad', 'keep.txt'), 'x');
+    expect(await fail('--profile', 'so101', '--task', 'x')).toContain('is not empty');
+  });
+});
