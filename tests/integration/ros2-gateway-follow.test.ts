@@ -63,7 +63,9 @@ beforeAll(async () => {
     ...['--profile', 'zone5', '--models', models],
   ]);
   await w
-    .until(() => (w.retained.get(`arm/${ARM}/online`) === '1' ? true : undefined), 30_000, 'online')
+    // a bound, not a timing: the gateway's start (Node, its rclpy process, DDS discovery) once
+    // took over 30 s here, at load 28 on 2 cores
+    .until(() => (w.retained.get(`arm/${ARM}/online`) === '1' ? true : undefined), 60_000, 'online')
     .catch((err: Error) => {
       throw new Error(`${err.message}\n${gateway.output()}`);
     });
