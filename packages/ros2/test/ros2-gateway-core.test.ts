@@ -5,9 +5,11 @@
  * driver, by tests/integration/controller-behaviour.test.ts.
  */
 import { expect, test } from 'vitest';
+import { INVALID_PROFILE_REASON, refuseEveryMove } from '@armtwin/controller';
 import { FakeClock } from '@armtwin/protocol/fake-clock';
+import { servoFromJoint } from '@armtwin/robot';
 import { HOLD_MS, Ros2GatewayCore, type JointTrajectoryMsg } from '../src/index.ts';
-import { armtwin5 } from './profiles.ts';
+import { armtwin5, track6 } from './profiles.ts';
 
 const NAMES = ['base_yaw', 'shoulder', 'elbow', 'wrist_pitch', 'wrist_roll', 'gripper'];
 
@@ -72,4 +74,26 @@ test('a move is one trajectory point in its time; the e-stop holds where the joi
   expect(hold.joint_names).toEqual(NAMES);
   expect(hold.points[0]!.positions[1]).toBeCloseTo(0.21, 9);
   expect(hold.points[0]!.time_from_start_ms).toBe(HOLD_MS);
+});
+
+test('an edited profile is put in force without a restart: zones, offsets; other joints refused', () => {
+  const { core, published, trajectories } = setup();
+  core.fromJointState({ name: NAMES, position: [0, 0.2, 0, 0, 0, 0] });
+  const before = core.positions[1]!;
+  const { profile } = armtwin5();
+  const edited = {
+    ...profile,
+    servos: profile.servos.map((s, i) => (i === 1 ? { ...s, offset: 10 } : s)),
+  };
+  expect(core.reconfigure(edited, undefined, refuseEveryMove)).toBe('');
+  expect(core.profile).toBe(edited);
+  // the shoulder's last joint state, read through the new offset at once
+  expect(core.positions[1]).toBeCloseTo(servoFromJoint(edited.servos[1]!, 0.2), 9);
+  expect(core.positions[1]).not.toBeCloseTo(before, 3);
+  core.fromControl('#001P1600T0300!');
+  expect(published.at(-1)!.payload).toContain(`$ERR:${INVALID_PROFILE_REASON}!`);
+  expect(trajectories).toEqual([]);
+  // a profile on other joints needs a restart; the one in force stays
+  expect(core.reconfigure(track6().profile)).toMatch(/restart the gateway/);
+  expect(core.profile).toBe(edited);
 });

@@ -4,8 +4,9 @@
  * `keepOut` of `<models>/<name>/profile.json` (the first models folder holding it), checked by
  * the profile parser first (`applyKeepOut`: every problem named by zone and field) and written
  * with a backup of the old file (`replaceProfileFile`). The profile file is the one source of
- * truth: the simulator (zones-follow.ts) and the bus gateway (profile-follow.ts) watch it, put
- * the zones in force and announce the profile again, and the pages take them from there.
+ * truth: the simulator (zones-follow.ts), the bus gateway and the ROS 2 gateway
+ * (profile-follow.ts) watch it, put the zones in force and announce the profile again, and the
+ * pages take them from there.
  *
  * Answers JSON: 200 `{ok, keepOut, backup}`; 400 `{ok:false, errors}`; 401/403 for a missing or
  * non-operator log-in; 404 for an unknown robot; 413 for a body over

@@ -3,9 +3,10 @@ joint_state_broadcaster, which cannot be installed here (no wheels).
 
 It publishes sensor_msgs/JointState on --joint-states at --rate Hz, and executes every
 trajectory_msgs/JointTrajectory received on --trajectory by linear interpolation from where the
-joints are when it arrives (joints the trajectory does not name stay where they are). A new
-trajectory replaces the one under way; one with no points holds the joints where they are, as the
-controller's does. One that names a joint the arm does not have is refused whole (logged).
+joints are when it arrives (joints the trajectory does not name stay where they are, as with the
+controller's allow_partial_joints_goal: true). A new trajectory replaces the one under way. As the
+controller's topic interface does, it refuses whole (logged) a trajectory without points or joint
+names, one that names a joint the arm does not have, and one with a point lacking a position.
 
 stdin lines `pause` / `resume` stop and restart the joint states (an arm whose driver hangs);
 stdout says {"ev":"ready",...} once the node is up.
@@ -51,6 +52,9 @@ class TestArm:
         node.create_timer(1.0 / args.rate, self.tick)
 
     def on_trajectory(self, msg):
+        if not msg.joint_names or not msg.points:
+            self.node.get_logger().warning('trajectory refused: no joint names or no points')
+            return
         unknown = [n for n in msg.joint_names if n not in self.joints]
         if unknown:
             self.node.get_logger().warning(f'trajectory refused: unknown joints {unknown}')
@@ -68,7 +72,7 @@ class TestArm:
                     full[i] = p.positions[k]
                 t = p.time_from_start.sec * 1000 + p.time_from_start.nanosec / 1e6
                 points.append((t, full))
-            self.motion = (time.monotonic(), start, points) if points else None
+            self.motion = (time.monotonic(), start, points)
 
     def tick(self):
         with self.lock:

@@ -15,6 +15,8 @@ import type { JointTrajectoryMsg } from '../wire.ts';
 
 /** What the driver needs of the gateway core. */
 export interface Ros2DriverTarget {
+  /** The profile in force (an edited profile file replaces it: profile-follow). */
+  readonly profile: Profile;
   /** '' while joint states arrive, else why the arm cannot be moved. */
   unready(): string;
   /** Each servo's last position, servo degrees (mm for a prismatic axis), profile order; NaN: none. */
@@ -30,10 +32,11 @@ export class Ros2Driver implements ControllerDriver {
   /** Until when the last trajectory runs, the driver's clock, ms. */
   private movingUntil = -Infinity;
 
-  constructor(
-    private readonly profile: Profile,
-    private readonly target: Ros2DriverTarget,
-  ) {}
+  constructor(private readonly target: Ros2DriverTarget) {}
+
+  private get profile(): Profile {
+    return this.target.profile;
+  }
 
   unready(): string {
     return this.target.unready();

@@ -10,6 +10,9 @@
  * - `arm/{id}/online` is `1` while joint states arrive, `0` once none has for `staleMs`; moves
  *   are refused meanwhile (`$ERR:ros2: no joint states!`).
  * - Control frames go to the core; its goals and holds become trajectories (./ros2-driver.ts).
+ * - `reconfigure`: an edited profile file (@armtwin/gateway's `followProfile`: the HUD's Zones
+ *   section or calibration wizard through `armtwin up`) is put in force without a restart, if it
+ *   names the same servos on the same joints: limits, zones, `$KMS`, polarity and offsets.
  *
  * The clock, the timers and the outputs are injected.
  */
@@ -82,7 +85,9 @@ export class Ros2GatewayCore implements Ros2DriverTarget {
   readonly controller: ControllerCore;
   readonly input: ControlInput;
   readonly operator: OperatorWatch;
-  private readonly o: Ros2GatewayOptions;
+  private o: Ros2GatewayOptions;
+  /** Each profile joint's last position as the arm gave it (rad or m), profile order; NaN: none. */
+  private readonly jointPositions: number[];
   private readonly topics;
   private lastStateAt = -Infinity;
   private pending = false;
@@ -97,11 +102,11 @@ export class Ros2GatewayCore implements Ros2DriverTarget {
     this.o = { ...DEFAULT_ROS2_GATEWAY_OPTIONS, ...options };
     this.topics = armTopics(this.o.armId);
     this.positions = this.o.profile.servos.map(() => NaN);
-    this.controller = new ControllerCore(
-      jointsFromProfile(this.o.profile),
-      new Ros2Driver(this.o.profile, this),
-      { kms: this.o.kms, keepOut: this.o.keepOut },
-    );
+    this.jointPositions = this.o.profile.servos.map(() => NaN);
+    this.controller = new ControllerCore(jointsFromProfile(this.o.profile), new Ros2Driver(this), {
+      kms: this.o.kms,
+      keepOut: this.o.keepOut,
+    });
     this.input = new ControlInput(this.controller, { onFirst: io.onFirst }, io.now());
     this.operator = operatorDeadman(
       io,
@@ -119,6 +124,32 @@ export class Ros2GatewayCore implements Ros2DriverTarget {
 
   get robot(): MotionRobot | undefined {
     return this.o.robot;
+  }
+
+  get profile(): Profile {
+    return this.o.profile;
+  }
+
+  /**
+   * Puts an edited profile in force (limits, zones, `$KMS`, polarity and offsets); '' when taken,
+   * else why not: it must name the same servos on the same joints, in the same order.
+   */
+  reconfigure(
+    profile: Profile,
+    kms?: KmsSolver,
+    keepOut?: KeepOutCheck,
+    robot?: MotionRobot,
+  ): string {
+    const servos = (p: Profile) => p.servos.map((s) => `${s.id}:${s.joint}`).join(' ');
+    if (servos(profile) !== servos(this.o.profile))
+      return `profile ${profile.name} has servos ${servos(profile)}, not ${servos(this.o.profile)}: restart the gateway`;
+    this.o = { ...this.o, profile, kms, keepOut, robot: robot ?? this.o.robot };
+    profile.servos.forEach((s, i) => {
+      const q = this.jointPositions[i]!;
+      if (Number.isFinite(q)) this.positions[i] = servoFromJoint(s, q);
+    });
+    this.controller.reconfigure(jointsFromProfile(profile), { kms, keepOut });
+    return '';
   }
 
   /** Starts the state loop. */
@@ -148,7 +179,9 @@ export class Ros2GatewayCore implements Ros2DriverTarget {
       );
     this.o.profile.servos.forEach((s, i) => {
       const q = msg.position[m.index[i]!];
-      if (q !== undefined && Number.isFinite(q)) this.positions[i] = servoFromJoint(s, q);
+      if (q === undefined || !Number.isFinite(q)) return;
+      this.jointPositions[i] = q;
+      this.positions[i] = servoFromJoint(s, q);
     });
     this.counters.jointStates++;
     this.lastStateAt = this.io.now();

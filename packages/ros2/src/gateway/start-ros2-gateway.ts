@@ -1,6 +1,8 @@
 /**
  * Wires `armtwin gateway --ros2`: the robot profile from disk (announced retained on
- * `arm/{id}/profile`, as the simulator and the bus gateway do), the rclpy bridge process (the
+ * `arm/{id}/profile` and its file followed, as the bus gateway does: @armtwin/gateway's
+ * `followProfile`, so zones and limits saved from the HUD are in force without a restart), the
+ * rclpy bridge process (the
  * arm's joint states in, trajectories out), the gateway's MQTT client (last will `0` on
  * `arm/{id}/online`, the control arbiter: @armtwin/gateway), `Ros2GatewayCore` and motion
  * requests (@armtwin/controller), on the system clock. Resolves once the arm's first joint state
@@ -12,6 +14,7 @@ import { startMotionService } from '@armtwin/controller/mqtt';
 import {
   connectGatewayMqtt,
   DEFAULT_GATEWAY_OPTIONS,
+  followProfile,
   gatewayPublish,
   leaveGatewayMqtt,
   wireGatewayMqtt,
@@ -19,7 +22,6 @@ import {
 } from '@armtwin/gateway';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { armTopics, SYSTEM_CLOCK } from '@armtwin/protocol';
-import { profileAnnouncement } from '@armtwin/robot';
 import { Ros2Bridge } from '../bridge-process.ts';
 import type { JointStateMsg } from '../wire.ts';
 import { DEFAULT_ROS2_GATEWAY_OPTIONS, Ros2GatewayCore } from './ros2-gateway-core.ts';
@@ -122,14 +124,19 @@ export async function startRos2Gateway(
   );
   // No await from the client's creation to its wiring: its first connect must not be missed.
   const control = wireGatewayMqtt(client, o, core);
+  const follow = followProfile({
+    ...o,
+    client,
+    name: o.profile,
+    raw,
+    core,
+    onReload: (name) =>
+      log?.info({ profile: name }, 'profile file changed: new limits and zones in force'),
+  });
   core.fromJointState(firstState);
-  const announcement = profileAnnouncement(profile.name, profile.title, raw);
-  client.on('connect', () =>
-    client.publish(topics.profile, announcement, { qos: 1, retain: true }),
-  );
   const motion = startMotionService(
     client,
-    new MotionRequests(core.controller, () => robot, SYSTEM_CLOCK.now(), {
+    new MotionRequests(core.controller, () => core.robot ?? robot, SYSTEM_CLOCK.now(), {
       mayExecute: (user) => control.refusal(user, 'a motion request on the arm'),
       onFirst: o.onFirst,
       controlTopic: topics.control,
@@ -161,6 +168,7 @@ export async function startRos2Gateway(
     async stop() {
       stopping = true;
       motion.stop();
+      follow.stop();
       core.stop();
       control.reset();
       await leaveGatewayMqtt(client, o.armId);
