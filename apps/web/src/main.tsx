@@ -6,19 +6,20 @@ import './noEval.ts';
 import { StrictMode } from 'react';
 import { createRoot } from 'react-dom/client';
 import { createHud } from './ui/app/createHud.ts';
-import { HudContext, type Hud } from './ui/hud/HudContext.ts';
+import { HudProvider } from './ui/hud/HudProvider.tsx';
+import type { HudParts } from './ui/hud/HudParts.ts';
 import { App } from './ui/app/App.tsx';
 import 'uplot/dist/uPlot.min.css';
 import './ui/styles.css';
 
 const root = createRoot(document.getElementById('hud')!);
 
-function render(hud: Hud): void {
+function render(parts: HudParts): void {
   root.render(
     <StrictMode>
-      <HudContext value={{ ...hud }}>
-        <App key={hud.robots.active.spec.name} />
-      </HudContext>
+      <HudProvider parts={parts}>
+        <App key={parts.robots.active.spec.name} />
+      </HudProvider>
     </StrictMode>,
   );
 }

@@ -1,8 +1,8 @@
 /**
  * The pose the render worker draws at rest, through the page's messages: the store samples the
  * reports (src/store/ArmStore.ts, predictive twin), FrameChanges picks what to post
- * (src/scene/render/FrameChanges.ts) and the worker's FrameMirror poses the arm from the last
- * sample and course it got (src/scene/render/FrameMirror.ts). Whatever the last move looked
+ * (src/scene/render/FrameChanges.ts) and the worker's DrawnPose poses the arm from the last
+ * sample and course it got (src/scene/render/DrawnPose.ts). Whatever the last move looked
  * like, an arm at rest is drawn where it reported itself.
  */
 import { describe, expect, it } from 'vitest';
@@ -10,7 +10,8 @@ import { angleFromPwm, encodeGroup, encodePosition } from '@armtwin/protocol';
 import { ArmStore } from '../src/core/store/ArmStore.ts';
 import { TargetPreview } from '../src/core/store/TargetPreview.ts';
 import { FrameChanges } from '../src/scene/render/FrameChanges.ts';
-import { FrameMirror } from '../src/scene/render/FrameMirror.ts';
+import { DrawnPose } from '../src/scene/render/DrawnPose.ts';
+import { emptySceneFrame, mergeFrame } from '../src/scene/render/SceneFrame.ts';
 import type { FrameInput } from '../src/scene/render/messages.ts';
 
 const T0 = 1_700_000_000_000;
@@ -20,28 +21,30 @@ const report = (elbow: number, at: number) =>
 const REST = angleFromPwm(1800);
 
 /**
- * The page (store + FrameChanges) and the worker's mirror. Reports come 20 ms apart and are
+ * The page (store + FrameChanges) and the worker's snapshot. Reports come 20 ms apart and are
  * sampled as they arrive; `lose` names the page frames that fail before their post.
  */
 function twin(elbows: number[], lose: (i: number) => boolean = () => false) {
   const store = new ArmStore();
   const changes = new FrameChanges(store, new TargetPreview(), null);
-  const mirror = new FrameMirror();
+  const frame = emptySceneFrame();
+  const pose = new DrawnPose(frame);
   let at = 0;
   elbows.forEach((elbow, i) => {
     store.ingest(report(elbow, at), at);
     const m: FrameInput = { type: 'frame' };
     changes.collect(m, at, false, true, null);
     if (!lose(i)) {
-      mirror.take(m);
+      mergeFrame(frame, m);
+      pose.take(m);
       changes.posted(m);
     }
     at += 20;
   });
   /** The elbow as the worker poses it at page time `now`. */
   const drawnAt = (now: number) => {
-    mirror.takeRendered(performance.timeOrigin + now);
-    return mirror.store.rendered[2];
+    pose.poseAt(performance.timeOrigin + now);
+    return frame.rendered[2];
   };
   return { drawnAt, end: at };
 }

@@ -34,10 +34,10 @@ describe('apps/web layers', { timeout: 60_000 }, () => {
       'core/store/Probe.ts',
       [
         "import type { SceneView } from '../../scene/SceneView.ts';",
-        "import type { HudContext } from '../../ui/hud/HudContext.ts';",
+        "import type { HudParts } from '../../ui/hud/HudParts.ts';",
         "import { useState } from 'react';",
         "import * as THREE from 'three';",
-        'export type P = [SceneView, HudContext, typeof useState, typeof THREE];',
+        'export type P = [SceneView, HudParts, typeof useState, typeof THREE];',
       ].join('\n'),
     );
     expect(found).toHaveLength(4);
@@ -48,9 +48,9 @@ describe('apps/web layers', { timeout: 60_000 }, () => {
     const found = await restricted(
       'scene/render/Probe.ts',
       [
-        "import type { HudContext } from '../../ui/hud/HudContext.ts';",
+        "import type { HudParts } from '../../ui/hud/HudParts.ts';",
         "import { useState } from 'react';",
-        'export type P = [HudContext, typeof useState];',
+        'export type P = [HudParts, typeof useState];',
       ].join('\n'),
     );
     expect(found).toHaveLength(2);

@@ -6,7 +6,8 @@ import {
   courseAfter,
 } from '../src/scene/render/PoseCourse.ts';
 import { TwinPredictor } from '../src/core/store/TwinPredictor.ts';
-import { FrameMirror } from '../src/scene/render/FrameMirror.ts';
+import { DrawnPose } from '../src/scene/render/DrawnPose.ts';
+import { emptySceneFrame } from '../src/scene/render/SceneFrame.ts';
 
 const EPOCH = 1_700_000_000_000;
 const JOINT = { minDeg: -135, maxDeg: 135, maxSpeedDegPerS: 375 };
@@ -92,24 +93,25 @@ describe('PoseCourse (the render worker poses the predicted twin for its own fra
   });
 });
 
-describe('FrameMirror (the worker’s copy of the page’s frame)', () => {
+describe('DrawnPose (the worker’s pose of the page’s sample)', () => {
   it('poses the live arm for the tick’s instant plus the learnt tick-to-drawn time', () => {
-    const m = new FrameMirror();
+    const frame = emptySceneFrame();
+    const m = new DrawnPose(frame);
     m.take({
       type: 'frame',
       rendered: Float64Array.of(0),
       course: { at: 1000, stepMs: 10, poses: Float64Array.of(1, 2, 3, 4) },
     });
-    expect(m.takeRendered(1010)).toBe(true);
-    expect(m.store.rendered[0]).toBeCloseTo(1, 9);
-    expect(m.takeRendered(1010)).toBe(false);
+    expect(m.poseAt(1010)).toBe(true);
+    expect(frame.rendered[0]).toBeCloseTo(1, 9);
+    expect(m.poseAt(1010)).toBe(false);
     // Frames drawn 10 ms after their tick: the pose is taken further on.
     for (let k = 0; k < 100; k++) {
-      m.takeRendered(1000);
+      m.poseAt(1000);
       m.drawn(1010);
     }
-    m.takeRendered(1010);
-    expect(m.store.rendered[0]).toBeCloseTo(2, 3);
+    m.poseAt(1010);
+    expect(frame.rendered[0]).toBeCloseTo(2, 3);
     // …and says how far past the page's sample that is (the Status panel's lead counts it).
     expect(m.aheadMs).toBeCloseTo(20, 3);
   });

@@ -5,9 +5,10 @@
  */
 import type * as THREE from 'three';
 import type { JointMap } from '../core/robots/robotSpec.ts';
-import { Ghost, ghostMaterial, type GhostStore, type GhostTarget } from './Ghost.ts';
+import { Ghost, ghostMaterial } from './Ghost.ts';
 import { PosedRobot } from './PosedRobot.ts';
-import { ReplaySibling, siblingMaterial, type SiblingSource } from './ReplaySibling.ts';
+import { ReplaySibling, siblingMaterial } from './ReplaySibling.ts';
+import type { SceneFrame } from './render/SceneFrame.ts';
 import { RobotModelLoader, solidMaterial, type MeshFailure } from './loadRobot.ts';
 import { TrackingPaint } from './TrackingPaint.ts';
 
@@ -24,33 +25,31 @@ export interface ArmSet {
 
 /**
  * Loads `urdfUrl` as a new set of arms (not yet in any scene); rejects with a readable message
- * when the URDF cannot be used. The live arm is posed at once from `store.rendered`: the store
- * is sampled only when the arm moves, and an arm at rest may not report a change for a long
+ * when the URDF cannot be used. All three read the runtime's snapshot `frame`. The live arm is
+ * posed at once from `frame.rendered`: the store is sampled only when the arm moves, and an arm at rest may not report a change for a long
  * while (a fleet switch showed zeros).
  */
 export async function loadArmSet(
   urdfUrl: string,
   joints: JointMap,
-  store: GhostStore,
-  target: GhostTarget,
-  replay: SiblingSource | null,
+  frame: SceneFrame,
+  withSibling: boolean,
 ): Promise<ArmSet> {
   const loader = new RobotModelLoader(urdfUrl);
   const [built, builtGhost, builtSibling] = await Promise.all([
     loader.build(solidMaterial),
     loader.build(ghostMaterial),
-    replay ? loader.build(siblingMaterial) : null,
+    withSibling ? loader.build(siblingMaterial) : null,
   ]);
   const live = new PosedRobot(built.robot, joints);
-  live.pose(store.rendered);
+  live.pose(frame.rendered);
   return {
     live,
     tracking: new TrackingPaint(built.robot, joints.names),
-    ghost: new Ghost(new PosedRobot(builtGhost.robot, joints), store, target),
-    sibling:
-      builtSibling && replay
-        ? new ReplaySibling(new PosedRobot(builtSibling.robot, joints), replay)
-        : null,
+    ghost: new Ghost(new PosedRobot(builtGhost.robot, joints), frame),
+    sibling: builtSibling
+      ? new ReplaySibling(new PosedRobot(builtSibling.robot, joints), frame)
+      : null,
     failures: built.failures,
   };
 }

@@ -1,5 +1,5 @@
 /**
- * The translucent ghost arm: the plan preview while there is one (`GhostSource`), else the previewed
+ * The translucent ghost arm: the plan preview while there is one (the page's ghost source), else the previewed
  * IK solution of the Cartesian target (refused by a keep-out zone: its offending link red), a
  * refused jog's pose (its offending link red), else the pose this HUD last commanded (store/ghostPose.ts),
  * hidden when that is where the live arm already is or when the Ghost panel turns it off. Posed
@@ -8,10 +8,8 @@
  */
 import * as THREE from 'three';
 import type { URDFRobot } from 'urdf-loader';
-import type { ArmStore } from '../core/store/ArmStore.ts';
-import type { TargetPreview } from '../core/store/TargetPreview.ts';
 import { ghostPose, type GhostInputs } from '../core/store/ghostPose.ts';
-import type { GhostSource } from './sceneHooks.ts';
+import type { SceneFrame } from './render/SceneFrame.ts';
 import type { MaterialFactory } from './loadRobot.ts';
 import type { PosedRobot } from './PosedRobot.ts';
 
@@ -46,24 +44,8 @@ const hitMaterial = new THREE.MeshStandardMaterial({
   roughness: 0.4,
 });
 
-/** What the ghost reads of the store (the page's ArmStore, or the render worker's copy). */
-export interface GhostStore {
-  readonly opts: { readonly arm: ArmStore['opts']['arm'] };
-  readonly rendered: Float64Array;
-  readonly commandedPwm: Float64Array;
-}
-/** What the ghost reads of the target preview. */
-export type GhostTarget = Pick<
-  TargetPreview,
-  | 'active'
-  | 'code'
-  | 'angles'
-  | 'hitJoint'
-  | 'ghostEnabled'
-  | 'refused'
-  | 'refusedAngles'
-  | 'refusedJoint'
->;
+/** What the ghost reads of the runtime's snapshot of the page (read afresh every frame). */
+export type GhostFrame = Pick<SceneFrame, 'arm' | 'rendered' | 'commandedPwm' | 'target' | 'plan'>;
 
 export class Ghost {
   /** The URDF joint whose child link is painted red now ('' = none). */
@@ -72,13 +54,12 @@ export class Ghost {
   shows: 'nothing' | 'preview' | 'commanded' | 'plan' | 'refused' = 'nothing';
   private readonly saved = new Map<THREE.Mesh, THREE.Material | THREE.Material[]>();
   private readonly angles: Float64Array;
-  /** `ghostPose`'s inputs, refilled each frame (the store's arrays are replaced on `configure`). */
+  /** `ghostPose`'s inputs, refilled each frame (the snapshot's arrays are replaced by messages). */
   private readonly inputs: GhostInputs;
 
   constructor(
     readonly posed: PosedRobot,
-    private readonly store: GhostStore,
-    private readonly target: GhostTarget,
+    private readonly frame: GhostFrame,
   ) {
     const robot = posed.robot;
     robot.traverse((o) => {
@@ -92,11 +73,11 @@ export class Ghost {
     robot.visible = false;
     this.angles = new Float64Array(posed.servoCount);
     this.inputs = {
-      arm: store.opts.arm,
-      rendered: store.rendered,
-      commandedPwm: store.commandedPwm,
+      arm: frame.arm,
+      rendered: frame.rendered,
+      commandedPwm: frame.commandedPwm,
       previewOk: false,
-      previewAngles: target.angles,
+      previewAngles: frame.target.angles,
     };
   }
 
@@ -105,16 +86,16 @@ export class Ghost {
   }
 
   /**
-   * Poses the ghost for `now`: `source`'s sample while it has one (the plan preview), else the
-   * target or commanded pose. True when it moved, appeared or disappeared.
+   * Poses the ghost: the plan preview's pose while there is one, else the target or commanded
+   * pose. True when it moved, appeared or disappeared.
    */
-  update(now: number, source: GhostSource | null): boolean {
-    const t = this.target;
+  update(): boolean {
+    const t = this.frame.target;
     const shows = !t.ghostEnabled
       ? 'nothing'
       : t.refused
         ? this.refusedPose()
-        : source?.sample(now, this.angles)
+        : this.planPose()
           ? 'plan'
           : ghostPose(this.refill(), this.angles);
     this.shows = shows;
@@ -160,17 +141,25 @@ export class Ghost {
 
   /** A refused jog's pose (servos it leaves be where the arm is drawn). */
   private refusedPose(): 'refused' {
-    const a = this.target.refusedAngles;
+    const a = this.frame.target.refusedAngles;
     for (let i = 0; i < this.angles.length; i++)
-      this.angles[i] = Number.isNaN(a[i]!) ? (this.store.rendered[i] ?? 0) : a[i]!;
+      this.angles[i] = Number.isNaN(a[i]!) ? (this.frame.rendered[i] ?? 0) : a[i]!;
     return 'refused';
+  }
+
+  /** The plan preview's pose, when it shows one. */
+  private planPose(): boolean {
+    const p = this.frame.plan;
+    if (!p) return false;
+    for (let i = 0; i < this.angles.length; i++) this.angles[i] = p[i] ?? NaN;
+    return true;
   }
 
   private refill(): GhostInputs {
     const g = this.inputs;
-    const s = this.store;
-    const t = this.target;
-    g.arm = s.opts.arm;
+    const s = this.frame;
+    const t = s.target;
+    g.arm = s.arm;
     g.rendered = s.rendered;
     g.commandedPwm = s.commandedPwm;
     // A target refused by a zone is shown too, its offending link red (`paint`).

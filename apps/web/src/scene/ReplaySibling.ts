@@ -2,15 +2,15 @@
  * The replay's "sibling": a third, translucent amber copy of the active robot standing beside
  * the live one (`SIBLING_OFFSET_M`) that follows the record. It poses through the same joint map
  * as the live arm and the ghost (./PosedRobot.ts), so any robot's record replays. Driven
- * from the 3D view's one frame loop: `update(now)` asks the ReplayPlayer for the pose and sets
- * the joints by mutation; it returns true when something must be redrawn. No allocation per
- * frame.
+ * from the 3D view's one frame loop: `update()` reads the pose the page last sent
+ * (`SceneFrame.sibling`, ./render/SceneFrame.ts) and sets the joints by mutation; it returns true
+ * when something must be redrawn. No allocation per frame.
  */
 import * as THREE from 'three';
 import type { URDFRobot } from 'urdf-loader';
 import type { MaterialFactory } from './loadRobot.ts';
 import type { PosedRobot } from './PosedRobot.ts';
-import type { SiblingSource } from '../core/store/viewSources.ts';
+import type { SceneFrame } from './render/SceneFrame.ts';
 
 /**
  * Where the sibling stands relative to the live arm, in the arm's frame, metres: half a metre
@@ -33,12 +33,13 @@ export const siblingMaterial: MaterialFactory = () =>
     roughness: 0.45,
   });
 
-export type { SiblingSource };
-
 export class ReplaySibling {
+  /** The pose posed last (each message brings a new array). */
+  private shown: Float64Array | null = null;
+
   constructor(
     readonly posed: PosedRobot,
-    private readonly player: SiblingSource,
+    private readonly frame: Pick<SceneFrame, 'sibling'>,
   ) {
     const robot = posed.robot;
     robot.position.set(SIBLING_OFFSET_M.x, SIBLING_OFFSET_M.y, 0);
@@ -68,16 +69,18 @@ export class ReplaySibling {
   }
 
   /** True when the sibling moved, appeared or disappeared. */
-  update(now: number): boolean {
-    let changed = this.player.update(now);
+  update(): boolean {
+    const pose = this.frame.sibling;
+    let changed = pose !== this.shown;
+    this.shown = pose;
     const robot = this.posed.robot;
-    const visible = this.player.active && this.player.record !== null;
+    const visible = pose !== null;
     if (robot.visible !== visible) {
       robot.visible = visible;
       changed = true;
     }
     if (!visible || !changed) return changed;
-    this.posed.pose(this.player.angles);
+    this.posed.pose(pose);
     return true;
   }
 }

@@ -1,9 +1,9 @@
 /**
  * The Cartesian target in 3D: the stage's marker (a sphere and a stem to the floor) follows the
- * TargetPreview, green when the local IK reaches it, red when not. Checked every frame by the
+ * target the page last sent (`SceneFrame.target`, ./render/SceneFrame.ts), green when the local IK reaches it, red when not. Checked every frame by the
  * 3D view's loop; the marker changes only when the target does.
  */
-import type { TargetPreview } from '../core/store/TargetPreview.ts';
+import type { SceneFrame } from './render/SceneFrame.ts';
 import type { Stage } from './stage.ts';
 
 const MM = 0.001;
@@ -11,12 +11,12 @@ const MM = 0.001;
 export class TargetMarker {
   constructor(
     private readonly stage: Stage,
-    private readonly target: Pick<TargetPreview, 'active' | 'x' | 'y' | 'z' | 'code'>,
+    private readonly frame: Pick<SceneFrame, 'target'>,
   ) {}
 
   /** True when the marker moved, changed colour, appeared or disappeared. */
   update(): boolean {
-    const t = this.target;
+    const t = this.frame.target;
     const m = this.stage.marker;
     let changed = false;
     if (m.visible !== t.active) {

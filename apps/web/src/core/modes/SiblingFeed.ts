@@ -2,7 +2,7 @@
  * What the 3D view's translucent sibling arm shows (scene/ReplaySibling.ts): the History
  * panel's replay while one is loaded, else — in Model mode — the model copy, posed from the
  * copy's reported angles, beside the real arm (which keeps being drawn where it is). One source
- * for the scene runtime's mirror (scene/render/SceneClient.ts): no
+ * for what the page sends the scene runtime (scene/render/FrameChanges.ts): no
  * change to the scene's frame loop. Allocation-free per frame.
  */
 import type { SiblingSource } from '../store/viewSources.ts';

@@ -9,7 +9,7 @@ export interface GhostSource {
   sample(now: number, out: Float64Array): boolean;
 }
 
-/** What the sibling reads of the replay (the page's ReplayPlayer, or the render worker's copy). */
+/** What the page reads of the replay (or the model copy) to send the sibling's pose to the 3D view. */
 export interface SiblingSource {
   update(now: number): boolean;
   readonly active: boolean;

@@ -14,7 +14,7 @@
 import type { ArmStore } from '../../core/store/ArmStore.ts';
 import type { TargetPreview } from '../../core/store/TargetPreview.ts';
 import type { GhostSource } from '../sceneHooks.ts';
-import type { SiblingSource } from '../ReplaySibling.ts';
+import type { SiblingSource } from '../../core/store/viewSources.ts';
 import type { FrameInput, TargetState } from './messages.ts';
 import { sameValues, targetDiffers } from './frameDiff.ts';
 import { snapshotTarget } from './snapshots.ts';

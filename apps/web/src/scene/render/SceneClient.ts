@@ -16,7 +16,7 @@ import type { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js
 import type { ProfileKeepOut } from '@armtwin/robot';
 import type { ArmStore } from '../../core/store/ArmStore.ts';
 import type { TargetPreview } from '../../core/store/TargetPreview.ts';
-import type { SiblingSource } from '../ReplaySibling.ts';
+import type { SiblingSource } from '../../core/store/viewSources.ts';
 import type { JointMap } from '../../core/robots/robotSpec.ts';
 import type { GhostSource } from '../sceneHooks.ts';
 import { createStage, type Stage } from '../stage.ts';

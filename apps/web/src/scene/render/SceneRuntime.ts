@@ -5,8 +5,9 @@
  * the render worker (./renderWorker.ts, an OffscreenCanvas) and, where no worker can draw, the
  * page's main thread behind a port pair (./inThreadScene.ts, the page's own canvas). What it
  * reads (the store's drawn angles, the target, the plan preview, the sibling's pose, the orbit
- * camera) arrives from the page as `FrameInput` messages and is copied into small stand-ins
- * (./FrameMirror.ts), so Ghost, TargetMarker and ReplaySibling run unchanged. It renders only
+ * camera) arrives from the page as `FrameInput` messages and is kept in one plain snapshot
+ * (./SceneFrame.ts) that Ghost, TargetMarker and ReplaySibling read; the drawn angles are posed
+ * for each frame's instant (./DrawnPose.ts). It renders only
  * when something moved, lowers the resolution while frames are slow and draws one
  * full-resolution frame once things rest (../FramePacer.ts); each drawn frame is reported
  * (`rendered`), and the page reads the report (./SceneReports.ts).
@@ -23,7 +24,8 @@ import { ZonesView } from '../ZonesView.ts';
 import { createRenderer } from '../createRenderer.ts';
 import { createViewCamera, VIEW_HOME } from '../orbitView.ts';
 import { loadArmSet, swapArmSet, type ArmSet } from '../ArmSet.ts';
-import { FrameMirror } from './FrameMirror.ts';
+import { emptySceneFrame, mergeFrame } from './SceneFrame.ts';
+import { DrawnPose } from './DrawnPose.ts';
 import { WorkerExtras } from './WorkerExtras.ts';
 import type { FrameInput, FramedCamera, FromWorker, TrackingState } from './messages.ts';
 
@@ -54,7 +56,9 @@ export class SceneRuntime {
     colours: new Int32Array(0),
     levels: [],
   };
-  private readonly mirror = new FrameMirror();
+  /** The page's state as last sent, and the live arm's pose for each frame. */
+  private readonly frameState = emptySceneFrame();
+  private readonly pose = new DrawnPose(this.frameState);
   /** The live arm drawn translucent over a camera's picture while the view looks through it. */
   private readonly twin = new TranslucentTwin();
   private viewingThrough = false;
@@ -78,7 +82,7 @@ export class SceneRuntime {
     this.camera.lookAt(this.controls.target);
     this.stage = createStage(this.scene);
     this.extras = new WorkerExtras(this.scene, this.stage.world);
-    this.marker = new TargetMarker(this.stage, this.mirror.target);
+    this.marker = new TargetMarker(this.stage, this.frameState);
     this.zones = new ZonesView(this.stage.world);
   }
 
@@ -103,9 +107,7 @@ export class SceneRuntime {
     joints: JointMap,
     withSibling: boolean,
   ): Promise<{ failures: MeshFailure[]; framed: FramedCamera }> {
-    const mir = this.mirror;
-    const sibling = withSibling ? mir.siblingSource : null;
-    const arms = await loadArmSet(urdfUrl, joints, mir.store, mir.target, sibling);
+    const arms = await loadArmSet(urdfUrl, joints, this.frameState, withSibling);
     swapArmSet(this.stage.world, this.arms, arms);
     this.arms = arms;
     const robot = arms.live.robot;
@@ -148,7 +150,8 @@ export class SceneRuntime {
 
   /** Takes what the page sent; drawn on the next frame. */
   take(m: FrameInput): void {
-    this.mirror.take(m);
+    mergeFrame(this.frameState, m);
+    this.pose.take(m);
     if (m.camera) {
       const c = m.camera;
       this.camera.position.fromArray(c.position);
@@ -190,12 +193,11 @@ export class SceneRuntime {
     if (!this.running) return;
     this.frame = requestAnimationFrame(this.tick);
     const now = performance.now();
-    const mir = this.mirror;
     const a = this.arms;
-    if (mir.takeRendered(performance.timeOrigin + now) && a?.live.pose(mir.store.rendered))
+    if (this.pose.poseAt(performance.timeOrigin + now) && a?.live.pose(this.frameState.rendered))
       this.needsRender = this.shadowsDirty = true;
-    if (a?.ghost.update(now, mir.planSource)) this.needsRender = true;
-    if (a?.sibling?.update(now)) this.needsRender = this.shadowsDirty = true;
+    if (a?.ghost.update()) this.needsRender = true;
+    if (a?.sibling?.update()) this.needsRender = this.shadowsDirty = true;
     if (this.marker.update()) this.needsRender = true;
     if (a?.tracking.update(this.tracking)) this.needsRender = true;
     const moved = this.needsRender;
@@ -209,7 +211,7 @@ export class SceneRuntime {
       this.shadowsDirty = false;
     }
     this.renderer.render(this.scene, this.camera);
-    this.mirror.drawn(performance.timeOrigin + performance.now());
+    this.pose.drawn(performance.timeOrigin + performance.now());
     this.frames++;
     const a = this.arms;
     const report: Rendered = {
@@ -219,7 +221,7 @@ export class SceneRuntime {
       sizeSeq: this.sizeSeq,
       pixelRatio: this.renderer.getPixelRatio(),
       costMs: this.pacer.costMs,
-      aheadMs: this.mirror.aheadMs,
+      aheadMs: this.pose.aheadMs,
       robot: a?.live.values() ?? [],
       ghost: a?.ghost.posed.values() ?? [],
       sibling: a?.sibling?.posed.values() ?? [],

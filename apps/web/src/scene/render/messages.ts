@@ -4,12 +4,12 @@
  * orbit camera and picking; the runtime draws. Everything here is
  * structured-clone data: plain numbers, strings, arrays and typed arrays, no three.js objects.
  */
-import type { ArmProfile } from '@armtwin/ik';
 import type { ProfileKeepOut } from '@armtwin/robot';
 import type { PoseCourseInput } from './PoseCourse.ts';
 import type { JointMap } from '../../core/robots/robotSpec.ts';
 import type { MeshFailure } from '../loadRobot.ts';
 import type { TrackingErrors } from '../../core/store/trackingError.ts';
+import type { SceneFrame } from './SceneFrame.ts';
 
 /** The orbit camera as the page holds it (three's y-up scene coordinates). */
 export interface CameraState {
@@ -43,8 +43,13 @@ export interface TrackingState {
   levels: TrackingErrors['levels'];
 }
 
-/** What the page sends each frame something changed (null/undefined: unchanged). */
-export interface FrameInput {
+/**
+ * What the page sends each frame something changed (undefined: unchanged): the parts of the
+ * runtime's snapshot (./SceneFrame.ts) that changed, the sampled pose, the camera and paint.
+ */
+export interface FrameInput extends Partial<
+  Pick<SceneFrame, 'arm' | 'commandedPwm' | 'target' | 'plan' | 'sibling'>
+> {
   type: 'frame';
   /** The live arm's drawn servo angles, degrees (the store's `rendered`). */
   rendered?: Float64Array;
@@ -53,13 +58,6 @@ export interface FrameInput {
    * after it, so the worker draws the pose of its own frame's instant (./PoseCourse.ts).
    */
   course?: PoseCourseInput;
-  commandedPwm?: Float64Array;
-  arm?: ArmProfile;
-  target?: TargetState;
-  /** The ghost source's (plan preview's) sample, or null when it has none. */
-  plan?: Float64Array | null;
-  /** The replay sibling's pose, or null when it is hidden. */
-  sibling?: Float64Array | null;
   camera?: CameraState;
   /** The live arm's tracking-error paint (store/trackingError.ts), when it changed. */
   tracking?: TrackingState;

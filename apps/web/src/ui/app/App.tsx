@@ -26,7 +26,7 @@ import { SheetHandle } from '../hud/SheetHandle.tsx';
 import type { PanelTab } from '../hud/sheetTabs.ts';
 import { ModeBar } from '../modes/ModeBar.tsx';
 import { SHADOW_REASON } from '../../core/link/modes.ts';
-import { useHud } from '../hud/HudContext.ts';
+import { useModes } from '../hud/HudParts.ts';
 import { useSampled } from '../hud/useSampled.ts';
 import './layout.css';
 
@@ -38,8 +38,8 @@ export function App() {
   const [last, setLast] = useState<PanelTab>('jog');
   // Shadow mode: every panel's controls off (a disabled fieldset; the stop and the mode switch
   // stand outside the panels, and the panels still fold).
-  const hud = useHud();
-  const shadow = useSampled(() => hud.modes.mode === 'shadow');
+  const modes = useModes();
+  const shadow = useSampled(() => modes.mode === 'shadow');
   const show = (tab: PanelTab | null) => {
     setOpen(tab);
     if (tab) setLast(tab);

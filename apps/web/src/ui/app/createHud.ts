@@ -44,7 +44,8 @@ import { CameraScreens } from '../../scene/CameraScreens.ts';
 import { CalibrationSession } from '../../core/calibration/CalibrationSession.ts';
 import { HoldJog } from '../../core/jog/HoldJog.ts';
 import { GamepadJog } from '../../core/jog/GamepadJog.ts';
-import type { Hud, PlanTools } from '../hud/HudContext.ts';
+import type { HudParts, Reconnect } from '../hud/HudParts.ts';
+import type { PlanTools } from '../hud/PlanTools.ts';
 import { installDebugHook } from './debugHook.ts';
 import { ModeSwitch } from '../../core/modes/ModeSwitch.ts';
 import { SiblingFeed } from '../../core/modes/SiblingFeed.ts';
@@ -56,7 +57,7 @@ export interface HudElements {
 }
 
 export interface HudPage {
-  readonly hud: Hud;
+  readonly parts: HudParts;
   /** Connects, loads the robot model and starts the 3D view. */
   start(): void;
 }
@@ -75,8 +76,8 @@ const workerIntervals: IntervalTimers = {
 
 const polaritiesOf = (arm: ArmStore['opts']['arm']): number[] => arm.servos.map((s) => s.polarity);
 
-/** `render(hud)` draws the panels; it is called whenever what they show changes shape. */
-export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage {
+/** `render(parts)` draws the panels; it is called whenever what they show changes shape. */
+export function createHud(els: HudElements, render: (parts: HudParts) => void): HudPage {
   const settings = loadSettings();
   const store = new ArmStore({
     interpolationAlpha: settings.interpolationAlpha,
@@ -177,26 +178,10 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
       render(hud);
     });
 
-  const hud: Hud = {
-    store,
-    target,
-    replay,
-    settings,
-    session,
-    robots,
-    plan,
-    requests,
-    cameras,
-    cameraScreens,
-    calibration,
-    jog: { hold, gamepad },
-    modes,
-    rendering,
-    view: viewer,
-    link: firstLink,
+  const reconnect: Reconnect = {
     selectArm(armId: string) {
       const next = settingsForArm(hud.settings, armId);
-      if (next) hud.reconnect(next);
+      if (next) reconnect.reconnect(next);
     },
     reconnect(next: HudSettings) {
       hold.releaseAll();
@@ -216,6 +201,24 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
       startSession(hud.link);
       render(hud);
     },
+  };
+  const hud: HudParts = {
+    store,
+    target,
+    replay,
+    settings,
+    reconnect,
+    session,
+    robots,
+    plan,
+    requests,
+    cameras: { hub: cameras, screens: cameraScreens },
+    calibration,
+    jog: { hold, gamepad },
+    modes,
+    rendering,
+    view: viewer,
+    link: firstLink,
   };
 
   built = true;
@@ -238,7 +241,7 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
     startSession(hud.link);
     // Let go of the arm when the page goes away (the deadman's `0` at once, not after the will).
     window.addEventListener('pagehide', () => hud.link.release());
-    window.addEventListener('pageshow', (e) => e.persisted && hud.reconnect(hud.settings));
+    window.addEventListener('pageshow', (e) => e.persisted && reconnect.reconnect(hud.settings));
     hold.attach(window, document);
     gamepad.start();
     render(hud);
@@ -260,5 +263,5 @@ export function createHud(els: HudElements, render: (hud: Hud) => void): HudPage
       });
   }
 
-  return { hud, start };
+  return { parts: hud, start };
 }

@@ -12,7 +12,7 @@ import type { Session } from '../../core/auth/Session.ts';
 import type { ActiveRobot } from '../../core/robots/ActiveRobot.ts';
 import type { FleetLink } from '../../core/robots/FleetLink.ts';
 import { historyProbe } from '../panels/History/probe.ts';
-import type { Hud } from '../hud/HudContext.ts';
+import type { HudParts } from '../hud/HudParts.ts';
 import { FallbackSceneView } from '../../scene/render/FallbackSceneView.ts';
 
 export interface DebugHook {
@@ -27,17 +27,17 @@ export interface DebugHook {
   history: typeof historyProbe;
   session: Session;
   /** Model / Shadow / Twin, the model copy's store, and the Plan panel's rehearsal recorder. */
-  modes: Hud['modes'];
-  recorder: Hud['plan']['recorder'];
+  modes: HudParts['modes'];
+  recorder: HudParts['plan']['recorder'];
   /** The fleet, the active robot, and the Plan panel's objects. */
   robots: {
     readonly fleet: FleetLink;
     active: ActiveRobot;
-    waypoints: Hud['plan']['waypoints'];
-    preview: Hud['plan']['preview'];
-    runner: Hud['plan']['runner'];
-    readonly editor: Hud['plan']['editor'];
-    requests: Hud['requests'];
+    waypoints: HudParts['plan']['waypoints'];
+    preview: HudParts['plan']['preview'];
+    runner: HudParts['plan']['runner'];
+    readonly editor: HudParts['plan']['editor'];
+    requests: HudParts['requests'];
   };
   /**
    * The URDF joint values a robot is drawn with (rad, or m for a prismatic joint), servo order:
@@ -58,7 +58,7 @@ declare global {
 }
 
 /** Installs the hook; `hud` is read live (its link and settings are replaced on reconnect). */
-export function installDebugHook(hud: Hud, viewer: SceneView): DebugHook {
+export function installDebugHook(hud: HudParts, viewer: SceneView): DebugHook {
   const { robots, plan } = hud;
   const hook: DebugHook = {
     store: hud.store,

@@ -4,7 +4,7 @@
  * the mode means for the arm now (the copy starting, Shadow's reason). Outside every panel, so
  * Shadow mode (which turns the panels' controls off) never turns it off.
  */
-import { useHud } from '../hud/HudContext.ts';
+import { useModes, useSettings } from '../hud/HudParts.ts';
 import { useSampled } from '../hud/useSampled.ts';
 import { ARM_MODES, modelArmId, SHADOW_REASON } from '../../core/link/modes.ts';
 
@@ -12,13 +12,14 @@ const NO_COPY = 'This arm cannot have a model copy (a copy itself, or an id over
 import './modes.css';
 
 export function ModeBar() {
-  const hud = useHud();
+  const modes = useModes();
+  const settings = useSettings();
   const snap = useSampled(() => ({
-    mode: hud.modes.mode,
-    arm: hud.settings.armId,
-    note: hud.modes.note,
-    bad: hud.modes.noteBad,
-    copy: modelArmId(hud.settings.armId) !== null,
+    mode: modes.mode,
+    arm: settings.armId,
+    note: modes.note,
+    bad: modes.noteBad,
+    copy: modelArmId(settings.armId) !== null,
   }));
   const note = snap.mode === 'shadow' ? SHADOW_REASON : snap.note;
   return (
@@ -35,7 +36,7 @@ export function ModeBar() {
             aria-pressed={snap.mode === m.mode}
             title={m.mode === 'model' && !snap.copy ? NO_COPY : m.title}
             disabled={snap.mode === null || (m.mode === 'model' && !snap.copy)}
-            onClick={() => hud.modes.set(m.mode)}
+            onClick={() => modes.set(m.mode)}
           >
             {m.label}
           </button>

@@ -7,7 +7,7 @@
  */
 import { useEffect, useState } from 'react';
 import type { ServoCalibrationFields } from '@armtwin/robot';
-import { useHud } from '../../hud/HudContext.ts';
+import { useRobots, useLink, useSettings, useCalibration, useSession } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { TorqueControl } from '../Torque/TorqueControl.tsx';
 import { CalibrationReview } from './CalibrationReview.tsx';
@@ -39,7 +39,11 @@ const sameFields = (
   !!s && s.polarity === f.polarity && s.offset === f.offset && s.min === f.min && s.max === f.max;
 
 export function CalibrationPanel() {
-  const { robots, link, settings, calibration: wizard, session } = useHud();
+  const robots = useRobots();
+  const link = useLink();
+  const settings = useSettings();
+  const wizard = useCalibration();
+  const session = useSession();
   const profile = robots.active.spec.profile;
   const bus = profile.servos
     .map((s, i) => ({ s, i }))

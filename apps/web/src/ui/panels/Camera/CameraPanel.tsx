@@ -5,13 +5,14 @@
  * (src/core/cameras/CameraDecoders.ts).
  */
 import './camera.css';
-import { useHud } from '../../hud/HudContext.ts';
+import { useCameras, useSettings } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { placementOf } from '../../../core/cameras/CameraHub.ts';
 import { CameraView } from './CameraView.tsx';
 
 export function CameraPanel() {
-  const { cameras, cameraScreens, settings } = useHud();
+  const { hub: cameras, screens: cameraScreens } = useCameras();
+  const settings = useSettings();
   // Re-render when a camera or its calibration changes, the 3D view looks through another, or
   // the page's role changes.
   const [, viewing, calibrate] = useSampled(

@@ -9,7 +9,7 @@
  * at the active arm's tip (FK of where it is, else of its home pose): a point it can reach.
  */
 import { useEffect, useMemo, useState } from 'react';
-import { useHud } from '../../hud/HudContext.ts';
+import { useArm, useLink, useTarget, useRobots, useRequests } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { parseTarget, type TargetFields } from '../../../core/cartesian/parseTarget.ts';
 import { codeWords, solveTarget, startFields } from '../../../core/cartesian/solveTarget.ts';
@@ -24,7 +24,11 @@ const CART_FIELDS = [
 ] as const;
 
 export function CartesianPanel() {
-  const { store, link, target, robots, requests } = useHud();
+  const store = useArm();
+  const link = useLink();
+  const target = useTarget();
+  const robots = useRobots();
+  const requests = useRequests();
   const motion = robots.active.motion;
   // Until edited, the fields hold where this arm's tip is (its planner may load after mount).
   const start = useMemo(() => startFields(motion, store.pwm), [motion, store]);

@@ -9,13 +9,16 @@
 import { useState } from 'react';
 import { CODE_BELOW_FLOOR, parseCommand, planRequest, tipPose } from '@armtwin/motion';
 import '../robots.css';
-import { useHud } from '../../hud/HudContext.ts';
+import { useRobots, useRequests, useLink, useArm } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { feedbackWords } from '../../../core/robots/feedback.ts';
 import { nextRequestId } from '../../../core/robots/RequestLog.ts';
 
 export function CommandPanel() {
-  const { robots, requests: log, link, store } = useHud();
+  const robots = useRobots();
+  const log = useRequests();
+  const link = useLink();
+  const store = useArm();
   const [text, setText] = useState('');
   const [error, setError] = useState('');
   const fleet = robots.fleet;

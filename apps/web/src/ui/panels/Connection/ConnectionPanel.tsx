@@ -5,7 +5,7 @@
  * and arm1; the URL query (?broker=…&arm=…) overrides both.
  */
 import { useState, type FormEvent } from 'react';
-import { useHud } from '../../hud/HudContext.ts';
+import { useSettings, useReconnect } from '../../hud/HudParts.ts';
 import { saveSettings, validateSettings } from '../../../core/config/settings.ts';
 import { TWIN_MODES, type TwinMode } from '../../../core/store/TwinPredictor.ts';
 
@@ -16,7 +16,8 @@ const TWIN_WORDS: Record<TwinMode, string> = {
 };
 
 export function ConnectionPanel() {
-  const { settings, reconnect } = useHud();
+  const settings = useSettings();
+  const { reconnect } = useReconnect();
   const [form, setForm] = useState(settings);
   const [error, setError] = useState('');
 

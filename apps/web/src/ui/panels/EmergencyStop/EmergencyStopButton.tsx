@@ -9,13 +9,13 @@
  * worker (scene/RenderHost.ts), so the page's main thread is idle when the press comes.
  */
 import { useEffect, useRef, useState } from 'react';
-import { useHud } from '../../hud/HudContext.ts';
+import { useLink, useSession } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import './estop-roles.css';
 
 export function EmergencyStopButton() {
-  const hud = useHud();
-  const { session } = hud;
+  const link = useLink();
+  const session = useSession();
   const [feedback, setFeedback] = useState('');
   const button = useRef<HTMLButtonElement>(null);
   // A role that may not publish (viewer) cannot stop the arm from this page: say so plainly.
@@ -23,9 +23,9 @@ export function EmergencyStopButton() {
   const refused = perm !== null && !perm.stop;
 
   // Read live by the native handlers (the link is replaced on reconnect): no re-binding needed.
-  const live = useRef({ hud, refused });
+  const live = useRef({ link, refused });
   useEffect(() => {
-    live.current = { hud, refused };
+    live.current = { link, refused };
   });
 
   useEffect(() => {
@@ -33,7 +33,7 @@ export function EmergencyStopButton() {
     /** Publishes first; the feedback line (React state) only afterwards. */
     const stop = (): void => {
       if (live.current.refused) return;
-      const sent = live.current.hud.link.emergencyStop();
+      const sent = live.current.link.emergencyStop();
       setFeedback(
         sent
           ? `Stop sent ${new Date().toLocaleTimeString()}`

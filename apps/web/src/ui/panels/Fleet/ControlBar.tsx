@@ -5,13 +5,14 @@
  * sees each request with `Grant` / `Refuse`, and `Release control`. The arm enforces it; this
  * only mirrors the controller's retained `arm/{id}/holder` and its events about this user.
  */
-import { useHud } from '../../hud/HudContext.ts';
+import { useLink, useSettings } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 
 export function ControlBar() {
-  const hud = useHud();
+  const link = useLink();
+  const { armId } = useSettings();
   const snap = useSampled(() => {
-    const c = hud.link.control;
+    const c = link.control;
     return {
       known: c.holder !== null,
       me: c.who.name,
@@ -21,12 +22,12 @@ export function ControlBar() {
       heldBy: c.heldBy,
       asked: c.asked,
       requests: c.holding ? (c.holder?.requests ?? []) : [],
-      mayCommand: hud.link.permissions.command,
+      mayCommand: link.permissions.command,
       notice: c.notice?.detail ?? '',
       noticeKind: c.notice?.kind ?? '',
     };
   });
-  const c = () => hud.link.control;
+  const c = () => link.control;
   const who = snap.enforced ? snap.me : `${snap.me} (self-declared)`;
   const warn = snap.noticeKind.startsWith('refused') || snap.noticeKind === 'lost';
   return (
@@ -35,10 +36,10 @@ export function ControlBar() {
         {!snap.known
           ? 'Control: the arm has not said who holds it.'
           : snap.holding
-            ? `You control ${hud.settings.armId} as ${who}.`
+            ? `You control ${armId} as ${who}.`
             : snap.heldBy
               ? `Controlled by ${snap.heldBy}`
-              : `Nobody controls ${hud.settings.armId}.`}
+              : `Nobody controls ${armId}.`}
       </p>
       {snap.mayCommand && snap.known && (
         <div className="control-actions">

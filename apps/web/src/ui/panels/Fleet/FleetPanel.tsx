@@ -6,7 +6,7 @@
  * Who controls the selected arm is said under the heading (./ControlBar.tsx).
  */
 import '../robots.css';
-import { useHud } from '../../hud/HudContext.ts';
+import { useRobots, useSettings, useArm, useReconnect } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { fleetList, healthSummary, type FleetArm } from '../../../core/robots/fleet.ts';
 import { ControlBar } from './ControlBar.tsx';
@@ -22,7 +22,10 @@ const LEVEL_WORDS = {
 } as const;
 
 export function FleetPanel() {
-  const { robots, settings, store, selectArm } = useHud();
+  const robots = useRobots();
+  const settings = useSettings();
+  const store = useArm();
+  const { selectArm } = useReconnect();
   const selected = settings.armId;
   const snap = useSampled(() => {
     const fleet = robots.fleet;

@@ -6,7 +6,7 @@
  * (../Zones/ZonesSection.tsx).
  */
 import { useState } from 'react';
-import { useHud } from '../../hud/HudContext.ts';
+import { useTarget, useSceneFigures } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { ZonesSection } from '../Zones/ZonesSection.tsx';
 import { TrackingLegend } from './TrackingLegend.tsx';
@@ -20,7 +20,8 @@ const WORDS = {
 } as const;
 
 export function GhostPanel() {
-  const { target, view } = useHud();
+  const target = useTarget();
+  const view = useSceneFigures();
   const [enabled, setEnabled] = useState(target.ghostEnabled);
   const shows = useSampled(() => view.reports.ghostShows);
   return (

@@ -5,7 +5,7 @@
  * has been commanded ('auto'); the switch makes it on or off for good.
  */
 import { useState } from 'react';
-import { useHud } from '../../hud/HudContext.ts';
+import { useArm } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import type { TrackingLevel } from '../../../core/store/trackingError.ts';
 
@@ -19,7 +19,7 @@ const LEVEL_WORDS: Record<TrackingLevel, string> = {
 };
 
 export function TrackingLegend() {
-  const { store } = useHud();
+  const store = useArm();
   const [, changed] = useState(0);
   const t = useSampled(() => {
     const tr = store.tracking;

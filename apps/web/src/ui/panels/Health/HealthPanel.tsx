@@ -15,14 +15,15 @@ import {
   THERMAL_FIT_START,
 } from '../../../core/store/thermalFit.ts';
 import { HistoryApi } from '../History/historyApi.ts';
-import { useHud } from '../../hud/HudContext.ts';
+import { useArm, useSettings } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { servoHealth, thermalWarningWords } from '../../../core/store/healthWords.ts';
 import { HealthCharts } from './HealthCharts.ts';
 import { SERVO_COLOURS } from './constants.ts';
 
 export function HealthPanel() {
-  const { store, settings } = useHud();
+  const store = useArm();
+  const settings = useSettings();
   const { armId, apiBase, username, password } = settings;
   const armVersion = useSampled(() => store.armVersion, 1000);
   const [modelText, setModelText] = useState('Thermal model: generic (no fit loaded yet).');

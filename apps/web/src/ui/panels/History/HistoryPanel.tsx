@@ -7,7 +7,7 @@
  * profile are shown; others stored under the same arm id are named, not drawn (profileServos.ts).
  */
 import { useCallback, useMemo, useRef, useState } from 'react';
-import { useHud } from '../../hud/HudContext.ts';
+import { useSettings, useArm, useReplay, useRobots } from '../../hud/HudParts.ts';
 import { ChartsView } from './ChartsView.tsx';
 import { HistoryApi } from './historyApi.ts';
 import { authHeaders } from '../../../core/auth/whoami.ts';
@@ -44,7 +44,10 @@ function initialChoice(): RangeChoice {
 }
 
 export function HistoryPanel() {
-  const { settings, store, replay, robots } = useHud();
+  const settings = useSettings();
+  const store = useArm();
+  const replay = useReplay();
+  const robots = useRobots();
   const servos = store.opts.arm.servos;
   const sliders = robots.active.spec.sliders;
   // The replay's angles are the store's (§2 degrees of the store's profile; an angle servo's own

@@ -6,7 +6,7 @@
  */
 import { useState } from 'react';
 import { DEFAULT_TEACH_OPTIONS, teachFromRecording } from '@armtwin/motion';
-import { useHud } from '../../hud/HudContext.ts';
+import { useRobots, usePlan } from '../../hud/HudParts.ts';
 import type { ReplayPlayer } from '../../../core/replay/ReplayPlayer.ts';
 import { recordingFromPose, waypointsFromTaught } from '../../../core/plan/taught.ts';
 import { clockTime, fixed } from './format.ts';
@@ -15,7 +15,8 @@ import { historyProbe } from './probe.ts';
 type Note = { text: string; bad: boolean };
 
 export function MakePlan(props: { player: ReplayPlayer; loaded: boolean }) {
-  const { robots, plan } = useHud();
+  const robots = useRobots();
+  const plan = usePlan();
   const { player, loaded } = props;
   const [from, setFrom] = useState<number | null>(null);
   const [to, setTo] = useState<number | null>(null);

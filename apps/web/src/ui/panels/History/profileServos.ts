@@ -14,14 +14,14 @@ export interface ProfileOverview {
   others: string[];
 }
 
-function keep<T, A>(
+/** `view` with only the items of its list `key` that pass `ok`. */
+function keep<K extends string, A extends Record<K, readonly { id: string }[]>>(
   view: Loaded<A>,
-  items: (a: A) => T[],
-  set: (a: A, kept: T[]) => A,
-  ok: (t: T) => boolean,
+  key: K,
+  ok: (item: { id: string }) => boolean,
 ): Loaded<A> {
   if (!view.ok) return view;
-  return { ok: true, data: set(view.data, items(view.data).filter(ok)) };
+  return { ok: true, data: { ...view.data, [key]: view.data[key].filter(ok) } };
 }
 
 export function onlyProfileServos(o: OverviewViews, ids: readonly string[]): ProfileOverview {
@@ -30,37 +30,12 @@ export function onlyProfileServos(o: OverviewViews, ids: readonly string[]): Pro
   const ours = (x: { id: string }) => mine.has(x.id) || (others.add(x.id), false);
   const overview: OverviewViews = {
     range: o.range,
-    temp: keep(
-      o.temp,
-      (a) => a.series,
-      (a, series) => ({ ...a, series }),
-      ours,
-    ),
-    volt: keep(
-      o.volt,
-      (a) => a.series,
-      (a, series) => ({ ...a, series }),
-      ours,
-    ),
-    tracking: keep(
-      o.tracking,
-      (a) => a.joints,
-      (a, joints) => ({ ...a, joints }),
-      ours,
-    ),
-    alarms: keep(
-      o.alarms,
-      (a) => a.episodes,
-      (a, episodes) => ({ ...a, episodes }),
-      ours,
-    ),
+    temp: keep(o.temp, 'series', ours),
+    volt: keep(o.volt, 'series', ours),
+    tracking: keep(o.tracking, 'joints', ours),
+    alarms: keep(o.alarms, 'episodes', ours),
     audit: o.audit, // who did what: the arm's, not a servo's
-    thermal: keep(
-      o.thermal,
-      (a) => a.servos,
-      (a, servos) => ({ ...a, servos }),
-      ours,
-    ),
+    thermal: keep(o.thermal, 'servos', ours),
   };
   return { overview, others: [...others].sort() };
 }

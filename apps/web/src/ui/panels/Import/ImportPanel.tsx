@@ -6,7 +6,7 @@
  * warnings, or every reason it was refused (not a URDF, too big, a bad zip, a name taken).
  */
 import { useEffect, useRef, useState, type InputHTMLAttributes } from 'react';
-import { useHud } from '../../hud/HudContext.ts';
+import { useLink, useSettings, useSession } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { zipOfDrop, zipOfFiles } from './droppedFiles.ts';
 import { sendImport, type ImportAnswer } from './sendImport.ts';
@@ -18,7 +18,9 @@ const FOLDER: InputHTMLAttributes<HTMLInputElement> = { webkitdirectory: '' } as
 const hasFiles = (e: DragEvent) => e.dataTransfer?.types.includes('Files') ?? false;
 
 export function ImportPanel() {
-  const { link, settings, session } = useHud();
+  const link = useLink();
+  const settings = useSettings();
+  const session = useSession();
   const allowed = useSampled(() => link.permissions.command);
   const details = useRef<HTMLDetailsElement>(null);
   const [name, setName] = useState('');

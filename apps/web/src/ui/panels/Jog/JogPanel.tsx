@@ -10,7 +10,7 @@
  * held, at the chosen speed (core/jog/HoldJog.ts, core/jog/GamepadJog.ts).
  */
 import { useState } from 'react';
-import { useHud } from '../../hud/HudContext.ts';
+import { useArm, useLink, useSession, useRobots, useJog, useModes } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { JogSlider } from './JogSlider.tsx';
 import { HoldButton } from './HoldButton.tsx';
@@ -19,7 +19,12 @@ import { DEFAULT_HOLD_KEYS, keyLabel } from '../../../core/jog/holdJogMath.ts';
 import { TIP_AXES } from '../../../core/jog/tipHold.ts';
 
 export function JogPanel() {
-  const { store, link, session, robots, jog: holdJog, modes } = useHud();
+  const store = useArm();
+  const link = useLink();
+  const session = useSession();
+  const robots = useRobots();
+  const holdJog = useJog();
+  const modes = useModes();
   // The arm the sliders drive and show: the model copy in Model mode, else the arm.
   const driven = () => modes.driven(store);
   const { hold, gamepad } = holdJog;

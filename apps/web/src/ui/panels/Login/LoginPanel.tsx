@@ -5,13 +5,15 @@
  * that may not move the arm) is told so here, in words.
  */
 import { useState, type FormEvent } from 'react';
-import { useHud } from '../../hud/HudContext.ts';
+import { useSession, useSettings, useReconnect } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { saveSettings } from '../../../core/config/settings.ts';
 import { sessionWords } from './words.ts';
 
 export function LoginPanel() {
-  const { session, settings, reconnect } = useHud();
+  const session = useSession();
+  const settings = useSettings();
+  const { reconnect } = useReconnect();
   const state = useSampled(() => session.state);
   const permissions = useSampled(() => session.permissions);
   const error = useSampled(() => session.error);

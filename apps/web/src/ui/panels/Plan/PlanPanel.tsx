@@ -21,7 +21,7 @@ import {
   type MotionSpec,
 } from '@armtwin/motion';
 import '../robots.css';
-import { useHud } from '../../hud/HudContext.ts';
+import { useRobots, usePlan, useArm, useLink, useTarget, useModes } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { MAX_WAYPOINTS } from '../../../core/plan/Waypoints.ts';
 import { isTaught, planTargets } from '../../../core/plan/taught.ts';
@@ -34,7 +34,12 @@ const PLAN_LINEAR_SPEED = 80;
 type Planned = { plan: Plan; spec: MotionSpec };
 
 export function PlanPanel() {
-  const { robots, plan: tools, store, link, target, modes } = useHud();
+  const robots = useRobots();
+  const tools = usePlan();
+  const store = useArm();
+  const link = useLink();
+  const target = useTarget();
+  const modes = useModes();
   // The arm a plan runs on: the model copy in Model mode (a rehearsal), else the arm.
   const driven = () => modes.driven(store);
   const { waypoints, preview, runner } = tools;

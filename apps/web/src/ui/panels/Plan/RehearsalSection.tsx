@@ -5,7 +5,7 @@
  * any move); once that run ends, predicted vs actual: each servo's largest and mean tracking
  * error against the rehearsal. Samples the recorder (../../../core/plan/RunRecorder.ts); no high-rate state.
  */
-import { useHud } from '../../hud/HudContext.ts';
+import { usePlan, useArm, useModes, useLink } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import './rehearsal.css';
 
@@ -18,7 +18,10 @@ interface Props {
 const fmt = (v: number) => (Number.isFinite(v) ? v.toFixed(2) : '—');
 
 export function RehearsalSection({ onRunOnArm, running }: Props) {
-  const { plan, store, modes, link } = useHud();
+  const plan = usePlan();
+  const store = useArm();
+  const modes = useModes();
+  const link = useLink();
   const rec = plan.recorder;
   const snap = useSampled(() => ({
     phase: rec.phase,

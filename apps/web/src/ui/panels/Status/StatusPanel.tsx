@@ -5,7 +5,15 @@
  * stale-data warning when no state report has come for more than 1 s, and whether the arm is
  * drawn ahead of its reports (the predictive twin: "Predicted", with the lead in ms).
  */
-import { useHud } from '../../hud/HudContext.ts';
+import {
+  useArm,
+  useSettings,
+  useLink,
+  useRobots,
+  useCameras,
+  useRendering,
+  useSceneFigures,
+} from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import { useStorageStatus } from './useStorageStatus.ts';
 import {
@@ -23,7 +31,13 @@ import { SOFTWARE_PACING } from '../../../scene/FramePacer.ts';
 import { drawnLeadMs } from '../../../scene/render/SceneReports.ts';
 
 export function StatusPanel() {
-  const { store, settings, link, robots, cameras, rendering, view } = useHud();
+  const store = useArm();
+  const settings = useSettings();
+  const link = useLink();
+  const robots = useRobots();
+  const { hub: cameras } = useCameras();
+  const rendering = useRendering();
+  const view = useSceneFigures();
   const storage = useStorageStatus();
   const s = useSampled(() => {
     const now = performance.now();

@@ -5,11 +5,11 @@
  * back, so what is shown is what this page last sent, and when.
  */
 import { useState } from 'react';
-import { useHud } from '../../hud/HudContext.ts';
+import { useLink } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 
 export function TorqueControl({ onSent }: { onSent?(on: boolean): void }) {
-  const { link } = useHud();
+  const link = useLink();
   const allowed = useSampled(() => link.mayMove);
   const [state, setState] = useState('Torque: on (as the gateway holds the arm)');
   const send = (on: boolean) => {

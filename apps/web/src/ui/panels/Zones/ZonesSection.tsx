@@ -8,13 +8,15 @@
  */
 import { useState } from 'react';
 import { ZONE_SHAPES, type Zone, type ZoneShape } from '@armtwin/robot';
-import { useHud } from '../../hud/HudContext.ts';
+import { useRobots, useSettings, useLink } from '../../hud/HudParts.ts';
 import { saveKeepOut } from '../../../core/zones/saveKeepOut.ts';
 import { describeZone, SHAPE_FIELDS, zoneFromFields } from '../../../core/zones/zoneFields.ts';
 import './zones.css';
 
 export function ZonesSection() {
-  const { robots, settings, link } = useHud();
+  const robots = useRobots();
+  const settings = useSettings();
+  const link = useLink();
   const profile = robots.active.spec.profile;
   const keepOut = profile.keepOut;
   const zones = keepOut?.zones ?? [];
