@@ -1,0 +1,143 @@
+/**
+ * `npm start`'s second arm: beside the simulated arm1, a simulated SO-101 (`so101`) on an
+ * emulated Feetech bus behind the real bus gateway, over a socat pty pair. Real npm, armtwin up,
+ * embedded broker, socat; the test watches over MQTT/TCP as any client would. A jog of the
+ * SO-101's gripper moves the emulated servo, read back through the gateway's sync reads; Ctrl-C
+ * (SIGINT to the process group, as a terminal sends it) takes both arms offline and leaves no
+ * socat behind, nor its pty folder.
+ */
+import { spawn } from 'node:child_process';
+import fs from 'node:fs';
+import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+import { freePorts, REPO_ROOT } from '../helpers/services.ts';
+import { StatusWatcher } from './sim-helpers.ts';
+
+let group = 0;
+let out = '';
+let exited: Promise<string>;
+let mqttPort = 0;
+const watchers: StatusWatcher[] = [];
+
+/** Pids of the processes whose command line mentions `text`. */
+function processesWith(text: string): number[] {
+  return fs
+    .readdirSync('/proc')
+    .filter((d) => /^\d+$/.test(d))
+    .filter((d) => {
+      try {
+        return fs.readFileSync(`/proc/${d}/cmdline`, 'utf8').includes(text);
+      } catch {
+        return false; // gone meanwhile
+      }
+    })
+    .map(Number);
+}
+
+/** The pty folder `armtwin up` said it made ('' before it said so). */
+const ptyDir = () => /over a pty pair in (\S+)/.exec(out)?.[1] ?? '';
+
+function tryKill(pid: number): void {
+  try {
+    process.kill(pid, 'SIGKILL');
+  } catch {
+    // already gone
+  }
+}
+
+beforeAll(async () => {
+  const [httpPort = 0, port = 0] = await freePorts(2);
+  mqttPort = port;
+  const npm = spawn(
+    'npm',
+    [
+      'start',
+      '--',
+      '--port',
+      String(httpPort),
+      '--mqtt-port',
+      String(mqttPort),
+      '--no-web',
+      '--no-middleware',
+    ],
+    { cwd: REPO_ROOT, stdio: ['ignore', 'pipe', 'pipe'], detached: true },
+  );
+  group = npm.pid ?? 0;
+  npm.stdout.on('data', (d: Buffer) => (out += d.toString()));
+  npm.stderr.on('data', (d: Buffer) => (out += d.toString()));
+  exited = new Promise((resolve) =>
+    npm.once('exit', (code, signal) => resolve(signal ?? `code ${code}`)),
+  );
+  const deadline = Date.now() + 60_000;
+  while (!out.includes('armtwin is running')) {
+    if (Date.now() > deadline || npm.exitCode !== null)
+      throw new Error(`npm start did not start:\n${out}`);
+    await new Promise((r) => setTimeout(r, 200));
+  }
+}, 90_000);
+
+afterAll(async () => {
+  await Promise.all(watchers.map((w) => w.close()));
+  // Whatever happened, nothing of this test keeps running.
+  const dir = ptyDir();
+  if (dir) processesWith(dir).forEach(tryKill);
+  if (group) for (const pid of [-group, group]) tryKill(pid);
+});
+
+async function watch(arm: string): Promise<StatusWatcher> {
+  const w = await StatusWatcher.connect(`mqtt://127.0.0.1:${mqttPort}`, arm, {
+    reconnectPeriod: 0,
+  });
+  watchers.push(w);
+  return w;
+}
+
+describe('npm start: arm1 and the SO-101 on an emulated Feetech bus', () => {
+  let so101: StatusWatcher;
+
+  test('announces both arms; both come online and stream', async () => {
+    expect(out).toContain('simulated arm "arm1" (profile armtwin5)');
+    expect(out).toContain('SO-101 "so101" (profile so101) on an emulated Feetech bus');
+    expect(fs.existsSync(`${ptyDir()}/gateway`)).toBe(true);
+    const arm1 = await watch('arm1');
+    so101 = await watch('so101');
+    await arm1.online();
+    await so101.online();
+    await arm1.until(() => (arm1.positions(0).length >= 3 ? true : undefined), 20_000, 'arm1');
+    // The gateway's sync reads of the six servos, 001 (shoulder_pan) … 006 (gripper), as angles.
+    await so101.until(() => (so101.angles(6).length >= 3 ? true : undefined), 20_000, 'so101');
+    // The gateway announces the SO-101's profile, as the HUD and the model copies read it.
+    await so101.client.subscribeAsync('arm/so101/profile', { qos: 1 });
+    const announced = await so101.until(() => so101.retained.get('arm/so101/profile'));
+    expect((JSON.parse(announced) as { name?: string }).name).toBe('so101');
+    // Health from the bus: temperature and supply of each servo (the STS3215's 12 V variant).
+    const health = await so101.until(() => so101.health(6), 20_000, 'a health group');
+    expect(health.temp).toBe(25);
+    expect(health.mv).toBeGreaterThan(5000);
+  }, 60_000);
+
+  test('a jog of the gripper over MQTT moves the emulated servo, read back through the gateway', async () => {
+    const from = so101.items.length;
+    await so101.send('#006A+030.00T2000!');
+    await so101.until(
+      () => (so101.angles(6, from).includes(30) ? true : undefined),
+      20_000,
+      'the gripper at 30°',
+    );
+    // It travelled there (the emulated shaft moves at the written speed), and nothing else moved.
+    const seen = so101.angles(6, from);
+    expect(seen.some((deg) => deg > 0 && deg < 30)).toBe(true);
+    expect(so101.angles(1, from).every((deg) => deg === 0)).toBe(true);
+  }, 30_000);
+
+  test('Ctrl-C stops everything: both arms offline, no socat left, pty folder gone', async () => {
+    const dir = ptyDir();
+    expect(processesWith(dir).length).toBeGreaterThan(0); // socat, while it runs
+    process.kill(-group, 'SIGINT');
+    expect(await exited, out).toBe('SIGINT');
+    expect(out).toContain('armtwin: stopped');
+    expect(watchers[0]!.retained.get('arm/arm1/online')).toBe('0');
+    expect(so101.retained.get('arm/so101/online')).toBe('0');
+    expect(processesWith(dir)).toEqual([]);
+    expect(fs.existsSync(dir)).toBe(false);
+  }, 30_000);
+});
