@@ -19,6 +19,7 @@ import { TwinPredictor, type TwinMode } from './TwinPredictor.ts';
 import { TrackingErrors } from './trackingError.ts';
 import { trackJoints } from './trackJoints.ts';
 import { createCommandReader } from './commandReader.ts';
+import { servoSlots } from './servoSlots.ts';
 import { createStatusReader } from './statusReader.ts';
 import { RateMeter } from './RateMeter.ts';
 import { PingTracker } from './PingTracker.ts';
@@ -105,6 +106,8 @@ export class ArmStore {
   /** The health row of the report being taken in. */
   private row!: HealthRow;
   private drawn!: Float64Array;
+  /** Frame id → slot (./servoSlots.ts). */
+  private slots!: Int16Array;
   private now = 0;
 
   constructor(opts: Partial<ArmStoreOptions> = {}) {
@@ -136,12 +139,14 @@ export class ArmStore {
     this.controlReader = createCommandReader(
       this.predictor,
       () => this.opts.arm,
+      (id) => this.slot(id),
       () => this.now,
     );
   }
 
   private allocate(): void {
     const n = (this.servoCount = this.opts.arm.servos.length);
+    this.slots = servoSlots(this.opts.arm.servos);
     this.pwm = new Float64Array(n).fill(NaN);
     this.angle = new Float64Array(n).fill(NaN);
     this.rendered = new Float64Array(n).fill(NaN);
@@ -205,31 +210,40 @@ export class ArmStore {
     this.tweens.arrive(this.now, this.stateRate.rate(this.now), this.opts.drawNewestAboveHz);
   }
 
+  /** The slot (profile index) of the servo a frame names by `id`; -1 if the arm has none. */
+  private slot(id: number): number {
+    return this.slots[id] ?? -1;
+  }
+
   private setPosition(id: number, pwm: number): void {
-    if (id >= this.servoCount) return;
-    this.pwm[id] = pwm;
-    this.retarget(id, angleFromPwm(pwm, this.opts.arm.servos[id]!.polarity));
+    const i = this.slot(id);
+    if (i < 0) return;
+    this.pwm[i] = pwm;
+    this.retarget(i, angleFromPwm(pwm, this.opts.arm.servos[i]!.polarity));
   }
 
   /** An angle report (§8): drawn as it came, with no pulse on the way (±360° stays ±360°). */
   private setAngle(id: number, deg: number): void {
-    if (id >= this.servoCount) return;
-    this.pwm[id] = PWM_CENTRE + this.opts.arm.servos[id]!.polarity * US_PER_DEG * deg;
-    this.retarget(id, deg);
+    const i = this.slot(id);
+    if (i < 0) return;
+    this.pwm[i] = PWM_CENTRE + this.opts.arm.servos[i]!.polarity * US_PER_DEG * deg;
+    this.retarget(i, deg);
   }
 
-  private retarget(id: number, deg: number): void {
-    this.angle[id] = deg;
-    this.thermal.position(id, deg);
-    this.predictor.report(id, this.reportStamp, deg);
-    this.tweens.retarget(id, deg, this.now, this.opts.interpolationAlpha);
+  /** Servo `i` (a slot) reported at `deg`. */
+  private retarget(i: number, deg: number): void {
+    this.angle[i] = deg;
+    this.thermal.position(i, deg);
+    this.predictor.report(i, this.reportStamp, deg);
+    this.tweens.retarget(i, deg, this.now, this.opts.interpolationAlpha);
   }
 
   private setHealth(id: number, temp: number, mv: number): void {
-    if (id >= this.servoCount) return;
-    this.temp[id] = temp;
-    this.mv[id] = mv;
-    this.row.set(id, temp, mv);
+    const i = this.slot(id);
+    if (i < 0) return;
+    this.temp[i] = temp;
+    this.mv[i] = mv;
+    this.row.set(i, temp, mv);
   }
 
   /**

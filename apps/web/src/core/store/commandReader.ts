@@ -7,19 +7,25 @@ import { angleFromPwm, createReader, type Frame, type Reader } from '@armtwin/pr
 import type { ArmProfile } from '@armtwin/ik';
 import type { TwinPredictor } from './TwinPredictor.ts';
 
-/** A reader of control payloads; `arm` and `now` are read per frame (they change). */
+/**
+ * A reader of control payloads; `arm` and `now` are read per frame (they change). `slot` is the
+ * profile index of the servo a frame names by id (-1: none), as the store keeps it.
+ */
 export function createCommandReader(
   predictor: Pick<TwinPredictor, 'command' | 'stop'>,
   arm: () => ArmProfile,
+  slot: (id: number) => number,
   now: () => number,
 ): Reader {
   const onCommand = (f: Frame): void => {
-    const servos = arm().servos;
-    if (f.type === 'move' && f.id < servos.length)
-      predictor.command(f.id, angleFromPwm(f.pwm, servos[f.id]!.polarity), f.ms, now());
-    else if (f.type === 'angleMove' && f.id < servos.length)
-      predictor.command(f.id, f.deg, f.ms, now());
-    else if (f.type === 'stop') predictor.stop(f.id === 255 ? undefined : f.id, now());
+    if (f.type === 'stop' && f.id === 255) return predictor.stop(undefined, now());
+    if (f.type !== 'move' && f.type !== 'angleMove' && f.type !== 'stop') return;
+    const i = slot(f.id);
+    if (i < 0) return;
+    if (f.type === 'move')
+      predictor.command(i, angleFromPwm(f.pwm, arm().servos[i]!.polarity), f.ms, now());
+    else if (f.type === 'angleMove') predictor.command(i, f.deg, f.ms, now());
+    else predictor.stop(i, now());
   };
   return createReader({
     onFrame: onCommand,
