@@ -8,19 +8,15 @@
  * (SIGINT to the process group, as a terminal sends it) takes both arms offline and leaves no
  * socat behind, nor its pty folder.
  */
-import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { canConnect, freePorts, LOOPBACK, REPO_ROOT } from '../helpers/services.ts';
+import { startNpm, tryKill, type NpmStart } from '../helpers/npm-start.ts';
 import { StatusWatcher } from './sim-helpers.ts';
 
-let group = 0;
-let out = '';
-let exited: Promise<string>;
-let mqttPort = 0;
-let influxUrl = '';
+let npm: NpmStart;
+const out = () => npm.output();
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-up-so101-'));
 const watchers: StatusWatcher[] = [];
 
@@ -40,28 +36,12 @@ function processesWith(text: string): number[] {
 }
 
 /** The pty folder `armtwin up` said it made ('' before it said so). */
-const ptyDir = () => /over a pty pair in (\S+)/.exec(out)?.[1] ?? '';
-
-function tryKill(pid: number): void {
-  try {
-    process.kill(pid, 'SIGKILL');
-  } catch {
-    // already gone
-  }
-}
-
-/** Two free ports for the local influxd: HTTP on `p`, RPC on `p + 2`. */
-async function influxPort(): Promise<number> {
-  for (;;) {
-    const [p = 0] = await freePorts(1);
-    if (p + 2 <= 65535 && !(await canConnect(LOOPBACK, p + 2))) return p;
-  }
-}
+const ptyDir = () => /over a pty pair in (\S+)/.exec(out())?.[1] ?? '';
 
 /** The newest stored angle of servo `id` of arm `arm` (NaN if none). */
 async function lastAngle(arm: string, id: string): Promise<number> {
   const q = `SELECT last(angle) FROM servo WHERE arm='${arm}' AND id='${id}'`;
-  const res = await fetch(`${influxUrl}/query?db=armtwin`, {
+  const res = await fetch(`${npm.influxUrl}/query?db=armtwin`, {
     method: 'POST',
     body: new URLSearchParams({ q }),
   }).catch(() => null);
@@ -71,36 +51,11 @@ async function lastAngle(arm: string, id: string): Promise<number> {
 }
 
 beforeAll(async () => {
-  const [httpPort = 0, port = 0] = await freePorts(2);
-  mqttPort = port;
-  const iPort = await influxPort();
-  influxUrl = `http://${LOOPBACK}:${iPort}`;
-  const npm = spawn(
-    'npm',
-    ['start', '--', '--port', String(httpPort), '--mqtt-port', String(mqttPort), '--no-web'],
-    {
-      cwd: REPO_ROOT,
-      env: {
-        ...process.env,
-        SPOOL_DIR: path.join(dir, 'spool'),
-        ARMTWIN_INFLUX_DATA: path.join(dir, 'influx'),
-        ARMTWIN_INFLUX_PORT: String(iPort),
-        INFLUX_URL: '',
-      },
-      stdio: ['ignore', 'pipe', 'pipe'],
-      detached: true,
-    },
-  );
-  group = npm.pid ?? 0;
-  npm.stdout.on('data', (d: Buffer) => (out += d.toString()));
-  npm.stderr.on('data', (d: Buffer) => (out += d.toString()));
-  exited = new Promise((resolve) =>
-    npm.once('exit', (code, signal) => resolve(signal ?? `code ${code}`)),
-  );
+  npm = await startNpm(dir, ['--no-web']);
   const deadline = Date.now() + 60_000;
-  while (!out.includes('armtwin is running')) {
-    if (Date.now() > deadline || npm.exitCode !== null)
-      throw new Error(`npm start did not start:\n${out}`);
+  while (!out().includes('armtwin is running')) {
+    if (Date.now() > deadline || npm.hasExited())
+      throw new Error(`npm start did not start:\n${out()}`);
     await new Promise((r) => setTimeout(r, 200));
   }
 }, 90_000);
@@ -108,14 +63,14 @@ beforeAll(async () => {
 afterAll(async () => {
   await Promise.all(watchers.map((w) => w.close()));
   // Whatever happened, nothing of this test keeps running.
-  const dir = ptyDir();
-  if (dir) processesWith(dir).forEach(tryKill);
-  if (group) for (const pid of [-group, group]) tryKill(pid);
+  const pty = ptyDir();
+  if (pty) processesWith(pty).forEach(tryKill);
+  npm?.kill();
   fs.rmSync(dir, { recursive: true, force: true });
 });
 
 async function watch(arm: string): Promise<StatusWatcher> {
-  const w = await StatusWatcher.connect(`mqtt://127.0.0.1:${mqttPort}`, arm, {
+  const w = await StatusWatcher.connect(`mqtt://127.0.0.1:${npm.mqttPort}`, arm, {
     reconnectPeriod: 0,
   });
   watchers.push(w);
@@ -126,8 +81,8 @@ describe('npm start: arm1 and the SO-101 on an emulated Feetech bus', () => {
   let so101: StatusWatcher;
 
   test('announces both arms; both come online and stream', async () => {
-    expect(out).toContain('simulated arm "arm1" (profile armtwin5)');
-    expect(out).toContain('SO-101 "so101" (profile so101) on an emulated Feetech bus');
+    expect(out()).toContain('simulated arm "arm1" (profile armtwin5)');
+    expect(out()).toContain('SO-101 "so101" (profile so101) on an emulated Feetech bus');
     expect(fs.existsSync(`${ptyDir()}/gateway`)).toBe(true);
     const arm1 = await watch('arm1');
     so101 = await watch('so101');
@@ -162,7 +117,7 @@ describe('npm start: arm1 and the SO-101 on an emulated Feetech bus', () => {
 
   test("the middleware stores the SO-101's history as arm1's: the gripper's 30°", async () => {
     await so101.until(
-      () => (out.includes('middleware: running') ? true : undefined),
+      () => (out().includes('middleware: running') ? true : undefined),
       60_000,
       'the middleware',
     );
@@ -174,7 +129,7 @@ describe('npm start: arm1 and the SO-101 on an emulated Feetech bus', () => {
       const stored = await lastAngle('so101', '006');
       if (Math.abs(stored - 30) <= 360 / 4096) break;
       if (Date.now() > deadline)
-        throw new Error(`the stored gripper angle is ${stored}, not 30°; armtwin said:\n${out}`);
+        throw new Error(`the stored gripper angle is ${stored}, not 30°; armtwin said:\n${out()}`);
       await new Promise((r) => setTimeout(r, 500));
     }
   }, 150_000);
@@ -182,9 +137,9 @@ describe('npm start: arm1 and the SO-101 on an emulated Feetech bus', () => {
   test('Ctrl-C stops everything: both arms offline, no socat left, pty folder gone', async () => {
     const dir = ptyDir();
     expect(processesWith(dir).length).toBeGreaterThan(0); // socat, while it runs
-    process.kill(-group, 'SIGINT');
-    expect(await exited, out).toBe('SIGINT');
-    expect(out).toContain('armtwin: stopped');
+    npm.interrupt();
+    expect(await npm.exited, out()).toBe('SIGINT');
+    expect(out()).toContain('armtwin: stopped');
     expect(watchers[0]!.retained.get('arm/arm1/online')).toBe('0');
     expect(so101.retained.get('arm/so101/online')).toBe('0');
     expect(processesWith(dir)).toEqual([]);

@@ -95,13 +95,19 @@ interface PtyPair {
   stop(): Promise<void>;
 }
 
+/**
+ * util-linux's setpriv, where there is one: socat is started through it with `--pdeathsig KILL`,
+ * so the kernel ends socat even when this process is SIGKILLed (no 'exit' handler runs then).
+ */
+const SETPRIV = '/usr/bin/setpriv';
+
 /** socat's two linked pseudo-terminals at `a` and `b`, raw, without echo. */
 async function startPtyPair(a: string, b: string, timeoutMs: number): Promise<PtyPair> {
-  const child: ChildProcess = spawn(
-    'socat',
-    [`pty,raw,echo=0,link=${a}`, `pty,raw,echo=0,link=${b}`],
-    { stdio: 'ignore' },
-  );
+  const socat = ['socat', `pty,raw,echo=0,link=${a}`, `pty,raw,echo=0,link=${b}`];
+  const [command, ...args] = fs.existsSync(SETPRIV)
+    ? [SETPRIV, '--pdeathsig', 'KILL', '--', ...socat]
+    : socat;
+  const child: ChildProcess = spawn(command!, args, { stdio: 'ignore' });
   // Whatever ends this process (an error, a second Ctrl-C), socat does not outlive it.
   const killOnExit = () => child.kill('SIGKILL');
   process.once('exit', killOnExit);
@@ -114,15 +120,15 @@ async function startPtyPair(a: string, b: string, timeoutMs: number): Promise<Pt
     if (child.exitCode === null && child.signalCode === null) child.kill('SIGTERM');
     await exited;
   };
+  const missing = 'socat is not installed (apt install socat, brew install socat; or --no-so101)';
   const failed = new Promise<string>((resolve) => {
     child.once('error', (err: NodeJS.ErrnoException) =>
-      resolve(
-        err.code === 'ENOENT'
-          ? 'socat is not installed (apt install socat, brew install socat; or --no-so101)'
-          : `socat: ${err.message}`,
-      ),
+      resolve(err.code === 'ENOENT' ? missing : `socat: ${err.message}`),
     );
-    child.once('exit', (code, signal) => resolve(`socat exited (${signal ?? `code ${code}`})`));
+    // 127: setpriv found no socat to run.
+    child.once('exit', (code, signal) =>
+      resolve(code === 127 ? missing : `socat exited (${signal ?? `code ${code}`})`),
+    );
   });
   const deadline = Date.now() + timeoutMs;
   let why: string | undefined;
