@@ -2,7 +2,8 @@
 // `npm start`: the one command that runs the twin. On a fresh clone it installs the
 // dependencies first (`npm ci`), then runs `armtwin up` in this process (TypeScript via tsx):
 // the embedded broker, the HUD + /mqtt + /api on ARMTWIN_PORT (default 8080), the simulated
-// arm1, the middleware. Extra arguments go to `armtwin up` (npm start -- --rate 250).
+// arm1, the SO-101 on an emulated Feetech bus behind the bus gateway (`so101`; --no-so101 leaves
+// it out), the middleware. Extra arguments go to `armtwin up` (npm start -- --rate 250).
 import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';

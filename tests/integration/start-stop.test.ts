@@ -6,41 +6,25 @@
  * InfluxDB holds the last state the arm published. Real npm, armtwin up, embedded broker, local
  * influxd (on free ports, data in a temp folder).
  */
-import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, expect, test } from 'vitest';
 import { startLocalInflux } from '@armtwin/middleware';
-import { canConnect, freePorts, REPO_ROOT, LOOPBACK } from '../helpers/services.ts';
+import { LOOPBACK } from '../helpers/services.ts';
+import { startNpm, type NpmStart } from '../helpers/npm-start.ts';
 import { StatusWatcher } from './sim-helpers.ts';
 
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-stop-'));
 const spoolDir = path.join(dir, 'spool');
 const influxDir = path.join(dir, 'influx');
-let group = 0;
+let npm: NpmStart | undefined;
 
 afterAll(() => {
   // Whatever happened, nothing of this test keeps running.
-  if (group) for (const pid of [-group, group]) tryKill(pid);
+  npm?.kill();
   fs.rmSync(dir, { recursive: true, force: true });
 });
-
-function tryKill(pid: number): void {
-  try {
-    process.kill(pid, 'SIGKILL');
-  } catch {
-    // already gone
-  }
-}
-
-/** Two free ports for the local influxd: HTTP on `p`, RPC on `p + 2`. */
-async function influxPort(): Promise<number> {
-  for (;;) {
-    const [p = 0] = await freePorts(1);
-    if (p + 2 <= 65535 && !(await canConnect(LOOPBACK, p + 2))) return p;
-  }
-}
 
 /** The newest point time of servo 0 of arm1 in the `armtwin` database, ms (NaN if none). */
 async function lastStored(url: string): Promise<number> {
@@ -68,55 +52,30 @@ function spooled(): string[] {
 }
 
 test('Ctrl-C on npm start: arm offline, last points written, spool empty, influxd stopped', async () => {
-  const [httpPort = 0, mqttPort = 0] = await freePorts(2);
-  const iPort = await influxPort();
-  const npm = spawn(
-    'npm',
-    ['start', '--', '--port', String(httpPort), '--mqtt-port', String(mqttPort), '--no-web'],
-    {
-      cwd: REPO_ROOT,
-      env: {
-        ...process.env,
-        SPOOL_DIR: spoolDir,
-        ARMTWIN_INFLUX_DATA: influxDir,
-        ARMTWIN_INFLUX_PORT: String(iPort),
-        INFLUX_URL: '',
-      },
-      stdio: ['ignore', 'pipe', 'pipe'],
-      // A process group of its own, as a shell gives a foreground job.
-      detached: true,
-    },
-  );
-  group = npm.pid ?? 0;
-  let out = '';
-  npm.stdout.on('data', (d: Buffer) => (out += d.toString()));
-  npm.stderr.on('data', (d: Buffer) => (out += d.toString()));
-  const exited = new Promise<string>((resolve) =>
-    npm.once('exit', (code, signal) => resolve(signal ?? `code ${code}`)),
-  );
+  const up = (npm = await startNpm(dir, ['--no-web']));
+  const { exited, mqttPort, influxUrl, influxPort: iPort } = up;
 
   const deadline = Date.now() + 120_000;
-  while (!out.includes('middleware: running')) {
-    if (Date.now() > deadline || npm.exitCode !== null)
-      throw new Error(`npm start did not start its middleware:\n${out}`);
+  while (!up.output().includes('middleware: running')) {
+    if (Date.now() > deadline || up.hasExited())
+      throw new Error(`npm start did not start its middleware:\n${up.output()}`);
     await new Promise((r) => setTimeout(r, 200));
   }
-  const influxUrl = `http://${LOOPBACK}:${iPort}`;
-  expect(out).toContain(`storage: InfluxDB at ${influxUrl} (local influxd`);
+  expect(up.output()).toContain(`storage: InfluxDB at ${influxUrl} (local influxd`);
   // Data flows; its newest points wait in the middleware's open batch (sealed every 5 s).
   const watcher = await StatusWatcher.connect(`mqtt://${LOOPBACK}:${mqttPort}`, 'arm1', {
     reconnectPeriod: 0,
   });
   await watcher.until(() => (watcher.positions(0).length >= 5 ? true : undefined), 10_000, 'state');
 
-  process.kill(-group, 'SIGINT');
+  up.interrupt();
   // npm ends the way a Ctrl-C'd script does (by the signal it passed on), after armtwin stopped.
-  expect(await exited, out).toBe('SIGINT');
-  expect(out).toContain('armtwin: stopped');
+  expect(await exited, up.output()).toBe('SIGINT');
+  expect(up.output()).toContain('armtwin: stopped');
   await watcher.close();
   // The arm said so before it stopped publishing, and every part said it stopped.
   expect(watcher.retained.get('arm/arm1/online')).toBe('0');
-  expect(out).not.toContain('stopping with batches still spooled');
+  expect(up.output()).not.toContain('stopping with batches still spooled');
   expect(fs.existsSync(spoolDir)).toBe(true);
   expect(spooled()).toEqual([]);
 

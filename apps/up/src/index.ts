@@ -9,3 +9,4 @@ export * from './run-up.ts';
 export * from './static-files.ts';
 export * from './up.ts';
 export * from './security-headers.ts';
+export * from './so101-part.ts';

@@ -10,6 +10,7 @@ import {
   type BrokerSecurityFiles,
 } from '@armtwin/broker';
 import { DEFAULT_PROFILE } from '@armtwin/sim';
+import { SO101_ARM } from './so101-part.ts';
 import { startUp, type Up, type UpOptions } from './up.ts';
 
 export type RunUpOptions = Omit<UpOptions, keyof BrokerSecurity> & BrokerSecurityFiles;
@@ -25,5 +26,9 @@ export async function runUp(o: RunUpOptions): Promise<Up> {
   const arms = o.arms?.length ? o.arms : [{ id: o.armId, profile: DEFAULT_PROFILE }];
   for (const a of arms)
     o.say(`simulated arm "${a.id}" (profile ${a.profile}) streaming at ${o.rate} Hz`);
+  if (up.so101)
+    o.say(
+      `SO-101 "${o.so101}" (profile ${SO101_ARM.profile}) on an emulated Feetech bus, driven by the bus gateway over a pty pair in ${up.so101.ptyDir} (--no-so101 leaves it out)`,
+    );
   return up;
 }

@@ -2,7 +2,8 @@
  * `armtwin up` (what `npm start` runs): the embedded broker, ONE HTTP(S) server (the HUD's
  * files, MQTT over WebSockets at /mqtt, and armtwin's one HTTP API under /api
  * (`@armtwin/http-api`: the middleware's history and metrics, robot writes, model copies), the
- * simulated arm, and the middleware with its storage, each as far as it exists. The arm and the middleware connect to
+ * simulated arm (and the SO-101 on an emulated servo bus behind the bus gateway:
+ * ./so101-part.ts), and the middleware with its storage, each as far as it exists. The arm and the middleware connect to
  * the broker in-process (no socket, no password) with the device and middleware roles.
  * `stop()` takes them down in order: the sim says offline, the middleware flushes, influxd
  * stops, the broker and server close.
@@ -33,6 +34,7 @@ import { createCameraPart } from './camera-part.ts';
 import { ensureWebBuild, startMiddlewarePart, WEB_DIST, type StartedMiddleware } from './parts.ts';
 import type { ModelCopies } from './model-copies.ts';
 import { createModelPart } from './model-part.ts';
+import { SO101_ARM, startSo101Part, type So101Part } from './so101-part.ts';
 import { staticFiles } from './static-files.ts';
 import { DEFAULT_HUD_HEADERS_OPTIONS, securityHeaders } from './security-headers.ts';
 
@@ -52,6 +54,12 @@ export interface UpOptions {
    * broker; `sim` is the first. Unset or empty: one arm, `armId`, with the default profile.
    */
   arms?: { id: string; profile: string }[];
+  /**
+   * The second arm, a simulated SO-101 on an emulated Feetech bus behind the real bus gateway
+   * (./so101-part.ts), on this arm id; unset: none. `armtwin up` starts it as `so101` unless
+   * `--no-so101`. If it cannot start (no socat), `up` says why and runs without it.
+   */
+  so101?: string;
   /** INFLUX_URL ('' = local influxd if possible). */
   influxUrl: string;
   /** Build the HUD if it is missing. */
@@ -95,6 +103,8 @@ export interface Up {
   sim: MqttSim;
   /** Every simulated arm, in `arms` order. */
   sims: MqttSim[];
+  /** The SO-101 on its emulated bus (`so101`), null when not asked for or when it failed to start. */
+  so101: So101Part | null;
   /** The arms' model copies, started on demand (docs/protocol.md § Modes). */
   copies: ModelCopies;
   /** Resolves when the middleware (if any) is up or has failed to start. */
@@ -104,6 +114,10 @@ export interface Up {
 
 export async function startUp(o: UpOptions): Promise<Up> {
   const armSpecs = o.arms?.length ? o.arms : [{ id: o.armId, profile: DEFAULT_PROFILE }];
+  if (o.so101 && armSpecs.some((a) => a.id === o.so101))
+    throw new Error(
+      `arm id "${o.so101}" is the SO-101 on the emulated bus: give the simulated arm another id, or leave the SO-101 out (--no-so101)`,
+    );
   for (const a of armSpecs)
     if (isModelArmId(a.id))
       throw new Error(
@@ -237,6 +251,20 @@ export async function startUp(o: UpOptions): Promise<Up> {
     return { ...started, stop };
   });
   const sim = sims[0]!;
+  const so101 = o.so101
+    ? await startSo101Part({
+        broker,
+        armId: o.so101,
+        profile: SO101_ARM.profile,
+        modelsDir: profileDir(modelDirs, SO101_ARM.profile),
+        onFirst: o.onFirst,
+      }).catch((err: unknown) => {
+        o.say(
+          `SO-101 "${o.so101}": not started: ${err instanceof Error ? err.message : String(err)}`,
+        );
+        return null;
+      })
+    : null;
 
   const middlewareReady = o.middleware
     ? startMiddlewarePart(
@@ -268,7 +296,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
     (stopping ??= (async () => {
       await camera?.stop();
       await model.stop();
-      await Promise.all(sims.map((s) => s.stop()));
+      await Promise.all([...sims.map((s) => s.stop()), so101?.stop()]);
       const started = await middlewareReady;
       if (started) {
         await started.middleware
@@ -284,7 +312,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
       await closed;
     })());
 
-  return { url, broker, sim, sims, copies: model.copies, middlewareReady, stop };
+  return { url, broker, sim, sims, so101, copies: model.copies, middlewareReady, stop };
 }
 
 /** The first of `dirs` that holds `<name>/profile.json` (the last one otherwise, for its error). */

@@ -3,7 +3,7 @@
  * mqtt.js client (reconnects every `reconnectMs`, last will `0` retained on `arm/{id}/online`),
  * both kept up on their own.
  */
-import type { MqttClient } from 'mqtt';
+import type { IClientOptions, MqttClient } from 'mqtt';
 import type { Logger } from 'pino';
 import { connectBrokers, type BrokerClient } from '@armtwin/link';
 import type { ControlArbiter, ControllerCore } from '@armtwin/controller';
@@ -43,7 +43,16 @@ export interface GatewayOptions {
    * silent).
    */
   log?: Logger;
+  /**
+   * Makes the MQTT client from the gateway's options (client id, last will, link defaults)
+   * instead of connecting to `mqttUrl`: `armtwin up` hands its gateway an in-process client of
+   * the embedded broker with the device role. Unset: `mqttUrl`'s broker list.
+   */
+  connect?: (options: IClientOptions) => MqttClient;
 }
+
+/** A gateway's MQTT client; `brokers` is there when it follows a broker list (`mqttUrl`). */
+export type GatewayClient = MqttClient & Partial<Pick<BrokerClient, 'brokers'>>;
 
 export const DEFAULT_GATEWAY_OPTIONS = {
   baudRate: DEFAULT_SERIAL_LINK_OPTIONS.baudRate,
@@ -68,25 +77,23 @@ export interface Gateway {
  * no Nagle delay (frames are small; ~40 ms tails otherwise), and the broker list of `mqttUrl`
  * followed (`@armtwin/link`): a move is logged, one line each.
  */
-export function connectGatewayMqtt(o: GatewayOptions): BrokerClient {
-  const client = connectBrokers(
-    parseBrokerList(o.mqttUrl),
-    {
-      clientId: `armtwin-gateway-${o.armId}-${process.pid}`,
-      ...(o.username ? { username: o.username, password: o.password ?? '' } : {}),
-      will: { topic: topic(o.armId, 'online'), payload: Buffer.from('0'), qos: 1, retain: true },
-      ...linkOptions({ keepalive: o.keepaliveS, reconnectPeriod: o.reconnectMs }),
-      queueQoSZero: false,
-    },
-    {
-      onMove: (move) =>
-        move.from &&
-        o.log?.info(
-          { arm: o.armId, from: move.from.index + 1, to: move.to.index + 1, reason: move.reason },
-          `broker move: ${describeBroker(move.to)}`,
-        ),
-    },
-  );
+export function connectGatewayMqtt(o: GatewayOptions): GatewayClient {
+  const options: IClientOptions = {
+    clientId: `armtwin-gateway-${o.armId}-${process.pid}`,
+    ...(o.username ? { username: o.username, password: o.password ?? '' } : {}),
+    will: { topic: topic(o.armId, 'online'), payload: Buffer.from('0'), qos: 1, retain: true },
+    ...linkOptions({ keepalive: o.keepaliveS, reconnectPeriod: o.reconnectMs }),
+    queueQoSZero: false,
+  };
+  if (o.connect) return o.connect(options);
+  const client = connectBrokers(parseBrokerList(o.mqttUrl), options, {
+    onMove: (move) =>
+      move.from &&
+      o.log?.info(
+        { arm: o.armId, from: move.from.index + 1, to: move.to.index + 1, reason: move.reason },
+        `broker move: ${describeBroker(move.to)}`,
+      ),
+  });
   client.on('connect', () =>
     (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true),
   );
@@ -99,9 +106,9 @@ export function connectGatewayMqtt(o: GatewayOptions): BrokerClient {
  * during a move is lost); anything else is dropped while offline (presence is re-sent on connect).
  */
 export function gatewayPublish(
-  client: BrokerClient,
+  client: GatewayClient,
 ): (topic: string, payload: Buffer | string, opts: { qos: 0 | 1; retain: boolean }) => void {
-  const several = client.brokers.urls.length > 1;
+  const several = (client.brokers?.urls.length ?? 1) > 1;
   return (t, payload, opts) => {
     if (several && !opts.retain && t.endsWith('/status'))
       client.publish(t, payload, { ...opts, qos: 1 });

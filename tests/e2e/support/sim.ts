@@ -60,6 +60,8 @@ export class ArmObserver {
   readonly messages: Received[] = [];
   /** Latest pulse per servo from the status topic. */
   readonly pwm: number[] = [];
+  /** Latest angle per servo (§8 angle frames: a bus arm's, an angle servo's), degrees. */
+  readonly angles: number[] = [];
   readonly health: { temp: number; mv: number }[] = [];
   readonly kmsReplies: number[] = [];
   online: string | null = null;
@@ -91,6 +93,7 @@ export class ArmObserver {
 
   private take(f: Frame): void {
     if (f.type === 'position') this.pwm[f.id] = f.pwm;
+    else if (f.type === 'angle') this.angles[f.id] = f.deg;
     else if (f.type === 'health') this.health[f.id] = { temp: f.temp, mv: f.mv };
     else if (f.type === 'kmsResult') this.kmsReplies.push(f.code);
   }

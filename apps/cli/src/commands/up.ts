@@ -2,7 +2,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { InvalidArgumentError, type Command } from 'commander';
 import { DEFAULT_PROFILE, PROFILE_NAME } from '@armtwin/sim';
-import { DEFAULT_MODEL_COPIES_OPTIONS, parseExtraSources, runUp } from '@armtwin/up';
+import { DEFAULT_MODEL_COPIES_OPTIONS, parseExtraSources, runUp, SO101_ARM } from '@armtwin/up';
 import { startArmInRos, type ArmInRos } from '@armtwin/ros2';
 import { loadCliConfig } from '../config.ts';
 import { createLogger, firstOnly } from '../log.ts';
@@ -46,13 +46,14 @@ interface UpFlags {
   cspSources?: string[];
   modelIdle?: number;
   ros2?: boolean;
+  so101: boolean;
 }
 
 export function registerUp(program: Command): void {
   program
     .command('up')
     .description(
-      'run the whole twin: broker, HUD + /mqtt + /api on one HTTP port, the simulated arm, the middleware',
+      'run the whole twin: broker, HUD + /mqtt + /api on one HTTP port, the simulated arm, an SO-101 on an emulated servo bus, the middleware',
     )
     .option(
       '--port <port>',
@@ -88,6 +89,10 @@ export function registerUp(program: Command): void {
     .option(
       '--ros2',
       'show every simulated arm in ROS 2 as `armtwin ros2 --arm ID` does (ROS_DOMAIN_ID; anonymous demo only; docs/ros2.md)',
+    )
+    .option(
+      '--no-so101',
+      `do not start the second arm, "${SO101_ARM.id}": a simulated SO-101 on an emulated Feetech bus behind the bus gateway (needs socat)`,
     )
     .option('--no-web', 'do not build the HUD when apps/web/dist is missing')
     .option('--no-middleware', 'do not start the middleware')
@@ -132,6 +137,7 @@ Ctrl-C stops everything: the arm says offline, the middleware flushes, influxd s
         host: flags.host ?? env.host,
         armId: flags.arm,
         ...(flags.arms ? { arms: flags.arms } : {}),
+        ...(flags.so101 ? { so101: SO101_ARM.id } : {}),
         rate: flags.rate,
         influxUrl: env.influxUrl,
         buildWeb: flags.web,
