@@ -57,11 +57,13 @@ describe('poseAt: interpolation between pose frames', () => {
       [30, 40, 10], // the API holds a value forward: null only before a servo's first sample
     ],
   };
-  const slots = slotsFor(['000', '002', '004'], 6);
+  const slots = slotsFor(['000', '002', '004'], [0, 1, 2, 3, 4, 5]);
 
   it('maps ids to servo indices', () => {
     expect(Array.from(slots)).toEqual([0, 2, 4]);
-    expect(Array.from(slotsFor(['001', '009', 'x'], 6))).toEqual([1, -1, -1]);
+    expect(Array.from(slotsFor(['001', '009', 'x'], [0, 1, 2, 3, 4, 5]))).toEqual([1, -1, -1]);
+    // The SO-101's Feetech ids are 1–6: servo 001 is the first servo, 006 the gripper.
+    expect(Array.from(slotsFor(['001', '006', '000'], [1, 2, 3, 4, 5, 6]))).toEqual([0, 5, -1]);
   });
 
   it('finds the frame at or before t', () => {

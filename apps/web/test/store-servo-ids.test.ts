@@ -44,4 +44,20 @@ describe('ArmStore with the SO-101 (servo ids 001–006)', () => {
     expect(s.rendered[5]).toBeGreaterThan(0);
     expect(Array.from(s.rendered.slice(0, 5))).toEqual([0, 0, 0, 0, 0]);
   });
+
+  it("keeps this page's command to the gripper (006) in the gripper's slot, where the ghost reads it", () => {
+    const s = new ArmStore({ arm: SO101 });
+    s.setCommanded(6, 1700);
+    s.setCommanded(0, 1600); // the SO-101 has no servo 000
+    expect(Array.from(s.commandedPwm).map((v) => (Number.isNaN(v) ? null : v))).toEqual([
+      null,
+      null,
+      null,
+      null,
+      null,
+      1700,
+    ]);
+    s.setCommanded(6, NaN);
+    expect(s.commandedPwm.every(Number.isNaN)).toBe(true);
+  });
 });

@@ -207,7 +207,7 @@ export class ArmLink implements ArmCommands {
   /** A slider moved: coalesced to at most one move per servo per jogIntervalMs. */
   jog(id: number, pwm: number): void {
     if (!moveAllowed(id, pwm, this.store.opts.arm)) return;
-    this.store.commandedPwm[id] = pwm;
+    this.store.setCommanded(id, pwm);
     this.coalescer.request(id, pwm);
   }
 
@@ -235,7 +235,7 @@ export class ArmLink implements ArmCommands {
   holdMoves(moves: ReadonlyArray<readonly [id: number, pwm: number]>, ms: number): boolean {
     const arm = this.store.opts.arm;
     if (moves.length === 0 || !moves.every(([id, pwm]) => moveAllowed(id, pwm, arm))) return false;
-    for (const [id, pwm] of moves) this.store.commandedPwm[id] = pwm;
+    for (const [id, pwm] of moves) this.store.setCommanded(id, pwm);
     return this.publish(movesFrame(moves, Math.round(ms), arm));
   }
 
@@ -243,7 +243,7 @@ export class ArmLink implements ArmCommands {
   stopServos(ids: readonly number[]): boolean {
     if (ids.length === 0) return false;
     this.coalescer.cancelAll();
-    for (const id of ids) this.store.commandedPwm[id] = NaN;
+    for (const id of ids) this.store.setCommanded(id, NaN);
     return this.publish(ids.map(encodeStop).join(''), true, this.permissions.stop);
   }
 

@@ -30,31 +30,36 @@ export class ReplayPlayer {
   version = 0;
   /** Each servo's mounting polarity k (§2) in the active robot's store profile. */
   private polarities: readonly number[] = [];
+  /** Each servo's id in the active robot's profile, by index. */
+  private servoIds: readonly number[] = [];
   private slots: Int16Array = new Int16Array(0);
   private drawnAt = NaN;
   private dirty = false;
 
-  /** `polarities`: as `configure`'s (none until the active robot is known). */
-  constructor(polarities: readonly number[] = []) {
+  /** As `configure`'s (none until the active robot is known). */
+  constructor(polarities: readonly number[] = [], servoIds?: readonly number[]) {
     this.angles = new Float64Array(polarities.length).fill(NaN);
     this.polarities = [...polarities];
+    this.servoIds = servoIds ?? polarities.map((_, i) => i);
   }
 
   /**
    * A new active robot: its servos' mounting polarities k (§2) in the store's profile. The
    * record's `angle` is the pulse's angle at k = 1, so the servo angle the store (and the joint
-   * map) counts in is k × that. A record loaded before belonged to the robot before: closed.
+   * map) counts in is k × that. `servoIds`: each servo's id (default: its index). A record
+   * loaded before belonged to the robot before: closed.
    */
-  configure(polarities: readonly number[]): void {
+  configure(polarities: readonly number[], servoIds?: readonly number[]): void {
     if (this.record) this.close();
     this.polarities = [...polarities];
+    this.servoIds = servoIds ?? polarities.map((_, i) => i);
     this.angles = new Float64Array(polarities.length).fill(NaN);
   }
 
   /** Shows the sibling at the record's start, paused. */
   load(record: ReplayRecord): void {
     this.record = record;
-    this.slots = slotsFor(record.ids, this.angles.length);
+    this.slots = slotsFor(record.ids, this.servoIds);
     this.angles.fill(NaN);
     this.clock.load(record.start, record.stop);
     this.active = true;

@@ -51,12 +51,14 @@ export function poseAt(
   return i;
 }
 
-/** Servo ids (`"002"`) → indices into a servo array of `count` (−1 for ids outside it). */
-export function slotsFor(ids: readonly string[], count: number): Int16Array {
+/**
+ * The record's servo ids (`"002"`) → indices into the active robot's servos, whose ids are
+ * `servoIds` by index (they need not start at 0: the SO-101's are 1–6); −1 for an id it lacks.
+ */
+export function slotsFor(ids: readonly string[], servoIds: readonly number[]): Int16Array {
   const slots = new Int16Array(ids.length);
   ids.forEach((id, k) => {
-    const n = /^\d{3}$/.test(id) ? Number(id) : -1;
-    slots[k] = n >= 0 && n < count ? n : -1;
+    slots[k] = /^\d{3}$/.test(id) ? servoIds.indexOf(Number(id)) : -1;
   });
   return slots;
 }

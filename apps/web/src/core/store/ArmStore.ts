@@ -215,6 +215,12 @@ export class ArmStore {
     return this.slots[id] ?? -1;
   }
 
+  /** This HUD commanded servo `id` (a frame's id, not a slot) to `pwm`; NaN: follow the arm. */
+  setCommanded(id: number, pwm: number): void {
+    const i = this.slot(id);
+    if (i >= 0) this.commandedPwm[i] = pwm;
+  }
+
   private setPosition(id: number, pwm: number): void {
     const i = this.slot(id);
     if (i < 0) return;

@@ -130,7 +130,10 @@ export function createHud(els: HudElements, render: (parts: HudParts) => void): 
   // The active robot is shown by the 3D view and replayed by the sibling, both in its terms.
   const view: RobotView = {
     show(spec, urdfUrl) {
-      replay.configure(polaritiesOf(spec.storeArm));
+      replay.configure(
+        polaritiesOf(spec.storeArm),
+        spec.storeArm.servos.map((s) => s.id),
+      );
       viewer.showZones(spec.profile.keepOut);
       return viewer.load(urdfUrl, spec.joints);
     },
