@@ -4,13 +4,9 @@
  * std_srvs/Trigger (`{success, message}`) or refused with a service call failure; and asset
  * fetches (`package://<profile>/…`, ./robot-assets.ts).
  */
-import {
-  BinaryOpcode,
-  FetchAssetStatus,
-  type FoxgloveServer,
-  type IWebSocket,
-} from '@foxglove/ws-protocol';
+import { BinaryOpcode, FetchAssetStatus, type IWebSocket } from '@foxglove/ws-protocol';
 import type { ArmRegistry } from './arms.ts';
+import type { FoxgloveServer } from './ws-protocol.ts';
 import { fetchRobotAsset } from './robot-assets.ts';
 import type { Session } from './session.ts';
 

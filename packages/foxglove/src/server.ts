@@ -12,7 +12,8 @@
  * under its own MQTT identity (./session.ts).
  */
 import http from 'node:http';
-import { FoxgloveServer, ServerCapability, StatusLevel } from '@foxglove/ws-protocol';
+import { ServerCapability, StatusLevel } from '@foxglove/ws-protocol';
+import { FoxgloveServer } from './ws-protocol.ts';
 import type { MqttClient } from 'mqtt';
 import { WebSocketServer, type WebSocket } from 'ws';
 import type { LoginThrottle, Principal } from '@armtwin/auth';
