@@ -6,7 +6,7 @@
  * (within 0.01°) and link transforms whose base → tip pose is the chain's FK of those reports
  * (within 0.1 mm). The robot description names its meshes as package:// assets the server
  * serves. A viewer's publish is refused and moves nothing; the holder's jog moves the simulated
- * arm; the stop service stops it short of the jog's target.
+ * arm; the stop service stops a jog short of its target.
  */
 import fs from 'node:fs';
 import path from 'node:path';
@@ -68,6 +68,13 @@ function reportAt(ms: number): number[] | undefined {
 }
 
 const msOf = (ns: bigint | string) => Number(BigInt(ns) / 1_000_000n);
+
+const holder = () =>
+  (JSON.parse(watcher.retained.get(`arm/${ARM}/holder`) ?? '{}') as { user?: string }).user;
+
+/** Whether servo `id` moved more than `us` from `start` in a report after item `from`. */
+const moved = (id: number, from: number, start: number, us: number) =>
+  watcher.positions(id, from).some(([, p]) => Math.abs(p - start) > us) || undefined;
 
 /** Joint states equal the simulator's report of the same stamp, within 0.01°. */
 function expectJointStatesMatch(
@@ -191,34 +198,50 @@ describe('foxglove.websocket.v1: npm @foxglove/ws-protocol', () => {
     expect(new Set(base).size).toBe(1);
   });
 
-  test("the holder's jog moves the arm, reported live; the stop service stops it short", async () => {
+  test("the holder's jog moves the arm, and both clients see it move as the arm reports it", async () => {
     const op = await connect('operator');
     const states = await op.subscribe(`/${ARM}/joint_states`);
     const tf = await op.subscribe(`/${ARM}/tf`);
     const targets = await op.subscribe(`/${ARM}/targets`);
-    const log = await op.subscribe(`/${ARM}/log`);
     expect((await op.call(`/${ARM}/take`)).ok).toBe(true);
-    await watcher.until(
-      () =>
-        (JSON.parse(watcher.retained.get(`arm/${ARM}/holder`) ?? '{}') as { user?: string })
-          .user === 'operator' || undefined,
-      10_000,
-      'operator holds arm1',
+    await watcher.until(() => holder() === 'operator' || undefined, 10_000, 'operator holds arm1');
+    const start = watcher.positions(1).at(-1)![1];
+    const from = watcher.items.length;
+    const jogAt = Date.now();
+    // the shoulder: the tip swings off the base's axis, so the transforms' rotations count
+    op.publish(`/${ARM}/jog`, { joint: 'shoulder', delta: 0.6, ms: 3000 });
+    await watcher.until(() => moved(1, from, start, 40), 10_000, 'shoulder moving');
+    const sdk = await sdkClient(url, 'viewer', { [`/${ARM}/joint_states`]: 5, [`/${ARM}/tf`]: 5 });
+    // the jog runs to its end: about 0.6 rad × 2000 µs / 270° ≈ 255 µs
+    await watcher.until(() => moved(1, from, start, 230), 15_000, 'the jog done');
+    const movingStates = states.filter((m) => msOf(m.ns) >= jogAt).slice(0, 40);
+    const shoulder = movingStates.map(
+      (m) => (m.body.joints as { position: number }[])[1]!.position,
     );
+    expect(new Set(shoulder).size).toBeGreaterThan(3);
+    expectJointStatesMatch(movingStates);
+    expectTransformsMatchFk(tf.filter((m) => msOf(m.ns) >= jogAt).slice(0, 40));
+    expect(targets.some((t) => t.body.by === 'operator')).toBe(true);
+    // …and the sdk.v1 client
+    expect(sdk.protocol).toBe('foxglove.sdk.v1');
+    expect(sdk.channels).toEqual(expect.arrayContaining(CHANNELS));
+    expectJointStatesMatch(sdk.messages[`/${ARM}/joint_states`]!);
+    expectTransformsMatchFk(sdk.messages[`/${ARM}/tf`]!);
+  });
+
+  test('the stop service stops a jog short of its target', async () => {
+    const op = await connect('operator');
+    const log = await op.subscribe(`/${ARM}/log`);
+    if (holder() !== 'operator') expect((await op.call(`/${ARM}/take`)).ok).toBe(true);
+    await watcher.until(() => holder() === 'operator' || undefined, 10_000, 'operator holds arm1');
     const start = watcher.positions(0).at(-1)![1];
     const from = watcher.items.length;
-    // base_yaw 1.2 rad (about 69°) in 4 s: stopped after about a second, it is far from there.
-    op.publish(`/${ARM}/jog`, { joint: 'base_yaw', delta: 1.2, ms: 4000 });
-    await watcher.until(
-      () => watcher.positions(0, from).some(([, p]) => Math.abs(p - start) > 40) || undefined,
-      10_000,
-      'base moving',
-    );
-    const sdk = sdkClient(url, 'viewer', { [`/${ARM}/joint_states`]: 5, [`/${ARM}/tf`]: 5 });
-    const moving = await sdk;
+    // base_yaw −1.2 rad (about 509 µs) in 4 s; stopped as soon as it moves
+    op.publish(`/${ARM}/jog`, { joint: 'base_yaw', delta: -1.2, ms: 4000 });
+    await watcher.until(() => moved(0, from, start, 40), 10_000, 'base moving');
     expect((await op.call(`/${ARM}/stop`)).ok).toBe(true);
     await op.until(
-      () => log.some((l) => /e-stop/.test(String(l.body.message))) || undefined,
+      () => log.some((l) => /^e-stop/.test(String(l.body.message))),
       'the e-stop in the log',
     );
     await new Promise((r) => setTimeout(r, 600));
@@ -226,21 +249,7 @@ describe('foxglove.websocket.v1: npm @foxglove/ws-protocol', () => {
       .positions(0)
       .slice(-5)
       .map(([, p]) => p);
-    expect(new Set(after).size).toBe(1); // stopped
-    // the whole jog is about 1.2 rad × 2000 µs / 270° ≈ 509 µs
+    expect(new Set(after).size).toBe(1); // standing
     expect(Math.abs(after[0]! - start)).toBeLessThan(400);
-    // What the npm client saw while it moved
-    const movingStates = states.filter((m) => reportAt(msOf(m.ns)) !== undefined).slice(0, 40);
-    expect(
-      new Set(movingStates.map((m) => (m.body.joints as { position: number }[])[0]!.position)).size,
-    ).toBeGreaterThan(3);
-    expectJointStatesMatch(movingStates);
-    expectTransformsMatchFk(tf.filter((m) => reportAt(msOf(m.ns)) !== undefined).slice(0, 40));
-    expect(targets.some((t) => t.body.by === 'operator')).toBe(true);
-    // …and what the sdk.v1 client saw
-    expect(moving.protocol).toBe('foxglove.sdk.v1');
-    expect(moving.channels).toEqual(expect.arrayContaining(CHANNELS));
-    expectJointStatesMatch(moving.messages[`/${ARM}/joint_states`]!);
-    expectTransformsMatchFk(moving.messages[`/${ARM}/tf`]!);
   });
 });
