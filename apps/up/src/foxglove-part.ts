@@ -5,7 +5,7 @@
  * user, so the broker's roles and the controller's lease apply as to the HUD.
  */
 import type { Principal } from '@armtwin/auth';
-import type { Broker } from '@armtwin/broker';
+import type { Broker, BrokerTls } from '@armtwin/broker';
 import { startFoxgloveServer, type ArmtwinFoxglove } from '@armtwin/foxglove';
 import { linkOptions } from '@armtwin/protocol';
 
@@ -13,6 +13,7 @@ export interface FoxglovePartOptions {
   broker: Broker;
   port: number;
   host: string;
+  tls: BrokerTls | null;
   modelDirs: readonly string[];
   onFirst: (kind: string, message: string) => void;
 }
@@ -30,6 +31,7 @@ export async function startFoxglovePart(o: FoxglovePartOptions): Promise<Armtwin
     return await startFoxgloveServer({
       port: o.port,
       host: o.host,
+      tls: o.tls,
       logins: o.broker.logins,
       modelDirs: o.modelDirs,
       watch,

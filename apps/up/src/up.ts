@@ -213,6 +213,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
         broker,
         port: o.foxglovePort,
         host: o.host,
+        tls: o.tls,
         modelDirs,
         onFirst: o.onFirst,
       });

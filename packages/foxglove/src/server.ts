@@ -12,6 +12,7 @@
  * under its own MQTT identity (./session.ts).
  */
 import http from 'node:http';
+import https from 'node:https';
 import { ServerCapability, StatusLevel } from '@foxglove/ws-protocol';
 import { FoxgloveServer } from './ws-protocol.ts';
 import type { MqttClient } from 'mqtt';
@@ -34,6 +35,8 @@ export interface FoxgloveServerOptions {
   /** TCP port (0: any free one). */
   port: number;
   host: string;
+  /** WSS with this PEM certificate and key (`armtwin up`'s ARMTWIN_TLS_CERT/KEY); null: ws. */
+  tls: { cert: Buffer; key: Buffer } | null;
   /** The users file behind the log-in throttle; null: the anonymous demo, loopback only. */
   logins: LoginThrottle | null;
   /** The robot folders, searched in order (profiles, URDFs, meshes). */
@@ -49,7 +52,7 @@ export interface FoxgloveServerOptions {
 }
 
 export interface ArmtwinFoxglove {
-  /** `ws://host:port`. */
+  /** `ws://host:port` (`wss://` with TLS). */
   url: string;
   port: number;
   counts: ServerCounts;
@@ -128,11 +131,13 @@ export async function startFoxgloveServer(o: FoxgloveServerOptions): Promise<Arm
     noServer: true,
     handleProtocols: (offered) => SUBPROTOCOLS.find((p) => offered.has(p)) ?? false,
   });
-  const server = http.createServer((_req, res) =>
+  const onRequest = (_req: http.IncomingMessage, res: http.ServerResponse) =>
     res
       .writeHead(426, { 'content-type': 'text/plain' })
-      .end(`armtwin's Foxglove WebSocket server: connect with ${SUBPROTOCOLS.join(' or ')}\n`),
-  );
+      .end(`armtwin's Foxglove WebSocket server: connect with ${SUBPROTOCOLS.join(' or ')}\n`);
+  const server = o.tls
+    ? https.createServer({ ...o.tls, minVersion: 'TLSv1.2' }, onRequest)
+    : http.createServer(onRequest);
   server.on('upgrade', (req, socket, head) => {
     void authorize(req).then((caller) => {
       const no = refusal(auth, req, caller, 'view');
@@ -165,7 +170,7 @@ export async function startFoxgloveServer(o: FoxgloveServerOptions): Promise<Arm
   const port = typeof address === 'object' && address ? address.port : o.port;
   const shown = o.host.includes(':') ? `[${o.host}]` : o.host;
   return {
-    url: `ws://${shown}:${port}`,
+    url: `${o.tls ? 'wss' : 'ws'}://${shown}:${port}`,
     port,
     counts,
     registry,
