@@ -117,6 +117,11 @@ bash "$ROOT/scripts/pyenv-lerobot.sh"
 # `armtwin ros2` and tests/integration/ros2-*.test.ts run a Python rclpy process from this venv.
 bash "$ROOT/scripts/install-ros2.sh"
 
+# --- Python venv for the Foxglove tests ------------------------------------------------
+# foxglove-sdk 0.30.3 and websockets: tests/integration/foxglove-*.test.ts's foxglove.sdk.v1
+# client (scripts/pyenv-foxglove.sh says why a websockets client).
+bash "$ROOT/scripts/pyenv-foxglove.sh"
+
 # --- node_modules ----------------------------------------------------------------------
 if [ ! -d node_modules ] || [ ! -f node_modules/.package-lock.json ] \
   || [ package-lock.json -nt node_modules/.package-lock.json ]; then

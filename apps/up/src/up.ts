@@ -30,7 +30,9 @@ import {
   followZones,
   type MqttSim,
 } from '@armtwin/sim';
+import type { ArmtwinFoxglove } from '@armtwin/foxglove';
 import { createCameraPart } from './camera-part.ts';
+import { startFoxglovePart } from './foxglove-part.ts';
 import { ensureWebBuild, startMiddlewarePart, WEB_DIST, type StartedMiddleware } from './parts.ts';
 import type { ModelCopies } from './model-copies.ts';
 import { createModelPart } from './model-part.ts';
@@ -79,6 +81,8 @@ export interface UpOptions {
    * public/models, and searched first for the arms' profiles.
    */
   modelsDir?: string;
+  /** The live Foxglove WebSocket server's port (`--foxglove [PORT]`; unset: none; 0: any free). */
+  foxglovePort?: number;
   /** A demo camera of the first arm (`--camera testsrc`, a device, a URL; '' = none). */
   camera?: string;
   /**
@@ -107,6 +111,8 @@ export interface Up {
   so101: So101Part | null;
   /** The arms' model copies, started on demand (docs/protocol.md § Modes). */
   copies: ModelCopies;
+  /** The live Foxglove server (`foxglovePort`), or null. */
+  foxglove: ArmtwinFoxglove | null;
   /** Resolves when the middleware (if any) is up or has failed to start. */
   middlewareReady: Promise<StartedMiddleware | null>;
   stop(): Promise<void>;
@@ -214,6 +220,25 @@ export async function startUp(o: UpOptions): Promise<Up> {
   const shownHost = o.host === '0.0.0.0' || o.host === '::' ? 'localhost' : o.host;
   const url = `${o.tls ? 'https' : 'http'}://${shownHost}:${httpPort}/`;
   camera?.announce(url.slice(0, -1));
+  let foxglove: ArmtwinFoxglove | null = null;
+  if (o.foxglovePort !== undefined) {
+    try {
+      foxglove = await startFoxglovePart({
+        broker,
+        port: o.foxglovePort,
+        host: o.host,
+        tls: o.tls,
+        modelDirs,
+        onFirst: o.onFirst,
+      });
+      o.say(`foxglove: live at ${foxglove.url} (docs/foxglove.md)`);
+    } catch (err) {
+      await camera?.stop();
+      await broker.close();
+      server.close();
+      throw err;
+    }
+  }
 
   const sims = armSpecs.map(({ id }, k) => {
     const client = broker.connectInProcess(
@@ -294,6 +319,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
   let stopping: Promise<void> | undefined;
   const stop = () =>
     (stopping ??= (async () => {
+      await foxglove?.stop();
       await camera?.stop();
       await model.stop();
       await Promise.all([...sims.map((s) => s.stop()), so101?.stop()]);
@@ -312,7 +338,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
       await closed;
     })());
 
-  return { url, broker, sim, sims, so101, copies: model.copies, middlewareReady, stop };
+  return { url, broker, sim, sims, so101, copies: model.copies, foxglove, middlewareReady, stop };
 }
 
 /** The first of `dirs` that holds `<name>/profile.json` (the last one otherwise, for its error). */

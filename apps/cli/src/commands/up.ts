@@ -4,6 +4,7 @@ import { InvalidArgumentError, type Command } from 'commander';
 import { DEFAULT_PROFILE, PROFILE_NAME } from '@armtwin/sim';
 import { DEFAULT_MODEL_COPIES_OPTIONS, parseExtraSources, runUp, SO101_ARM } from '@armtwin/up';
 import { startArmInRos, type ArmInRos } from '@armtwin/ros2';
+import { DEFAULT_FOXGLOVE_PORT } from '@armtwin/foxglove';
 import { loadCliConfig } from '../config.ts';
 import { createLogger, firstOnly } from '../log.ts';
 import { armId, number } from './options.ts';
@@ -47,6 +48,7 @@ interface UpFlags {
   modelIdle?: number;
   ros2?: boolean;
   so101: boolean;
+  foxglove?: number | true;
 }
 
 export function registerUp(program: Command): void {
@@ -93,6 +95,11 @@ export function registerUp(program: Command): void {
     .option(
       '--no-so101',
       `do not start the second arm, "${SO101_ARM.id}": a simulated SO-101 on an emulated Feetech bus behind the bus gateway (needs socat)`,
+    )
+    .option(
+      '--foxglove [port]',
+      `a live Foxglove WebSocket server for Foxglove and Lichtblick (default port ${DEFAULT_FOXGLOVE_PORT}; docs/foxglove.md)`,
+      number('port', 0, 65535, true),
     )
     .option('--no-web', 'do not build the HUD when apps/web/dist is missing')
     .option('--no-middleware', 'do not start the middleware')
@@ -143,6 +150,9 @@ Ctrl-C stops everything: the arm says offline, the middleware flushes, influxd s
         buildWeb: flags.web,
         middleware: flags.middleware,
         ...(flags.camera ? { camera: flags.camera } : {}),
+        ...(flags.foxglove === undefined
+          ? {}
+          : { foxglovePort: flags.foxglove === true ? DEFAULT_FOXGLOVE_PORT : flags.foxglove }),
         ...(flags.models ? { modelsDir: path.resolve(flags.models) } : {}),
         cspSources: flags.cspSources ?? cspSources(env.cspSources),
         ...(flags.modelIdle ? { modelIdleMs: flags.modelIdle * 60_000 } : {}),

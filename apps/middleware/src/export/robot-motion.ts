@@ -4,16 +4,9 @@
  * its parent link to its child link at those values (Foxglove's `FrameTransform`), so a 3D panel
  * draws the arm moving. Joint values follow the profile (`jointFromPwm`, or `jointFromServo` for
  * a bus servo's angle, PROTOCOL.md §8); URDF joints the profile does not drive stay at 0, a mimic
- * joint takes its master's value. Transforms use @armtwin/ik's URDF math. Pure.
+ * joint takes its master's value. Transforms: `linkTransforms` of @armtwin/robot. Pure.
  */
-import {
-  createMat4,
-  mat4FromXyzRpy,
-  mat4RotateAxisInPlace,
-  mat4TranslateAxisInPlace,
-  type Mat4,
-} from '@armtwin/ik';
-import { jointFromPwm, jointFromServo, type Profile, type UrdfJoint } from '@armtwin/robot';
+import { jointFromPwm, jointFromServo, type Profile } from '@armtwin/robot';
 import type { ServoRow } from './recording.ts';
 
 export interface JointSample {
@@ -24,13 +17,7 @@ export interface JointSample {
   positions: number[];
 }
 
-export interface LinkTransform {
-  parent: string;
-  child: string;
-  translation: [number, number, number];
-  /** Unit quaternion x, y, z, w. */
-  rotation: [number, number, number, number];
-}
+export { linkTransforms, type LinkTransform } from '@armtwin/robot';
 
 /** The joint value a stored point gives servo `s`, or undefined if it holds no position. */
 function jointValue(s: Profile['servos'][number], row: ServoRow): number | undefined {
@@ -64,62 +51,4 @@ export function jointSamples(profile: Profile, rows: readonly ServoRow[]): Joint
   }
   close();
   return out;
-}
-
-/** Rotation of a rigid transform as a unit quaternion (x, y, z, w). */
-function quaternionOf(m: Mat4): [number, number, number, number] {
-  const [m00, m10, m20, , m01, m11, m21, , m02, m12, m22] = m as unknown as number[];
-  const trace = m00! + m11! + m22!;
-  let x: number, y: number, z: number, w: number;
-  if (trace > 0) {
-    const s = 0.5 / Math.sqrt(trace + 1);
-    w = 0.25 / s;
-    x = (m21! - m12!) * s;
-    y = (m02! - m20!) * s;
-    z = (m10! - m01!) * s;
-  } else if (m00! > m11! && m00! > m22!) {
-    const s = 2 * Math.sqrt(1 + m00! - m11! - m22!);
-    w = (m21! - m12!) / s;
-    x = 0.25 * s;
-    y = (m01! + m10!) / s;
-    z = (m02! + m20!) / s;
-  } else if (m11! > m22!) {
-    const s = 2 * Math.sqrt(1 + m11! - m00! - m22!);
-    w = (m02! - m20!) / s;
-    x = (m01! + m10!) / s;
-    y = 0.25 * s;
-    z = (m12! + m21!) / s;
-  } else {
-    const s = 2 * Math.sqrt(1 + m22! - m00! - m11!);
-    w = (m10! - m01!) / s;
-    x = (m02! + m20!) / s;
-    y = (m12! + m21!) / s;
-    z = 0.25 * s;
-  }
-  const n = Math.hypot(x, y, z, w);
-  return [x / n, y / n, z / n, w / n];
-}
-
-/** Every URDF joint's parent → child transform at `values` (joint name → rad or m). */
-export function linkTransforms(
-  joints: readonly UrdfJoint[],
-  values: ReadonlyMap<string, number>,
-): LinkTransform[] {
-  const m = createMat4();
-  return joints.map((j) => {
-    const q = values.get(j.mimic ?? j.name) ?? values.get(j.name) ?? 0;
-    mat4FromXyzRpy(m, ...j.xyz, ...j.rpy);
-    const [ax, ay, az] = j.axis;
-    const n = Math.hypot(ax, ay, az) || 1;
-    if (j.type === 'revolute' || j.type === 'continuous')
-      mat4RotateAxisInPlace(m, ax / n, ay / n, az / n, Number.isFinite(q) ? q : 0);
-    else if (j.type === 'prismatic')
-      mat4TranslateAxisInPlace(m, ax / n, ay / n, az / n, Number.isFinite(q) ? q : 0);
-    return {
-      parent: j.parent,
-      child: j.child,
-      translation: [m[12]!, m[13]!, m[14]!],
-      rotation: quaternionOf(m),
-    };
-  });
 }

@@ -2,3 +2,4 @@
 export * from './urdf.ts';
 export * from './build-chain.ts';
 export * from './chain-from-urdf.ts';
+export * from './link-transforms.ts';
