@@ -12,21 +12,21 @@
  */
 import type { Profile } from '@armtwin/robot';
 import {
-  ControlInput,
-  ControllerCore,
   jointsFromProfile,
+  type ControlInput,
+  type ControllerCore,
   type KeepOutCheck,
   type KmsSolver,
 } from '@armtwin/controller';
-import { operatorDeadman } from '@armtwin/controller/mqtt';
+import { driverControl } from '@armtwin/controller/mqtt';
 import type { MotionRobot } from '@armtwin/motion';
 import {
   armTopics,
   encodeControllerError,
   encodeTime,
   OPERATOR_LEASE_MS,
-  OperatorWatch,
   type OperatorTimers,
+  type OperatorWatch,
 } from '@armtwin/protocol';
 import type { BusProtocol, BusResult, ServoCalibration } from '@armtwin/servo-bus';
 import { BusDriver } from './bus-driver.ts';
@@ -112,24 +112,23 @@ export class BusGatewayCore {
     this.topics = armTopics(this.o.armId);
     this.joints = busJoints(this.o.profile);
     this.line = new BusLine(this.o.protocol, this.joints, this.o.baudRate, io);
-    this.controller = new ControllerCore(
+    ({
+      controller: this.controller,
+      input: this.input,
+      operator: this.operator,
+    } = driverControl(
       jointsFromProfile(this.o.profile),
       new BusDriver(this, this.joints),
       { kms: this.o.kms, keepOut: this.o.keepOut },
-    );
-    this.input = new ControlInput(this.controller, { onFirst: io.onFirst }, io.now());
-    this.operator = operatorDeadman(
       io,
-      () => {
-        const out: string[] = [];
-        if (!this.controller.operatorLeft(io.now(), out)) return false;
-        this.counters.deadmanStops++;
-        this.status(out);
-        return true;
+      {
+        operatorLeaseMs: this.o.operatorLeaseMs,
+        deadmanStopped: (replies) => {
+          this.counters.deadmanStops++;
+          this.status(replies);
+        },
       },
-      io.onFirst,
-      this.o.operatorLeaseMs,
-    );
+    ));
   }
 
   /** Last position read, servo degrees, by id. */
