@@ -9,8 +9,11 @@
  * (tests/integration/lerobot-plugin.test.ts). On each: a motion request executes; a move into a keep-out
  * zone is refused, audited, and moves nothing; one operator at a time, handed over by a grant;
  * the deadman holds a moving arm when the operator's lease lapses; `#255PDST!` holds it at once.
+ * Also an LSC board (`armtwin gateway`, the firmware being `armtwin sim --serial` on a socat
+ * pty): the controller core checks in front of the firmware, which executes what passes itself;
+ * the firmware is given the same arm without the zone, so the refusal is the gateway's.
  * The profile is armtwin5 with a table-top keep-out zone, written to a temporary models folder;
- * both drivers report servo angles (§8), so one reading of the status stream serves both.
+ * every driver reports servo angles (§8), so one reading of the status stream serves all.
  */
 import fs from 'node:fs';
 import os from 'node:os';
@@ -28,6 +31,8 @@ const broker = useMosquitto();
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-behaviour-'));
 const MODELS = path.join(dir, 'models');
 const PROFILE = 'behaviour5';
+/** The same arm without the zone: what the LSC board's firmware knows. */
+const BARE = 'behaviour5-bare';
 const SERVOS = 6;
 const LEASE_MS = '1000';
 /** A table in front of the arm: the hand must not enter it. */
@@ -43,6 +48,8 @@ beforeAll(() => {
     path.join(MODELS, PROFILE, 'profile.json'),
     JSON.stringify({ ...raw, name: PROFILE, keepOut: { zones: [TABLE] } }),
   );
+  fs.mkdirSync(path.join(MODELS, BARE), { recursive: true });
+  fs.writeFileSync(path.join(MODELS, BARE, 'profile.json'), JSON.stringify({ ...raw, name: BARE }));
 });
 
 afterAll(() => fs.rmSync(dir, { recursive: true, force: true }));
@@ -88,6 +95,32 @@ const DRIVERS: DriverRow[] = [
       const gateway: Child = armtwin([
         'gateway',
         ...['--bus', 'dynamixel', '--serial', host, '--baud', '1000000', ...profileArgs],
+        ...['--mqtt', url, '--arm', arm, '--operator-lease', LEASE_MS],
+      ]);
+      return {
+        async stop() {
+          await gateway.stop('SIGKILL');
+          await line.stop();
+        },
+      };
+    },
+  },
+  {
+    name: 'an LSC board (armtwin gateway, firmware on a serial line)',
+    async start(url, arm) {
+      const host = path.join(dir, `${arm}-gateway`);
+      const line: SerialLine = serialLine(
+        host,
+        path.join(dir, `${arm}-arm`),
+        (armSide) => [
+          ...['sim', '--serial', armSide, '--rate', '50', '--report', 'angle'],
+          ...['--profile', BARE, '--models', MODELS],
+        ],
+        'simulated controller on the serial line',
+      );
+      await line.start();
+      const gateway: Child = armtwin([
+        ...['gateway', '--serial', host, ...profileArgs],
         ...['--mqtt', url, '--arm', arm, '--operator-lease', LEASE_MS],
       ]);
       return {
