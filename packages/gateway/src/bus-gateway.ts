@@ -31,7 +31,7 @@ import {
 import type { BusProtocol, BusResult, ServoCalibration } from '@armtwin/servo-bus';
 import { BusDriver } from './bus-driver.ts';
 import { BusLine, type BusLineCounters } from './bus-line.ts';
-import { BusReports } from './bus-reports.ts';
+import { BusReports, LOST_AFTER_MS } from './bus-reports.ts';
 import { busCalibration, busJoints, type BusGoal, type BusJoint } from './bus-servos.ts';
 import { goalsWrite, multiTurnWrites } from './bus-writes.ts';
 
@@ -57,6 +57,8 @@ export interface BusGatewayOptions {
   healthRate: number;
   /** A servo that did not answer is pinged again this often, ms. */
   repingMs: number;
+  /** A servo that answered no read for this long (and 3 in a row at least) is lost, ms. */
+  lostAfterMs: number;
   /** A beating operator is let go after this long without a `1`, ms (0 = only a `0`). */
   operatorLeaseMs: number;
   /** `$KMS` through the profile's IK (`numericKms` of @armtwin/controller); unset: `$KMS` is refused. */
@@ -72,6 +74,7 @@ export const DEFAULT_BUS_GATEWAY_OPTIONS = {
   stateRate: 50,
   healthRate: 2,
   repingMs: 1000,
+  lostAfterMs: LOST_AFTER_MS,
   operatorLeaseMs: OPERATOR_LEASE_MS,
 } satisfies Partial<BusGatewayOptions>;
 
@@ -357,11 +360,11 @@ export class BusGatewayCore {
   }
 
   /**
-   * Servos that missed `MISSES_TO_LOSE` reads in a row: reported, left out of the reads and
-   * pinged until they are back (then set up again: they may have lost power).
+   * Servos that answered no read for `lostAfterMs` (`BusReports.lost`): reported, left out of
+   * the reads and pinged until they are back (then set up again: they may have lost power).
    */
   private lose(asked: number[], missing: number[]): void {
-    const lost = this.reports.lost(asked, missing);
+    const lost = this.reports.lost(asked, missing, this.io.now(), this.o.lostAfterMs);
     for (const id of lost) this.found.delete(id);
     this.reportMissing(lost);
   }
