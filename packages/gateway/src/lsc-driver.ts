@@ -61,10 +61,9 @@ export class LscDriver implements ControllerDriver {
     this.busyUntil = -Infinity;
   }
 
-  /** A new calibration of the same servos. */
+  /** A new profile of the same servos, in the same order (new limits, zones). */
   setJoints(joints: readonly Joint[]): void {
     this.joints = joints;
-    this.lineOpen(this.open);
   }
 
   /** A frame the firmware sent at t: its position reports are where the arm is. */
