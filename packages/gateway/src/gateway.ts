@@ -88,26 +88,19 @@ export class GatewayCore {
   ) {
     this.o = options;
     this.topics = armTopics(options.armId);
-    this.driver = new LscDriver(jointsFromProfile(options.profile), {
-      write: (text) => this.write(text),
-    });
+    const joints = jointsFromProfile(options.profile);
+    this.driver = new LscDriver(joints, { write: (text) => this.write(text) });
     ({
       controller: this.controller,
       input: this.input,
       operator: this.operator,
-    } = driverControl(
-      jointsFromProfile(options.profile),
-      this.driver,
-      { kms: options.kms, keepOut: options.keepOut },
-      io,
-      {
-        operatorLeaseMs: options.operatorLeaseMs ?? OPERATOR_LEASE_MS,
-        deadmanStopped: (replies) => {
-          this.counters.deadmanStops++;
-          this.status(replies);
-        },
+    } = driverControl(joints, this.driver, { kms: options.kms, keepOut: options.keepOut }, io, {
+      operatorLeaseMs: options.operatorLeaseMs ?? OPERATOR_LEASE_MS,
+      deadmanStopped: (replies) => {
+        this.counters.deadmanStops++;
+        this.status(replies);
       },
-    ));
+    }));
     this.reader = createReader({
       onFrame: (frame) => {
         // The device's own `$TIM` (if any) is not epoch time we trust: the gateway stamps.
