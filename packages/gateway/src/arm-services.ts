@@ -5,6 +5,7 @@
  * (@armtwin/controller), on the system clock.
  */
 import type { MqttClient } from 'mqtt';
+import type { Logger } from 'pino';
 import { MotionRequests, type ControlArbiter, type ControllerCore } from '@armtwin/controller';
 import { startMotionService } from '@armtwin/controller/mqtt';
 import type { MotionRobot } from '@armtwin/motion';
@@ -15,7 +16,7 @@ export interface ArmServicesOptions {
   client: MqttClient;
   armId: string;
   /** Profile name (its folder), the models folder, and profile.json as read at start. */
-  name: string;
+  profile: string;
   modelsDir: string;
   raw: unknown;
   /** The planner's robot of that profile. */
@@ -23,11 +24,16 @@ export interface ArmServicesOptions {
   core: ProfileCore & { readonly controller: ControllerCore; readonly robot?: MotionRobot };
   control: ControlArbiter;
   onFirst(kind: string, message: string): void;
-  onReload?(name: string): void;
+  /** Logs each new profile put in force. */
+  log?: Logger;
 }
 
 export function startArmServices(o: ArmServicesOptions): { stop(): void } {
-  const follow = followProfile(o);
+  const follow = followProfile({
+    ...o,
+    name: o.profile,
+    onReload: (name) => o.log?.info({ profile: name }, 'profile file changed: now in force'),
+  });
   const motion = startMotionService(
     o.client,
     new MotionRequests(o.core.controller, () => o.core.robot ?? o.robot, SYSTEM_CLOCK.now(), {

@@ -107,17 +107,7 @@ export function startBusGateway(
     onFirst: o.onFirst,
   });
   const control = wireGatewayMqtt(client, o, core, { [torque]: (p) => core.fromTorque(p) });
-  const services = startArmServices({
-    ...o,
-    client,
-    name: o.profile,
-    raw,
-    robot,
-    core,
-    control,
-    onReload: (name) =>
-      log?.info({ profile: name }, 'profile file changed: new calibration in force'),
-  });
+  const services = startArmServices({ ...o, client, raw, robot, core, control });
   link.start();
   log?.info(
     { arm: o.armId, bus: o.bus, profile: o.profile, ids: core.joints.map((j) => j.id) },

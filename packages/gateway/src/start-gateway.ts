@@ -233,16 +233,7 @@ export function startGateway(
     },
   );
   const control = wireGatewayMqtt(client, o, core);
-  const services = startArmServices({
-    ...o,
-    client,
-    name: o.profile,
-    raw,
-    robot,
-    core,
-    control,
-    onReload: (name) => log?.info({ profile: name }, 'profile file changed: new limits in force'),
-  });
+  const services = startArmServices({ ...o, client, raw, robot, core, control });
   link.start();
   log?.info({ arm: o.armId, profile: o.profile }, 'gateway running');
   return {
