@@ -57,7 +57,40 @@ afterAll(() => fs.rmSync(dir, { recursive: true, force: true }));
 /** A driver under test: started for arm `arm` on the broker at `url`. */
 interface DriverRow {
   name: string;
-  start(url: string, arm: string): Promise<{ stop(): Promise<unknown> }>;
+  start(url: string, arm: string): Promise<Driver>;
+}
+
+/** A started driver: stopped after its tests; its output, to say why it did not come online. */
+interface Driver {
+  stop(): Promise<unknown>;
+  output?(): string;
+}
+
+/**
+ * `armtwin gateway --serial` (with `gatewayArgs`) for arm `arm`, the device on the far side of a
+ * socat pty pair being `armtwin <deviceArgs>` (it says `ready` once up).
+ */
+async function gatewayOnLine(
+  url: string,
+  arm: string,
+  deviceArgs: (armSide: string) => string[],
+  ready: string,
+  gatewayArgs: string[],
+): Promise<Driver> {
+  const host = path.join(dir, `${arm}-gateway`);
+  const line: SerialLine = serialLine(host, path.join(dir, `${arm}-arm`), deviceArgs, ready);
+  await line.start();
+  const gateway: Child = armtwin([
+    ...['gateway', '--serial', host, ...gatewayArgs, ...profileArgs],
+    ...['--mqtt', url, '--arm', arm, '--operator-lease', LEASE_MS],
+  ]);
+  return {
+    async stop() {
+      await gateway.stop('SIGKILL');
+      await line.stop();
+    },
+    output: () => gateway.output(),
+  };
 }
 
 const DRIVERS: DriverRow[] = [
@@ -74,62 +107,31 @@ const DRIVERS: DriverRow[] = [
   },
   {
     name: 'the servo bus (armtwin gateway --bus dynamixel)',
-    async start(url, arm) {
-      const host = path.join(dir, `${arm}-gateway`);
-      const line: SerialLine = serialLine(
-        host,
-        path.join(dir, `${arm}-arm`),
+    start: (url, arm) =>
+      gatewayOnLine(
+        url,
+        arm,
         (armSide) => [
-          'sim',
-          '--bus',
-          'dynamixel',
-          '--serial',
-          armSide,
-          '--baud',
-          '1000000',
+          ...['sim', '--bus', 'dynamixel', '--serial', armSide, '--baud', '1000000'],
           ...profileArgs,
         ],
         'simulated servo bus on the serial line',
-      );
-      await line.start();
-      const gateway: Child = armtwin([
-        'gateway',
-        ...['--bus', 'dynamixel', '--serial', host, '--baud', '1000000', ...profileArgs],
-        ...['--mqtt', url, '--arm', arm, '--operator-lease', LEASE_MS],
-      ]);
-      return {
-        async stop() {
-          await gateway.stop('SIGKILL');
-          await line.stop();
-        },
-      };
-    },
+        ['--bus', 'dynamixel', '--baud', '1000000'],
+      ),
   },
   {
     name: 'an LSC board (armtwin gateway, firmware on a serial line)',
-    async start(url, arm) {
-      const host = path.join(dir, `${arm}-gateway`);
-      const line: SerialLine = serialLine(
-        host,
-        path.join(dir, `${arm}-arm`),
+    start: (url, arm) =>
+      gatewayOnLine(
+        url,
+        arm,
         (armSide) => [
           ...['sim', '--serial', armSide, '--rate', '50', '--report', 'angle'],
           ...['--profile', BARE, '--models', MODELS],
         ],
         'simulated controller on the serial line',
-      );
-      await line.start();
-      const gateway: Child = armtwin([
-        ...['gateway', '--serial', host, ...profileArgs],
-        ...['--mqtt', url, '--arm', arm, '--operator-lease', LEASE_MS],
-      ]);
-      return {
-        async stop() {
-          await gateway.stop('SIGKILL');
-          await line.stop();
-        },
-      };
-    },
+        [],
+      ),
   },
   {
     name: 'a ROS 2 arm (armtwin gateway --ros2)',
@@ -158,7 +160,7 @@ const DRIVERS: DriverRow[] = [
 describe.each(DRIVERS.map((d, i) => ({ ...d, arm: `behaviour-${i}` })))(
   'the controller on $name',
   ({ start, arm }) => {
-    let driver: { stop(): Promise<unknown> } | undefined;
+    let driver: Driver | undefined;
     let w: StatusWatcher;
     let users: MqttClient;
     const feedback: { id?: string; status?: string; message?: string }[] = [];
@@ -214,11 +216,15 @@ describe.each(DRIVERS.map((d, i) => ({ ...d, arm: `behaviour-${i}` })))(
         qos: 1,
       });
       driver = await start(url, arm);
-      await w.until(
-        () => (w.retained.get(`arm/${arm}/online`) === '1' ? true : undefined),
-        30_000,
-        `${arm} online`,
-      );
+      await w
+        .until(
+          () => (w.retained.get(`arm/${arm}/online`) === '1' ? true : undefined),
+          30_000,
+          `${arm} online`,
+        )
+        .catch((err: Error) => {
+          throw new Error(`${err.message}\n${driver?.output?.() ?? ''}`);
+        });
       await w.until(() => (angles(0).length >= 5 ? true : undefined), 15_000, 'state groups');
     });
 

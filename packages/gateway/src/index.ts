@@ -1,6 +1,7 @@
 /**
- * The edge gateway: a real controller on a serial line ⇄ MQTT. `startGateway` (what
- * `armtwin gateway` runs), the socket-free `GatewayCore`, and the self-reopening `SerialLink`.
+ * The edge gateway: a real controller on a serial line ⇄ MQTT, behind the controller core.
+ * `startGateway` (what `armtwin gateway` runs), the socket-free `GatewayCore` and its
+ * `LscDriver`, and the self-reopening `SerialLink`.
  */
 export * from './bus-driver.ts';
 export * from './bus-gateway.ts';
@@ -9,6 +10,7 @@ export * from './bus-reports.ts';
 export * from './bus-servos.ts';
 export * from './bus-writes.ts';
 export * from './gateway.ts';
+export * from './lsc-driver.ts';
 export * from './serial-link.ts';
 export * from './start-bus-gateway.ts';
 export * from './start-gateway.ts';
