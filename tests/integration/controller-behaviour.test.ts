@@ -9,8 +9,11 @@
  * (tests/integration/lerobot-plugin.test.ts). On each: a motion request executes; a move into a keep-out
  * zone is refused, audited, and moves nothing; one operator at a time, handed over by a grant;
  * the deadman holds a moving arm when the operator's lease lapses; `#255PDST!` holds it at once.
+ * Also an LSC board (`armtwin gateway`, the firmware being `armtwin sim --serial` on a socat
+ * pty): the controller core checks in front of the firmware, which executes what passes itself;
+ * the firmware is given the same arm without the zone, so the refusal is the gateway's.
  * The profile is armtwin5 with a table-top keep-out zone, written to a temporary models folder;
- * both drivers report servo angles (§8), so one reading of the status stream serves both.
+ * every driver reports servo angles (§8), so one reading of the status stream serves all.
  */
 import fs from 'node:fs';
 import os from 'node:os';
@@ -28,6 +31,8 @@ const broker = useMosquitto();
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-behaviour-'));
 const MODELS = path.join(dir, 'models');
 const PROFILE = 'behaviour5';
+/** The same arm without the zone: what the LSC board's firmware knows. */
+const BARE = 'behaviour5-bare';
 const SERVOS = 6;
 const LEASE_MS = '1000';
 /** A table in front of the arm: the hand must not enter it. */
@@ -43,6 +48,8 @@ beforeAll(() => {
     path.join(MODELS, PROFILE, 'profile.json'),
     JSON.stringify({ ...raw, name: PROFILE, keepOut: { zones: [TABLE] } }),
   );
+  fs.mkdirSync(path.join(MODELS, BARE), { recursive: true });
+  fs.writeFileSync(path.join(MODELS, BARE, 'profile.json'), JSON.stringify({ ...raw, name: BARE }));
 });
 
 afterAll(() => fs.rmSync(dir, { recursive: true, force: true }));
@@ -50,7 +57,40 @@ afterAll(() => fs.rmSync(dir, { recursive: true, force: true }));
 /** A driver under test: started for arm `arm` on the broker at `url`. */
 interface DriverRow {
   name: string;
-  start(url: string, arm: string): Promise<{ stop(): Promise<unknown> }>;
+  start(url: string, arm: string): Promise<Driver>;
+}
+
+/** A started driver: stopped after its tests; its output, to say why it did not come online. */
+interface Driver {
+  stop(): Promise<unknown>;
+  output?(): string;
+}
+
+/**
+ * `armtwin gateway --serial` (with `gatewayArgs`) for arm `arm`, the device on the far side of a
+ * socat pty pair being `armtwin <deviceArgs>` (it says `ready` once up).
+ */
+async function gatewayOnLine(
+  url: string,
+  arm: string,
+  deviceArgs: (armSide: string) => string[],
+  ready: string,
+  gatewayArgs: string[],
+): Promise<Driver> {
+  const host = path.join(dir, `${arm}-gateway`);
+  const line: SerialLine = serialLine(host, path.join(dir, `${arm}-arm`), deviceArgs, ready);
+  await line.start();
+  const gateway: Child = armtwin([
+    ...['gateway', '--serial', host, ...gatewayArgs, ...profileArgs],
+    ...['--mqtt', url, '--arm', arm, '--operator-lease', LEASE_MS],
+  ]);
+  return {
+    async stop() {
+      await gateway.stop('SIGKILL');
+      await line.stop();
+    },
+    output: () => gateway.output(),
+  };
 }
 
 const DRIVERS: DriverRow[] = [
@@ -67,36 +107,31 @@ const DRIVERS: DriverRow[] = [
   },
   {
     name: 'the servo bus (armtwin gateway --bus dynamixel)',
-    async start(url, arm) {
-      const host = path.join(dir, `${arm}-gateway`);
-      const line: SerialLine = serialLine(
-        host,
-        path.join(dir, `${arm}-arm`),
+    start: (url, arm) =>
+      gatewayOnLine(
+        url,
+        arm,
         (armSide) => [
-          'sim',
-          '--bus',
-          'dynamixel',
-          '--serial',
-          armSide,
-          '--baud',
-          '1000000',
+          ...['sim', '--bus', 'dynamixel', '--serial', armSide, '--baud', '1000000'],
           ...profileArgs,
         ],
         'simulated servo bus on the serial line',
-      );
-      await line.start();
-      const gateway: Child = armtwin([
-        'gateway',
-        ...['--bus', 'dynamixel', '--serial', host, '--baud', '1000000', ...profileArgs],
-        ...['--mqtt', url, '--arm', arm, '--operator-lease', LEASE_MS],
-      ]);
-      return {
-        async stop() {
-          await gateway.stop('SIGKILL');
-          await line.stop();
-        },
-      };
-    },
+        ['--bus', 'dynamixel', '--baud', '1000000'],
+      ),
+  },
+  {
+    name: 'an LSC board (armtwin gateway, firmware on a serial line)',
+    start: (url, arm) =>
+      gatewayOnLine(
+        url,
+        arm,
+        (armSide) => [
+          ...['sim', '--serial', armSide, '--rate', '50', '--report', 'angle'],
+          ...['--profile', BARE, '--models', MODELS],
+        ],
+        'simulated controller on the serial line',
+        [],
+      ),
   },
   {
     name: 'a ROS 2 arm (armtwin gateway --ros2)',
@@ -125,7 +160,7 @@ const DRIVERS: DriverRow[] = [
 describe.each(DRIVERS.map((d, i) => ({ ...d, arm: `behaviour-${i}` })))(
   'the controller on $name',
   ({ start, arm }) => {
-    let driver: { stop(): Promise<unknown> } | undefined;
+    let driver: Driver | undefined;
     let w: StatusWatcher;
     let users: MqttClient;
     const feedback: { id?: string; status?: string; message?: string }[] = [];
@@ -181,11 +216,15 @@ describe.each(DRIVERS.map((d, i) => ({ ...d, arm: `behaviour-${i}` })))(
         qos: 1,
       });
       driver = await start(url, arm);
-      await w.until(
-        () => (w.retained.get(`arm/${arm}/online`) === '1' ? true : undefined),
-        30_000,
-        `${arm} online`,
-      );
+      await w
+        .until(
+          () => (w.retained.get(`arm/${arm}/online`) === '1' ? true : undefined),
+          30_000,
+          `${arm} online`,
+        )
+        .catch((err: Error) => {
+          throw new Error(`${err.message}\n${driver?.output?.() ?? ''}`);
+        });
       await w.until(() => (angles(0).length >= 5 ? true : undefined), 15_000, 'state groups');
     });
 

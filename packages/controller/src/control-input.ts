@@ -15,6 +15,9 @@ import { CommandGate, type Input } from './rate-limit.ts';
 
 export type Item = Input | { error: ReaderError } | { limited: true };
 
+/** What runs admitted commands: the core (`ControllerCore`), or a gate in front of it. */
+export type CommandRunner = Pick<ControllerCore, 'execute' | 'executeGroup'>;
+
 export const RATE_LIMIT_REPLY = 'rate limit';
 export const OVERSIZE_REPLY = 'payload too large';
 
@@ -51,7 +54,7 @@ export class ControlInput {
   private readonly o: ControlInputOptions;
 
   constructor(
-    private readonly core: ControllerCore,
+    private readonly core: CommandRunner,
     options: Partial<ControlInputOptions>,
     now: number,
   ) {

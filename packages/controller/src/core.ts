@@ -64,6 +64,8 @@ export class ControllerCore {
   lastKeepOutRefusal = '';
   /** Goals of the frames applied so far in this command (a group's go out together). */
   private goals: Goal[] = [];
+  /** Reads and pings of this command for a driver that relays them (`ControllerDriver.relay`). */
+  private relayed: Frame[] = [];
 
   constructor(
     private joints_: readonly Joint[],
@@ -99,6 +101,7 @@ export class ControllerCore {
     const reads: string[] = [];
     this.apply(frame, t, reads, out);
     this.flush(t);
+    this.relay(false, t, out);
     if (reads.length > 1) out.push(encodeGroup(reads));
     else if (reads.length === 1) out.push(reads[0]!);
   }
@@ -127,6 +130,7 @@ export class ControllerCore {
     const reads: string[] = [];
     for (const frame of group.frames) this.apply(frame, t, reads, out);
     this.flush(t);
+    this.relay(true, t, out);
     if (reads.length > 0) out.push(encodeGroup(reads));
   }
 
@@ -177,7 +181,11 @@ export class ControllerCore {
     const out: Goal[] = [];
     this.joints.forEach((j, i) => {
       if (f.id !== SERVO_ID_ALL && f.id !== j.id) return;
-      out.push({ i, pwm: f.type === 'move' ? f.pwm : j.pwmOfAngle(f.deg), ms: f.ms });
+      out.push(
+        f.type === 'move'
+          ? { i, pwm: f.pwm, ms: f.ms }
+          : { i, pwm: j.pwmOfAngle(f.deg), ms: f.ms, deg: f.deg },
+      );
     });
     return out;
   }
@@ -209,6 +217,15 @@ export class ControllerCore {
     this.driver.move(goals, t);
   }
 
+  /** Hands the reads and pings gathered so far to a driver that relays them. */
+  private relay(grouped: boolean, t: number, out: string[]): void {
+    if (this.relayed.length === 0) return;
+    const frames = this.relayed;
+    this.relayed = [];
+    const why = this.driver.relay?.(frames, grouped, t);
+    if (why) out.push(encodeControllerError(this.refuse('not-ready', why)));
+  }
+
   /** Runs a checked frame. Position and health reads go to `reads`, other replies to `out`. */
   private apply(frame: Frame, t: number, reads: string[], out: string[]): void {
     switch (frame.type) {
@@ -224,6 +241,7 @@ export class ControllerCore {
         return this.driver.hold([this.joints.findIndex((j) => j.id === frame.id)], t);
       case 'readPosition':
       case 'readHealth':
+        if (this.driver.relay) return void this.relayed.push(frame);
         this.joints.forEach((j, i) => {
           if (frame.id !== SERVO_ID_ALL && frame.id !== j.id) return;
           const a = this.driver.read(frame.type === 'readPosition' ? 'position' : 'health', i, t);
@@ -234,6 +252,7 @@ export class ControllerCore {
       case 'kms':
         return this.kms(frame.x, frame.y, frame.z, frame.alpha, frame.ms, t, out);
       case 'ping':
+        if (this.driver.relay) return void this.relayed.push(frame);
         out.push(encodePing(frame.seq));
         return;
       case 'time': // `$TIM` on control: a stamp, nothing to do

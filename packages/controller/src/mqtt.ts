@@ -7,7 +7,8 @@
  * `arm/{id}/audit` (with the core's keep-out refusals, `auditKeepOut`).
  *
  * `operatorDeadman` (./deadman.ts): the deadman on `arm/{id}/operator`, stopping a moving arm
- * through the driver when the operator lets go or its lease runs out.
+ * through the driver when the operator lets go or its lease runs out. `driverControl`
+ * (./driver-control.ts): the core, its control input and that deadman, as every gateway builds them.
  *
  * `startMotionService`: motion requests; subscribes
  * `arm/{id}/request` and `arm/{id}/request/+`, hands each request to `MotionRequests`, publishes
@@ -33,6 +34,7 @@ import { CODE_INVALID, type MotionFeedback } from '@armtwin/motion';
 import type { MotionRequests } from './motion.ts';
 
 export { operatorDeadman } from './deadman.ts';
+export * from './driver-control.ts';
 
 /**
  * A `ControlArbiter` for arm `armId` on this client: `forward` hands a payload that may reach

@@ -12,26 +12,26 @@
  */
 import type { Profile } from '@armtwin/robot';
 import {
-  ControlInput,
-  ControllerCore,
   jointsFromProfile,
+  type ControlInput,
+  type ControllerCore,
   type KeepOutCheck,
   type KmsSolver,
 } from '@armtwin/controller';
-import { operatorDeadman } from '@armtwin/controller/mqtt';
+import { driverControl } from '@armtwin/controller/mqtt';
 import type { MotionRobot } from '@armtwin/motion';
 import {
   armTopics,
   encodeControllerError,
   encodeTime,
   OPERATOR_LEASE_MS,
-  OperatorWatch,
   type OperatorTimers,
+  type OperatorWatch,
 } from '@armtwin/protocol';
 import type { BusProtocol, BusResult, ServoCalibration } from '@armtwin/servo-bus';
 import { BusDriver } from './bus-driver.ts';
 import { BusLine, type BusLineCounters } from './bus-line.ts';
-import { BusReports } from './bus-reports.ts';
+import { BusReports, LOST_AFTER_MS } from './bus-reports.ts';
 import { busCalibration, busJoints, type BusGoal, type BusJoint } from './bus-servos.ts';
 import { goalsWrite, multiTurnWrites } from './bus-writes.ts';
 
@@ -57,6 +57,8 @@ export interface BusGatewayOptions {
   healthRate: number;
   /** A servo that did not answer is pinged again this often, ms. */
   repingMs: number;
+  /** A servo that answered no read for this long (and 3 in a row at least) is lost, ms. */
+  lostAfterMs: number;
   /** A beating operator is let go after this long without a `1`, ms (0 = only a `0`). */
   operatorLeaseMs: number;
   /** `$KMS` through the profile's IK (`numericKms` of @armtwin/controller); unset: `$KMS` is refused. */
@@ -72,6 +74,7 @@ export const DEFAULT_BUS_GATEWAY_OPTIONS = {
   stateRate: 50,
   healthRate: 2,
   repingMs: 1000,
+  lostAfterMs: LOST_AFTER_MS,
   operatorLeaseMs: OPERATOR_LEASE_MS,
 } satisfies Partial<BusGatewayOptions>;
 
@@ -112,24 +115,23 @@ export class BusGatewayCore {
     this.topics = armTopics(this.o.armId);
     this.joints = busJoints(this.o.profile);
     this.line = new BusLine(this.o.protocol, this.joints, this.o.baudRate, io);
-    this.controller = new ControllerCore(
+    ({
+      controller: this.controller,
+      input: this.input,
+      operator: this.operator,
+    } = driverControl(
       jointsFromProfile(this.o.profile),
       new BusDriver(this, this.joints),
       { kms: this.o.kms, keepOut: this.o.keepOut },
-    );
-    this.input = new ControlInput(this.controller, { onFirst: io.onFirst }, io.now());
-    this.operator = operatorDeadman(
       io,
-      () => {
-        const out: string[] = [];
-        if (!this.controller.operatorLeft(io.now(), out)) return false;
-        this.counters.deadmanStops++;
-        this.status(out);
-        return true;
+      {
+        operatorLeaseMs: this.o.operatorLeaseMs,
+        deadmanStopped: (replies) => {
+          this.counters.deadmanStops++;
+          this.status(replies);
+        },
       },
-      io.onFirst,
-      this.o.operatorLeaseMs,
-    );
+    ));
   }
 
   /** Last position read, servo degrees, by id. */
@@ -358,11 +360,11 @@ export class BusGatewayCore {
   }
 
   /**
-   * Servos that missed `MISSES_TO_LOSE` reads in a row: reported, left out of the reads and
-   * pinged until they are back (then set up again: they may have lost power).
+   * Servos that answered no read for `lostAfterMs` (`BusReports.lost`): reported, left out of
+   * the reads and pinged until they are back (then set up again: they may have lost power).
    */
   private lose(asked: number[], missing: number[]): void {
-    const lost = this.reports.lost(asked, missing);
+    const lost = this.reports.lost(asked, missing, this.io.now(), this.o.lostAfterMs);
     for (const id of lost) this.found.delete(id);
     this.reportMissing(lost);
   }

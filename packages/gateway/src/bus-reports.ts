@@ -1,7 +1,7 @@
 /**
  * What the bus gateway reports from its reads (pure): SYNC READ results → the contract's
  * frames, the last readings by servo (for `PRAD`/`PRTV` and the speeds of timed moves), servo
- * error flags as `$ERR` when they change, and which servos have missed too many reads in a row.
+ * error flags as `$ERR` when they change, and which servos have stopped answering (`lost`).
  */
 import {
   encodeAngle,
@@ -13,8 +13,16 @@ import {
 import { degreesPerTick, type BusResult } from '@armtwin/servo-bus';
 import type { BusGoal } from './bus-servos.ts';
 
-/** Reads in a row a servo may miss before it counts as gone. */
+/** Reads in a row a servo must miss, at least, before it counts as gone. */
 export const MISSES_TO_LOSE = 3;
+
+/**
+ * A servo that has answered none of the reads asked of it for this long (from the first it
+ * missed) counts as gone, ms (docs/arm-side.md). Time, not a count: on a busy machine a
+ * scheduling stall makes several reads in a row time out, and a servo must not be lost (then
+ * set up again, holding where it is) for that.
+ */
+export const LOST_AFTER_MS = 1000;
 
 type Positions = Extract<BusResult, { kind: 'positions' }>;
 type Health = Extract<BusResult, { kind: 'health' }>;
@@ -27,7 +35,8 @@ export class BusReports {
   /** Last health read, by id. */
   readonly health = new Map<number, { temp: number; mv: number }>();
   private readonly problems = new Map<number, string>();
-  private readonly misses = new Map<number, number>();
+  /** Servos missing now: since when (the first read missed) and how many reads in a row. */
+  private readonly misses = new Map<number, { since: number; count: number }>();
   /** The last goal written to each servo, degrees as commanded. */
   private readonly commanded = new Map<number, number>();
 
@@ -85,14 +94,24 @@ export class BusReports {
     return frames.length ? [encodeGroup(frames), ...errors] : [];
   }
 
-  /** The servos of a read (`asked`) that have now missed `MISSES_TO_LOSE` in a row. */
-  lost(asked: readonly number[], missing: readonly number[]): number[] {
+  /**
+   * The servos of a read (`asked`, at `now` ms) that are now gone: every read of them missed for
+   * `lostAfterMs` since the first miss, and at least `MISSES_TO_LOSE` of them. An answer forgets
+   * the misses.
+   */
+  lost(
+    asked: readonly number[],
+    missing: readonly number[],
+    now: number,
+    lostAfterMs = LOST_AFTER_MS,
+  ): number[] {
     for (const id of asked) if (!missing.includes(id)) this.misses.delete(id);
     const out: number[] = [];
     for (const id of missing) {
-      const n = (this.misses.get(id) ?? 0) + 1;
-      this.misses.set(id, n);
-      if (n >= MISSES_TO_LOSE) {
+      const m = this.misses.get(id) ?? { since: now, count: 0 };
+      m.count++;
+      this.misses.set(id, m);
+      if (m.count >= MISSES_TO_LOSE && now - m.since >= lostAfterMs) {
         this.misses.delete(id);
         out.push(id);
       }

@@ -1,13 +1,12 @@
 /**
- * A gateway's robot profile on MQTT and on disk (the bus gateway's and `gateway --ros2`'s). At
- * every connect the profile is announced, retained, on `arm/{id}/profile` as
- * `{"name","title","profile"}` (what the simulator announces: the HUD draws and drives the arm by
- * it). The profile file is watched: when it changes (the HUD's calibration wizard or Zones
- * section writes it through `armtwin up`, or someone edits it) it is read again and, if it parses
- * and drives the same servos, put in force at once (the core's `reconfigure`: new polarity,
- * offset, limits, keep-out zones and `$KMS` robot) and announced again. A file that does not
- * parse is reported and leaves the arm stopped (an emergency stop, then every move and `$KMS`
- * refused) until a good file is written.
+ * A gateway's robot profile on MQTT and on disk (the servo bus's, the LSC board's, `gateway --ros2`'s). At every connect the profile is
+ * announced, retained, on `arm/{id}/profile` as `{"name","title","profile"}` (what the
+ * simulator announces: the HUD draws and drives the arm by it). The profile file is watched:
+ * when it changes (the HUD's calibration wizard writes it through `armtwin up`, or someone
+ * edits it) it is read again and, if it parses and drives the same servos, put in force at once
+ * (`reconfigure`; on a bus: new polarity, offset and limits, the arm holding where it is)
+ * and announced again. A file that does not parse is reported and leaves the arm stopped (an
+ * emergency stop, then every move and `$KMS` refused) until a good file is written.
  */
 import fs from 'node:fs';
 import path from 'node:path';
@@ -15,31 +14,25 @@ import type { MqttClient } from 'mqtt';
 import { readRobotFolder } from '@armtwin/motion/robot-folder';
 import { EMERGENCY_STOP, topic } from '@armtwin/protocol';
 import { parseProfile, profileAnnouncement } from '@armtwin/robot';
-import {
-  numericKms,
-  refuseEveryMove,
-  zonesKeepOut,
-  type KeepOutCheck,
-  type KmsSolver,
-} from '@armtwin/controller';
+import { numericKms, refuseEveryMove, zonesKeepOut } from '@armtwin/controller';
+import type { KeepOutCheck, KmsSolver } from '@armtwin/controller';
 import type { MotionRobot } from '@armtwin/motion';
 import type { Profile } from '@armtwin/robot';
 
-/** How often the profile file is looked at, ms (a stat; renames are seen too). */
-export const PROFILE_POLL_MS = 500;
-
-/** What a gateway's core does with a profile file that changed. */
-export interface ProfileFollower {
-  /** Puts `profile` in force; '' when taken, else why not (other servos: restart). */
+/** What following the profile needs of a gateway's core (the bus's, the LSC board's). */
+export interface ProfileCore {
+  /** Puts a new profile of the same servos in force; '' or why not (nothing changed). */
   reconfigure(
     profile: Profile,
     kms?: KmsSolver,
     keepOut?: KeepOutCheck,
     robot?: MotionRobot,
   ): string;
-  /** A control payload, as from `arm/{id}/control` (the e-stop of a broken file). */
   fromControl(payload: string): void;
 }
+
+/** How often the profile file is looked at, ms (a stat; renames are seen too). */
+export const PROFILE_POLL_MS = 500;
 
 export interface ProfileFollowOptions {
   client: MqttClient;
@@ -49,7 +42,7 @@ export interface ProfileFollowOptions {
   modelsDir: string;
   /** profile.json as read at start. */
   raw: unknown;
-  core: ProfileFollower;
+  core: ProfileCore;
   onFirst(kind: string, message: string): void;
   /** Told each time a new profile is put in force. */
   onReload?(name: string): void;

@@ -2,11 +2,10 @@
  * Wires the bus gateway (`armtwin gateway --bus dynamixel|feetech`): the robot profile read
  * from disk (announced and followed: ./profile-follow.ts), a `SerialLink` (reopens with
  * back-off), an mqtt.js client (last will `0` on `arm/{id}/online`), `BusGatewayCore` and
- * motion requests on `arm/{id}/request` (@armtwin/controller), on the system clock.
+ * motion requests on `arm/{id}/request` (./arm-services.ts), on the system clock.
  */
 import type { MqttClient } from 'mqtt';
-import { MotionRequests, numericKms, zonesKeepOut } from '@armtwin/controller';
-import { startMotionService } from '@armtwin/controller/mqtt';
+import { numericKms, zonesKeepOut } from '@armtwin/controller';
 import type { Profile } from '@armtwin/robot';
 import type { MotionRobot } from '@armtwin/motion';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
@@ -17,7 +16,7 @@ import {
   DEFAULT_BUS_GATEWAY_OPTIONS,
   type BusGatewayOptions,
 } from './bus-gateway.ts';
-import { followProfile } from './profile-follow.ts';
+import { startArmServices } from './arm-services.ts';
 import { SerialLink } from './serial-link.ts';
 import {
   connectGatewayMqtt,
@@ -35,9 +34,6 @@ export const torqueTopic = (armId: string) => topic(armId, 'torque');
 
 export interface BusGatewayStartOptions extends GatewayOptions {
   bus: BusProtocol;
-  /** Robot profile: `<modelsDir>/<name>/profile.json`. */
-  profile: string;
-  modelsDir: string;
   stateRate: number;
   healthRate: number;
 }
@@ -68,7 +64,6 @@ export function startBusGateway(
   const o = {
     ...DEFAULT_GATEWAY_OPTIONS,
     baudRate: DEFAULT_BUS_GATEWAY_OPTIONS.baudRate,
-    modelsDir: BUS_MODELS_DIR,
     stateRate: DEFAULT_BUS_GATEWAY_OPTIONS.stateRate,
     healthRate: DEFAULT_BUS_GATEWAY_OPTIONS.healthRate,
     ...options,
@@ -112,27 +107,7 @@ export function startBusGateway(
     onFirst: o.onFirst,
   });
   const control = wireGatewayMqtt(client, o, core, { [torque]: (p) => core.fromTorque(p) });
-  const follow = followProfile({
-    ...o,
-    client,
-    name: o.profile,
-    raw,
-    core,
-    onReload: (name) =>
-      log?.info({ profile: name }, 'profile file changed: new calibration in force'),
-  });
-  // Motion requests, executed on the bus by the controller core (the profile is announced by followProfile).
-  const motion = startMotionService(
-    client,
-    new MotionRequests(core.controller, () => core.robot ?? robot, SYSTEM_CLOCK.now(), {
-      mayExecute: (user) => control.refusal(user, 'a motion request on the arm'),
-      onFirst: o.onFirst,
-      controlTopic: topics.control,
-    }),
-    o.armId,
-    SYSTEM_CLOCK,
-    o.onFirst,
-  );
+  const services = startArmServices({ ...o, client, raw, robot, core, control });
   link.start();
   log?.info(
     { arm: o.armId, bus: o.bus, profile: o.profile, ids: core.joints.map((j) => j.id) },
@@ -143,8 +118,7 @@ export function startBusGateway(
     client,
     link,
     async stop() {
-      motion.stop();
-      follow.stop();
+      services.stop();
       core.operator.reset();
       control.reset();
       core.serialClosed();

@@ -1,12 +1,20 @@
 /**
- * Wires the gateway (what `armtwin gateway` runs): a `SerialLink` (reopens with back-off) and an
+ * Wires the gateway (what `armtwin gateway` runs): the robot profile read from disk (its limits
+ * and zones checked by the controller core in front of the board, announced and followed:
+ * ./arm-services.ts, with motion requests), a `SerialLink` (reopens with back-off) and an
  * mqtt.js client (reconnects every `reconnectMs`, last will `0` retained on `arm/{id}/online`),
  * both kept up on their own.
  */
 import type { IClientOptions, MqttClient } from 'mqtt';
 import type { Logger } from 'pino';
 import { connectBrokers, type BrokerClient } from '@armtwin/link';
-import type { ControlArbiter, ControllerCore } from '@armtwin/controller';
+import {
+  numericKms,
+  zonesKeepOut,
+  type ControlArbiter,
+  type ControllerCore,
+} from '@armtwin/controller';
+import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { mqttArbiter } from '@armtwin/controller/mqtt';
 import {
   armTopics,
@@ -19,11 +27,15 @@ import {
   topic,
 } from '@armtwin/protocol';
 import { describeBroker, parseBrokerList } from '@armtwin/link';
+import { startArmServices } from './arm-services.ts';
 import { GatewayCore } from './gateway.ts';
 import { DEFAULT_SERIAL_LINK_OPTIONS, SerialLink, type SerialLinkOptions } from './serial-link.ts';
 
 export interface GatewayOptions {
   serialPath: string;
+  /** Robot profile of the arm: `<modelsDir>/<name>/profile.json` (ids, limits, keep-out zones, IK). */
+  profile: string;
+  modelsDir: string;
   baudRate: number;
   /** The broker, or an ordered comma-separated list (docs/protocol.md § Several brokers). */
   mqttUrl: string;
@@ -56,6 +68,7 @@ export type GatewayClient = MqttClient & Partial<Pick<BrokerClient, 'brokers'>>;
 
 export const DEFAULT_GATEWAY_OPTIONS = {
   baudRate: DEFAULT_SERIAL_LINK_OPTIONS.baudRate,
+  modelsDir: MODELS_DIR,
   reconnectMs: MQTT_RECONNECT_MS,
   keepaliveS: MQTT_KEEPALIVE_S,
   operatorLeaseMs: OPERATOR_LEASE_MS,
@@ -189,10 +202,12 @@ export async function leaveGatewayMqtt(client: MqttClient, armId: string): Promi
 }
 
 export function startGateway(
-  options: Partial<GatewayOptions> & Pick<GatewayOptions, 'serialPath' | 'mqttUrl' | 'armId'>,
+  options: Partial<GatewayOptions> &
+    Pick<GatewayOptions, 'serialPath' | 'mqttUrl' | 'armId' | 'profile'>,
 ): Gateway {
   const o: GatewayOptions = { ...DEFAULT_GATEWAY_OPTIONS, ...options };
   const { log } = o;
+  const { profile, robot, raw } = readRobotFolder(o.profile, o.modelsDir);
   const client = connectGatewayMqtt(o);
   const link: SerialLink = new SerialLink(
     { ...o.serial, path: o.serialPath, baudRate: o.baudRate },
@@ -209,23 +224,32 @@ export function startGateway(
     },
   );
   const core = new GatewayCore(
-    o.armId,
+    {
+      armId: o.armId,
+      profile,
+      kms: numericKms(robot),
+      keepOut: zonesKeepOut(robot),
+      robot,
+      operatorLeaseMs: o.operatorLeaseMs,
+    },
     {
       ...SYSTEM_CLOCK,
       publish: gatewayPublish(client),
       write: (data) => link.write(data),
       onFirst: o.onFirst,
     },
-    o.operatorLeaseMs,
   );
   const control = wireGatewayMqtt(client, o, core);
+  const services = startArmServices({ ...o, client, raw, robot, core, control });
   link.start();
+  log?.info({ arm: o.armId, profile: o.profile }, 'gateway running');
   return {
     core,
     control,
     client,
     link,
     async stop() {
+      services.stop();
       core.operator.reset();
       control.reset();
       await leaveGatewayMqtt(client, o.armId);

@@ -19,7 +19,7 @@ import {
   type EmulatedBus,
 } from '@armtwin/servo-bus';
 import { floorKeepOut, numericKms } from '@armtwin/controller';
-import { BusGatewayCore, BUS_MODELS_DIR } from '../src/index.ts';
+import { BusGatewayCore, BUS_MODELS_DIR, LOST_AFTER_MS } from '../src/index.ts';
 
 /** armtwin5 with its wrist roll (004) able to turn ±360°. */
 function profile(): Profile {
@@ -46,6 +46,8 @@ function rig(protocol: BusProtocol, ids = [0, 1, 2, 3, 4, 5]) {
     onGroup: (g) => items.push({ group: g.frames }),
   });
   let open = true;
+  /** The servos answer nothing (a stall, or the bus unplugged with the port still open). */
+  let muted = false;
   /** Answers arrive this late (ms); 0 = at once. */
   let lateMs = 0;
   const core: BusGatewayCore = new BusGatewayCore(
@@ -69,7 +71,7 @@ function rig(protocol: BusProtocol, ids = [0, 1, 2, 3, 4, 5]) {
         if (!open) return false;
         bus.advance(clock.now());
         const reply = bus.feed(data);
-        if (reply.length === 0) return true;
+        if (reply.length === 0 || muted) return true;
         if (lateMs > 0) clock.setTimeout(() => core.fromSerial(reply), lateMs);
         else core.fromSerial(reply);
         return true;
@@ -95,7 +97,8 @@ function rig(protocol: BusProtocol, ids = [0, 1, 2, 3, 4, 5]) {
     else core.serialClosed();
   };
   const setLate = (ms: number) => (lateMs = ms);
-  return { clock, bus, core, items, retained, angle, errors, setOpen, setLate };
+  const setMuted = (value: boolean) => (muted = value);
+  return { clock, bus, core, items, retained, angle, errors, setOpen, setLate, setMuted };
 }
 
 describe.each(['dynamixel', 'feetech'] as const)('bus gateway core on %s', (protocol) => {
@@ -241,6 +244,25 @@ describe.each(['dynamixel', 'feetech'] as const)('bus gateway core on %s', (prot
     expect(r.errors()).toContain('missing servos 005');
     expect(r.core.found.has(5)).toBe(false);
     expect(r.items.at(-1)?.group).toHaveLength(5);
+  });
+
+  test('reads missed for a moment (a stall) lose no servo; no answer for a second does', () => {
+    const r = rig(protocol);
+    const missing = () => r.errors().filter((e) => e.startsWith('missing servos'));
+    const timeouts = r.core.lineCounters.timeouts;
+    r.setMuted(true);
+    r.clock.advance(500);
+    r.setMuted(false);
+    expect(r.core.lineCounters.timeouts - timeouts).toBeGreaterThanOrEqual(3);
+    r.clock.advance(500);
+    expect(missing()).toEqual([]);
+    expect(r.core.found.size).toBe(6);
+    r.setMuted(true); // unplugged
+    r.clock.advance(LOST_AFTER_MS - 100);
+    expect(missing()).toEqual([]);
+    r.clock.advance(400);
+    expect(missing()).toEqual(['missing servos 000 001 002 003 004 005']);
+    expect(r.core.found.size).toBe(0);
   });
 
   test('torque off and on by request; the line going and coming back', () => {

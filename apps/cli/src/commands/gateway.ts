@@ -75,10 +75,10 @@ export function registerGateway(program: Command): void {
     )
     .option(
       '--profile <name>',
-      'servo bus: robot profile (ids, limits, speeds, IK)',
+      'robot profile (ids, limits, keep-out zones, IK) of the arm on the line',
       DEFAULT_PROFILE,
     )
-    .option('--models <dir>', 'servo bus: the folder of robot profiles', BUS_MODELS_DIR)
+    .option('--models <dir>', 'the folder of robot profiles', BUS_MODELS_DIR)
     .option(
       '--rate <hz>',
       'servo bus: positions read per second',
@@ -109,11 +109,15 @@ export function registerGateway(program: Command): void {
       `
 Serial bytes are cut into frames, re-encoded and published on arm/{id}/status, one payload per
 serial read, stamped $TIM (the device's own $TIM frames are dropped). Payloads on arm/{id}/control
-are written to the line verbatim; while the line is down they are dropped and answered with
-$ERR:gateway: serial line down! on status. arm/{id}/online is 1 (retained) while the line is open
-and the broker connected, 0 otherwise (also the last will). Deadman: a 0 on arm/{id}/operator, or an
-operator that repeated 1 and then fell silent for --operator-lease ms, writes #255PDST! to the line. The port is reopened with back-off
-(250 ms doubling to 5 s) and the broker reconnected every second.
+are checked by the controller core against --profile (limits, floor, keep-out zones,
+self-collision, rate limit, payload bound; $KMS through its IK) as on the simulator: a refused one
+is answered $ERR on status and never reaches the board; what passes is written to the line as
+timed moves (a group as one {...} group), reads and pings as they came. While the line is down
+commands are answered $ERR:gateway: serial line down!. arm/{id}/online is 1 (retained) while the
+line is open and the broker connected, 0 otherwise (also the last will). Deadman: a 0 on
+arm/{id}/operator, or an operator that repeated 1 and then fell silent for --operator-lease ms,
+writes #255PDST! to the line while the arm moves. The port is reopened with back-off (250 ms
+doubling to 5 s) and the broker reconnected every second.
 
 With --bus dynamixel|feetech the gateway drives the profile's servos itself (docs/arm-side.md):
 it pings their ids at start ($ERR for missing ones), reads positions by sync read at --rate and
@@ -174,7 +178,12 @@ the joints are. The arm is offline while no joint state arrives.`,
             stateRate: flags.rate,
           })
         : flags.bus === 'lsc'
-          ? startGateway({ ...line, baudRate: flags.baud ?? DEFAULT_GATEWAY_OPTIONS.baudRate })
+          ? startGateway({
+              ...line,
+              profile: flags.profile,
+              modelsDir: flags.models,
+              baudRate: flags.baud ?? DEFAULT_GATEWAY_OPTIONS.baudRate,
+            })
           : startBusGateway({
               ...line,
               bus: flags.bus,

@@ -17,13 +17,13 @@
  * The clock, the timers and the outputs are injected.
  */
 import {
-  ControlInput,
-  ControllerCore,
   jointsFromProfile,
+  type ControlInput,
+  type ControllerCore,
   type KeepOutCheck,
   type KmsSolver,
 } from '@armtwin/controller';
-import { operatorDeadman } from '@armtwin/controller/mqtt';
+import { driverControl } from '@armtwin/controller/mqtt';
 import { servoFromJoint, type Profile } from '@armtwin/robot';
 import { exactPwmFromServo, type MotionRobot } from '@armtwin/motion';
 import {
@@ -34,8 +34,8 @@ import {
   encodePosition,
   encodeTime,
   OPERATOR_LEASE_MS,
-  OperatorWatch,
   type Clock,
+  type OperatorWatch,
 } from '@armtwin/protocol';
 import type { JointStateMsg, JointTrajectoryMsg } from '../wire.ts';
 import { matchJoints } from './joint-match.ts';
@@ -103,23 +103,23 @@ export class Ros2GatewayCore implements Ros2DriverTarget {
     this.topics = armTopics(this.o.armId);
     this.positions = this.o.profile.servos.map(() => NaN);
     this.jointPositions = this.o.profile.servos.map(() => NaN);
-    this.controller = new ControllerCore(jointsFromProfile(this.o.profile), new Ros2Driver(this), {
-      kms: this.o.kms,
-      keepOut: this.o.keepOut,
-    });
-    this.input = new ControlInput(this.controller, { onFirst: io.onFirst }, io.now());
-    this.operator = operatorDeadman(
+    ({
+      controller: this.controller,
+      input: this.input,
+      operator: this.operator,
+    } = driverControl(
+      jointsFromProfile(this.o.profile),
+      new Ros2Driver(this),
+      { kms: this.o.kms, keepOut: this.o.keepOut },
       io,
-      () => {
-        const out: string[] = [];
-        if (!this.controller.operatorLeft(io.now(), out)) return false;
-        this.counters.deadmanStops++;
-        this.status(out);
-        return true;
+      {
+        operatorLeaseMs: this.o.operatorLeaseMs,
+        deadmanStopped: (replies) => {
+          this.counters.deadmanStops++;
+          this.status(replies);
+        },
       },
-      io.onFirst,
-      this.o.operatorLeaseMs,
-    );
+    ));
   }
 
   get robot(): MotionRobot | undefined {
