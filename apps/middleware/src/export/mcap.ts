@@ -4,10 +4,11 @@
  *   /arm/{arm}/servo/{id}     armtwin.ServoSample  one per stored `servo` point: pwm, angle, temp, volt
  *   /arm/{arm}/command/{id}   armtwin.Command      one per stored `command` point
  *   /arm/{arm}/ik             armtwin.IkResult     one per stored `ik` point
- *   /arm/{arm}/audit          foxglove.Log         one per control event (who took, gave, lost control)
+ *   /arm/{arm}/audit          foxglove.Log         one per control event (who took, gave, lost control);
+ *                                                  the channel is there when no event is
  *   /robot_description        std_msgs/String      the URDF, meshes inline, once at the range's start
  *   /arm/{arm}/joint_states   foxglove.JointStates the profile's joints at each reported instant
- *   /arm/{arm}/joint_targets  foxglove.JointStates the joints as commanded, at each command
+ *   /arm/{arm}/joint_targets  foxglove.JointStates the joints as commanded, at each command (all joints)
  *   /tf                       foxglove.FrameTransforms every URDF joint's transform at each report
  * The last four need the arm's robot (profile and URDF); without it they are left out. Every
  * message's log and publish time is the point's own time. Messages go out in time order.
@@ -19,7 +20,7 @@ import type { Profile, UrdfJoint } from '@armtwin/robot';
 import type { ProfileSource } from './arm-profile.ts';
 import type { Recording } from './recording.ts';
 import type { RobotDescription } from './robot-description.ts';
-import { jointSamples, linkTransforms, type JointSample } from './robot-motion.ts';
+import { jointSamples, linkTransforms, targetSamples, type JointSample } from './robot-motion.ts';
 import { ROBOT_DESCRIPTION_SCHEMA, SCHEMAS } from './schemas.ts';
 import { FOXGLOVE_TOPICS as TOPICS } from './topics.ts';
 
@@ -131,6 +132,8 @@ export async function writeMcap(
   };
 
   const arm = rec.arm;
+  // The control log's channel even with no event in range: a Log panel finds its topic.
+  await channel(TOPICS.log(arm), Log);
   const streams: Timed[][] = [
     rec.servo.map(({ ns, ...r }) => ({
       ns,
@@ -162,9 +165,10 @@ export async function writeMcap(
         { ns, write: () => add(TOPICS.robotDescription, ROBOT_DESCRIPTION_SCHEMA, ns, data) },
       ]);
     }
-    streams.push(jointSamples(robot.profile, rec.servo).map((s) => motion(s, robot, arm, add)));
+    const reported = jointSamples(robot.profile, rec.servo);
+    streams.push(reported.map((s) => motion(s, robot, arm, add)));
     streams.push(
-      jointSamples(robot.profile, rec.command).map((s) => ({
+      targetSamples(jointSamples(robot.profile, rec.command), reported).map((s) => ({
         ns: s.ns,
         write: () => add(TOPICS.jointTargets(arm), JointStates, s.ns, { joints: known(s) }),
       })),
