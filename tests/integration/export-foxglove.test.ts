@@ -17,6 +17,7 @@ import { execFile } from 'node:child_process';
 import { promisify } from 'node:util';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { McapIndexedReader, type IReadable } from '@mcap/core';
+import { connectAsync } from 'mqtt';
 import { chainFkFrames, createFkFrames } from '@armtwin/ik';
 import {
   chainFromUrdf,
@@ -24,6 +25,7 @@ import {
   meshRefs,
   parseProfile,
   parseUrdfJoints,
+  profileAnnouncement,
   type Profile,
 } from '@armtwin/robot';
 import { MODELS_DIR } from '@armtwin/motion/robot-folder';
@@ -188,36 +190,27 @@ beforeAll(async () => {
     true,
     20_000,
   );
-  const file = path.join(mws.dir(), 'arm1.mcap');
-  const { stderr } = await run(
-    process.execPath,
-    [
-      ARMTWIN,
-      'export',
-      '--arm',
-      ARM,
-      '--from',
-      from.toISOString(),
-      '--to',
-      to.toISOString(),
-      '--out',
-      file,
-    ],
-    {
-      cwd: REPO_ROOT,
-      timeout: 60_000,
-      env: {
-        ...process.env,
-        INFLUX_URL: influx().url,
-        INFLUX_BUCKET: influx().bucket,
-        INFLUX_TOKEN: '',
-        INFLUX_ORG: '',
-        MQTT_URL: broker().url,
-      },
-    },
-  );
-  exported = { stderr, ...(await readMcap(file)) };
+  exported = await exportAs(ARM, from, to);
 }, 120_000);
+
+/** `armtwin export --arm ARM --from --to --out F`, as a user types it, read back. */
+async function exportAs(arm: string, from: Date, to: Date): Promise<Exported> {
+  const file = path.join(mws.dir(), `${arm}.mcap`);
+  const args = ['export', '--arm', arm, '--from', from.toISOString(), '--to', to.toISOString()];
+  const { stderr } = await run(process.execPath, [ARMTWIN, ...args, '--out', file], {
+    cwd: REPO_ROOT,
+    timeout: 60_000,
+    env: {
+      ...process.env,
+      INFLUX_URL: influx().url,
+      INFLUX_BUCKET: influx().bucket,
+      INFLUX_TOKEN: '',
+      INFLUX_ORG: '',
+      MQTT_URL: broker().url,
+    },
+  });
+  return { stderr, ...(await readMcap(file)) };
+}
 
 afterAll(async () => {
   await sim?.stop('SIGKILL');
@@ -343,6 +336,27 @@ describe('armtwin export --arm ID --format mcap, typed without --profile, in Fox
     }
     expect(exported.channels.get(log.topicToRender)).toBe('foxglove.Log');
     expect(exported.channels.get('/tf')).toBe('foxglove.FrameTransforms');
+  });
+});
+
+describe('an arm whose history holds no announcement', () => {
+  test("the export asks the broker for the arm's retained announcement", async () => {
+    const client = await connectAsync(broker().url);
+    const raw = JSON.parse(fs.readFileSync(path.join(FOLDER, 'profile.json'), 'utf8')) as Profile;
+    await client.publishAsync('arm/old1/profile', profileAnnouncement(raw.name, raw.title, raw), {
+      retain: true,
+      qos: 1,
+    });
+    await client.endAsync();
+    // a range that ended before the middleware saw (and stored) that announcement
+    const e = await exportAs(
+      'old1',
+      new Date(Date.now() - 3600_000),
+      new Date(Date.now() - 60_000),
+    );
+    expect(e.stderr).toContain('profile so101 (as the arm announces it on the broker');
+    expect(e.metadata.get('profileSource')).toBe('broker');
+    expect(e.messages.map((m) => m.topic)).toEqual(['/robot_description']);
   });
 });
 

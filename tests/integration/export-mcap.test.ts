@@ -186,6 +186,15 @@ describe("armtwin export --format mcap, read back with Foxglove's mcap library",
       count: GROUPS,
     });
     expect(t['/tf']).toMatchObject({ schema: 'foxglove.FrameTransforms', count: GROUPS });
+    expect(t['/robot_description']).toEqual({
+      schema: 'std_msgs/String',
+      encoding: 'json',
+      count: 1,
+    });
+    expect(t[`/arm/${ARM}/joint_targets`]).toMatchObject({
+      schema: 'foxglove.JointStates',
+      count: 2,
+    });
     expect(Object.keys(t).some((k) => k.includes('other'))).toBe(false);
     const total = Object.values(t).reduce((n, x) => n + x.count, 0);
     expect(checked.message_count).toBe(total);
@@ -248,7 +257,8 @@ describe("the history API's download: GET /history/export", () => {
       { maxBuffer: 64 * 1024 * 1024 },
     );
     const c = JSON.parse(stdout) as Checked;
-    expect(c.message_count).toBe(GROUPS * SERVOS + 10 * SERVOS + 4 + 2 * GROUPS + 1); // + the control event
+    // + the control event, the robot description, a joint target per command instant (2)
+    expect(c.message_count).toBe(GROUPS * SERVOS + 10 * SERVOS + 4 + 2 * GROUPS + 1 + 1 + 2);
   });
 
   test('bad parameters are refused by name before anything is sent', async () => {
