@@ -59,7 +59,7 @@ with open(sys.argv[1], "rb") as f:
         elif channel.topic == "/tf":
             out["tf_sizes"].append(len(data["transforms"]))
             last_tf = data["transforms"]
-        elif schema.name == "foxglove.JointStates":
+        elif schema.name == "foxglove.JointStates" and channel.topic.endswith("/joint_states"):
             out["last_joint_states"] = data
 if len(sys.argv) > 2 and last_tf is not None:
     out["tip"] = tip_position(last_tf, sys.argv[2])
