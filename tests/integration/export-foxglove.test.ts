@@ -4,9 +4,9 @@
  * profile in the real influxd, and `armtwin export --arm ID --from … --to … --out F` is typed
  * with no `--profile`. The file is read with Foxglove's own TypeScript reader (`@mcap/core`'s
  * McapIndexedReader, what Foxglove and Lichtblick open MCAP with), not ours:
- *   - the robot description is on /robot_description, parses, has the URDF's links and joints,
+ *   - the robot description is on /{arm}/robot_description, parses, has the URDF's links and joints,
  *     and every mesh is inline, byte for byte the robot folder's file;
- *   - the per-link transforms on /tf put every link where the IK's own chain FK does (within
+ *   - the per-link transforms on /{arm}/tf put every link where the IK's own chain FK does (within
  *     0.1 mm) at sample times, for the joint values of the samples InfluxDB holds;
  *   - the joint states are the stored samples, in the profile's joint units;
  *   - every topic the Foxglove layout deploy/foxglove/armtwin-arm.json reads is in the file.
@@ -229,7 +229,7 @@ describe('armtwin export --arm ID --format mcap, typed without --profile, in Fox
   });
 
   test("the robot description parses, has the URDF's links, and carries every mesh", () => {
-    const [desc, ...more] = on('/robot_description');
+    const [desc, ...more] = on(`/${ARM}/robot_description`);
     expect(more).toEqual([]);
     expect(desc!.schema).toBe('std_msgs/String');
     const urdf = desc!.data.data as string;
@@ -254,7 +254,7 @@ describe('armtwin export --arm ID --format mcap, typed without --profile, in Fox
 
   test('the joint states are the stored samples, in joint units', async () => {
     const stored = await storedAngles();
-    const states = on(`/arm/${ARM}/joint_states`);
+    const states = on(`/${ARM}/joint_states`);
     expect(states.length).toBeGreaterThan(20);
     let moved = 0;
     for (const s of states) {
@@ -278,8 +278,8 @@ describe('armtwin export --arm ID --format mcap, typed without --profile, in Fox
     const chain = built.chain;
     const childOf = new Map(urdfJoints.joints.map((j) => [j.name, j.child]));
     const stored = await storedAngles();
-    const tf = on('/tf');
-    const states = on(`/arm/${ARM}/joint_states`);
+    const tf = on(`/${ARM}/tf`);
+    const states = on(`/${ARM}/joint_states`);
     expect(tf).toHaveLength(states.length);
     const frames = createFkFrames(chain);
     const samples = [Math.floor(tf.length / 3), Math.floor((2 * tf.length) / 3), tf.length - 1];
@@ -303,7 +303,7 @@ describe('armtwin export --arm ID --format mcap, typed without --profile, in Fox
   });
 
   test('joint targets: every joint, the commanded ones at their command', () => {
-    const targets = on(`/arm/${ARM}/joint_targets`);
+    const targets = on(`/${ARM}/targets`);
     expect(targets).toHaveLength(2);
     const last = targets[1]!.data.joints as { name: string; position: number }[];
     expect(last.map((j) => j.name)).toEqual(profile.servos.map((s) => s.joint));
@@ -323,11 +323,12 @@ describe('armtwin export --arm ID --format mcap, typed without --profile, in Fox
     const log = panels.find(([id]) => id.startsWith('RosOut!'))?.[1] as { topicToRender: string };
     const read = [
       ...Object.keys(threeD.topics),
+      ...Object.values(threeD.layers).flatMap((l) => (l.topic ? [l.topic] : [])),
       ...plot.paths.map((p) => p.value.slice(0, p.value.indexOf('.'))),
       log.topicToRender,
     ];
     expect(read.filter((t) => !exported.channels.has(t))).toEqual([]);
-    expect(threeD.topics['/robot_description']?.visible).toBe(true);
+
     // each plotted index is a joint in every message of its topic
     for (const p of plot.paths) {
       const [, topic, index] = /^(.+?)\.joints\[(\d+)\]\.position$/.exec(p.value)!;
@@ -335,7 +336,11 @@ describe('armtwin export --arm ID --format mcap, typed without --profile, in Fox
         expect((m.data.joints as unknown[]).length).toBeGreaterThan(Number(index));
     }
     expect(exported.channels.get(log.topicToRender)).toBe('foxglove.Log');
-    expect(exported.channels.get('/tf')).toBe('foxglove.FrameTransforms');
+    // the 3D panel's URDF layer reads the description topic (a std_msgs/String source)
+    const urdf = Object.values(threeD.layers).find((l) => l.layerId === 'foxglove.Urdf');
+    expect(urdf).toMatchObject({ sourceType: 'topic', topic: `/${ARM}/robot_description` });
+    expect(exported.channels.get(urdf!.topic!)).toBe('std_msgs/String');
+    expect(exported.channels.get(`/${ARM}/tf`)).toBe('foxglove.FrameTransforms');
   });
 });
 
@@ -356,7 +361,7 @@ describe('an arm whose history holds no announcement', () => {
     );
     expect(e.stderr).toContain('profile so101 (as the arm announces it on the broker');
     expect(e.metadata.get('profileSource')).toBe('broker');
-    expect(e.messages.map((m) => m.topic)).toEqual(['/robot_description']);
+    expect(e.messages.map((m) => m.topic)).toEqual(['/old1/robot_description']);
   });
 });
 
@@ -371,6 +376,7 @@ interface Layout {
 }
 interface ThreeD {
   topics: Record<string, { visible?: boolean }>;
+  layers: Record<string, { layerId: string; sourceType?: string; topic?: string }>;
 }
 interface Plot {
   paths: { value: string }[];

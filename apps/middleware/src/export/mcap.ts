@@ -4,12 +4,12 @@
  *   /arm/{arm}/servo/{id}     armtwin.ServoSample  one per stored `servo` point: pwm, angle, temp, volt
  *   /arm/{arm}/command/{id}   armtwin.Command      one per stored `command` point
  *   /arm/{arm}/ik             armtwin.IkResult     one per stored `ik` point
- *   /arm/{arm}/audit          foxglove.Log         one per control event (who took, gave, lost control);
+ *   /{arm}/log                foxglove.Log         one per control event (who took, gave, lost control);
  *                                                  the channel is there when no event is
- *   /robot_description        std_msgs/String      the URDF, meshes inline, once at the range's start
- *   /arm/{arm}/joint_states   foxglove.JointStates the profile's joints at each reported instant
- *   /arm/{arm}/joint_targets  foxglove.JointStates the joints as commanded, at each command (all joints)
- *   /tf                       foxglove.FrameTransforms every URDF joint's transform at each report
+ *   /{arm}/robot_description  std_msgs/String      the URDF, meshes inline, once at the range's start
+ *   /{arm}/joint_states       foxglove.JointStates the profile's joints at each reported instant
+ *   /{arm}/targets            foxglove.JointStates the joints as commanded, at each command (all joints)
+ *   /{arm}/tf                 foxglove.FrameTransforms every URDF joint's transform at each report
  * The last four need the arm's robot (profile and URDF); without it they are left out. Every
  * message's log and publish time is the point's own time. Messages go out in time order.
  */
@@ -28,7 +28,7 @@ import { FOXGLOVE_TOPICS as TOPICS } from './topics.ts';
 export interface RecordingRobot {
   profile: Profile;
   joints: readonly UrdfJoint[];
-  /** The URDF with its meshes inline, for the 3D panel (absent: no /robot_description). */
+  /** The URDF with its meshes inline, for the 3D panel (absent: no robot description topic). */
   description?: RobotDescription;
   /** How the profile was found (kept in the file's metadata). */
   source?: ProfileSource;
@@ -162,7 +162,7 @@ export async function writeMcap(
       const ns = BigInt(rec.startMs) * 1_000_000n;
       const data = { data: description.urdf };
       streams.push([
-        { ns, write: () => add(TOPICS.robotDescription, ROBOT_DESCRIPTION_SCHEMA, ns, data) },
+        { ns, write: () => add(TOPICS.robotDescription(arm), ROBOT_DESCRIPTION_SCHEMA, ns, data) },
       ]);
     }
     const reported = jointSamples(robot.profile, rec.servo);
@@ -170,7 +170,7 @@ export async function writeMcap(
     streams.push(
       targetSamples(jointSamples(robot.profile, rec.command), reported).map((s) => ({
         ns: s.ns,
-        write: () => add(TOPICS.jointTargets(arm), JointStates, s.ns, { joints: known(s) }),
+        write: () => add(TOPICS.targets(arm), JointStates, s.ns, { joints: known(s) }),
       })),
     );
   }
@@ -205,7 +205,7 @@ function motion(
         translation: { x: t.translation[0], y: t.translation[1], z: t.translation[2] },
         rotation: { x: t.rotation[0], y: t.rotation[1], z: t.rotation[2], w: t.rotation[3] },
       }));
-      await add(TOPICS.transforms, FrameTransforms, s.ns, { transforms });
+      await add(TOPICS.transforms(arm), FrameTransforms, s.ns, { transforms });
     },
   };
 }

@@ -2,8 +2,8 @@
  * The robot description an MCAP carries for Foxglove's and Lichtblick's 3D panel: the URDF text
  * with every `<mesh filename>` replaced by a `data:` URI that holds the mesh file itself.
  *
- * Why data URIs: the 3D panel loads a URDF from a topic (`/robot_description`, a message with a
- * string `data`) and fetches each mesh by its URL. From a recording there is nothing to resolve
+ * Why data URIs: the 3D panel loads a URDF from a topic (`/{arm}/robot_description`, a message
+ * with a string `data`) and fetches each mesh by its URL. From a recording there is nothing to resolve
  * `package://` or a relative path against (Lichtblick sends `package://` to a live connection's
  * asset service, or to the desktop app's ROS package path; a file has neither, and MCAP
  * attachments are not read as assets), while a `data:` URL goes through the browser's own fetch
@@ -21,7 +21,7 @@ export interface DescriptionMesh {
 }
 
 export interface RobotDescription {
-  /** The URDF with its meshes inline (what `/robot_description` carries). */
+  /** The URDF with its meshes inline (what the robot description topic carries). */
   urdf: string;
   /** Each embedded mesh once. */
   meshes: DescriptionMesh[];

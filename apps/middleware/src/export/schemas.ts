@@ -51,7 +51,7 @@ export const SCHEMAS = {
 
 /**
  * A robot description message: ROS's std_msgs/String (`data`), the schema name the 3D panel's
- * URDF layer accepts for a topic source; `/robot_description` it reads whatever the schema.
+ * URDF layer accepts for a topic source (the layout's URDF layer names the arm's topic).
  */
 export const ROBOT_DESCRIPTION_SCHEMA = {
   title: 'std_msgs/String',

@@ -1,20 +1,20 @@
 /**
- * The topic names an arm's data has in Foxglove and Lichtblick: the MCAP export writes them and
- * the layout deploy/foxglove/armtwin-arm.json reads them (docs/foxglove-mcap.md). One arm per
- * file: the robot description and the transforms keep ROS's names, which the 3D panel looks
- * for by itself; the rest is under the arm's id.
+ * The topic names an arm's data has in Foxglove and Lichtblick: the MCAP export writes them, the
+ * layout deploy/foxglove/armtwin-arm.json reads them, and the live Foxglove server (docs/foxglove.md)
+ * uses the same `/{arm}/…` names, so one layout serves a recording and a live arm. The stored
+ * points' own topics (servo, command, ik) are the export's alone.
  */
 export const FOXGLOVE_TOPICS = {
   /** The URDF, meshes inline (std_msgs/String shape: `{"data": "<robot …>"}`). */
-  robotDescription: '/robot_description',
+  robotDescription: (arm: string) => `/${arm}/robot_description`,
   /** foxglove.FrameTransforms: every URDF joint's parent → child transform. */
-  transforms: '/tf',
+  transforms: (arm: string) => `/${arm}/tf`,
   /** foxglove.JointStates: the profile's joints as reported, servo order. */
-  jointStates: (arm: string) => `/arm/${arm}/joint_states`,
-  /** foxglove.JointStates: the joints as last commanded, same order and units. */
-  jointTargets: (arm: string) => `/arm/${arm}/joint_targets`,
+  jointStates: (arm: string) => `/${arm}/joint_states`,
+  /** The joints as last commanded (foxglove.JointStates shape: every joint, servo order). */
+  targets: (arm: string) => `/${arm}/targets`,
   /** foxglove.Log: the control log (who took, gave, lost control; refusals). */
-  log: (arm: string) => `/arm/${arm}/audit`,
+  log: (arm: string) => `/${arm}/log`,
   /** armtwin.ServoSample, per servo. */
   servo: (arm: string, id: string) => `/arm/${arm}/servo/${id}`,
   /** armtwin.Command, per servo. */
