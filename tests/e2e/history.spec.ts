@@ -150,8 +150,8 @@ test('history: the panel shows what the simulator has just produced', async ({
   };
   for (const n of [0, 1, 2, 3, 4, 5])
     expect(read.topics[`/arm/${arm.id}/servo/00${n}`]?.count).toBeGreaterThan(0);
-  expect(read.topics[`/arm/${arm.id}/joint_states`]?.schema).toBe('foxglove.JointStates');
-  expect(read.topics['/tf']?.count).toBe(read.topics[`/arm/${arm.id}/joint_states`]?.count);
+  expect(read.topics[`/${arm.id}/joint_states`]?.schema).toBe('foxglove.JointStates');
+  expect(read.topics[`/${arm.id}/tf`]?.count).toBe(read.topics[`/${arm.id}/joint_states`]?.count);
   const elbow = read.last_joint_states?.joints.find((j) => j.name === 'elbow');
   expect((elbow!.position * 180) / Math.PI).toBeCloseTo(45, 0);
 

@@ -5,8 +5,8 @@ and prints what it found as one JSON object. Used by tests/integration/export-mc
 
 Prints: the library version; the header's library; the summary's message count; per topic its
 schema name, message encoding and count; every message of the armtwin.* schemas as
-[topic, log_time_ns (a string: JSON numbers lose nanoseconds), payload]; the number of transforms in each /tf message; and, when TIP_LINK
-is given, that link's position in the root frame of the last /tf message (transforms composed
+[topic, log_time_ns (a string: JSON numbers lose nanoseconds), payload]; the number of transforms in each foxglove.FrameTransforms message; and, when TIP_LINK
+is given, that link's position in the root frame of the last transforms message (transforms composed
 here, in plain Python).
 """
 import json
@@ -56,10 +56,10 @@ with open(sys.argv[1], "rb") as f:
         data = json.loads(message.data)
         if schema.name.startswith("armtwin.") or schema.name == "foxglove.Log":
             out["records"].append([channel.topic, str(message.log_time), data])
-        elif channel.topic == "/tf":
+        elif schema.name == "foxglove.FrameTransforms":
             out["tf_sizes"].append(len(data["transforms"]))
             last_tf = data["transforms"]
-        elif schema.name == "foxglove.JointStates":
+        elif schema.name == "foxglove.JointStates" and channel.topic.endswith("/joint_states"):
             out["last_joint_states"] = data
 if len(sys.argv) > 2 and last_tf is not None:
     out["tip"] = tip_position(last_tf, sys.argv[2])

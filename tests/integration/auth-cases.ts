@@ -61,6 +61,7 @@ export const SUBSCRIBE_CASES: [User, string, string, boolean][] = [
   ['middleware', 'arm/+/status', 'arm/arm2/status', true],
   ['middleware', 'arm/+/control/+', 'arm/arm1/control/operator', true],
   ['middleware', 'arm/+/audit', 'arm/arm1/audit', true],
+  ['middleware', 'arm/+/profile', 'arm/arm1/profile', true],
   ['middleware', '$share/armtwin/arm/+/status', 'arm/arm1/status', true],
   ['middleware', '$share/armtwin/arm/+/control/+', 'arm/arm2/control/operator', true],
   ['middleware', 'arm/+/online', 'arm/arm1/online', false],

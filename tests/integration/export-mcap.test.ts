@@ -137,7 +137,7 @@ describe("armtwin export --format mcap, read back with Foxglove's mcap library",
         expected.push([topic, String(ns), { ...(id ? { id } : {}), ...present }]);
       }
     expect(expected.length).toBe(GROUPS * SERVOS + 10 * SERVOS + 4);
-    const audit = `/arm/${ARM}/audit`;
+    const audit = `/${ARM}/log`;
     const got = checked.records
       .filter(([topic]) => topic !== audit)
       .map(([topic, ns, { timestamp, ...data }]) => {
@@ -154,8 +154,8 @@ describe("armtwin export --format mcap, read back with Foxglove's mcap library",
   });
 
   test('the control event is a foxglove.Log message at its own time', () => {
-    expect(checked.topics[`/arm/${ARM}/audit`]).toMatchObject({ schema: 'foxglove.Log', count: 1 });
-    const [, ns, data] = checked.records.find(([topic]) => topic === `/arm/${ARM}/audit`)!;
+    expect(checked.topics[`/${ARM}/log`]).toMatchObject({ schema: 'foxglove.Log', count: 1 });
+    const [, ns, data] = checked.records.find(([topic]) => topic === `/${ARM}/log`)!;
     expect(BigInt(ns)).toBe(BigInt(T0_US + 77) * 1000n);
     expect(data).toMatchObject({
       level: 3, // WARNING: a refused move
@@ -175,11 +175,20 @@ describe("armtwin export --format mcap, read back with Foxglove's mcap library",
     expect(t[`/arm/${ARM}/command/001`]?.count).toBe(1);
     expect(t[`/arm/${ARM}/command/004`]?.count).toBe(1);
     expect(t[`/arm/${ARM}/ik`]).toMatchObject({ schema: 'armtwin.IkResult', count: 2 });
-    expect(t[`/arm/${ARM}/joint_states`]).toMatchObject({
+    expect(t[`/${ARM}/joint_states`]).toMatchObject({
       schema: 'foxglove.JointStates',
       count: GROUPS,
     });
-    expect(t['/tf']).toMatchObject({ schema: 'foxglove.FrameTransforms', count: GROUPS });
+    expect(t[`/${ARM}/tf`]).toMatchObject({ schema: 'foxglove.FrameTransforms', count: GROUPS });
+    expect(t[`/${ARM}/robot_description`]).toEqual({
+      schema: 'std_msgs/String',
+      encoding: 'json',
+      count: 1,
+    });
+    expect(t[`/${ARM}/targets`]).toMatchObject({
+      schema: 'foxglove.JointStates',
+      count: 2,
+    });
     expect(Object.keys(t).some((k) => k.includes('other'))).toBe(false);
     const total = Object.values(t).reduce((n, x) => n + x.count, 0);
     expect(checked.message_count).toBe(total);
@@ -242,7 +251,8 @@ describe("the history API's download: GET /history/export", () => {
       { maxBuffer: 64 * 1024 * 1024 },
     );
     const c = JSON.parse(stdout) as Checked;
-    expect(c.message_count).toBe(GROUPS * SERVOS + 10 * SERVOS + 4 + 2 * GROUPS + 1); // + the control event
+    // + the control event, the robot description, a joint target per command instant (2)
+    expect(c.message_count).toBe(GROUPS * SERVOS + 10 * SERVOS + 4 + 2 * GROUPS + 1 + 1 + 2);
   });
 
   test('bad parameters are refused by name before anything is sent', async () => {

@@ -11,6 +11,9 @@
  * executes such a group not at all) and are counted as `group-not-executed`.
  * A command on a user's own control topic (`arm/{id}/control/{user}`, docs/protocol.md
  * § Control) is stored like one on `arm/{id}/control`, with its author as the tag `user`.
+ * The profile an arm announces (retained `arm/{id}/profile`) is stored as one `profile` point
+ * (`name`, `title`) at its arrival, once per middleware run and again whenever it changes, so an
+ * export of any range finds the robot the arm was (`armtwin export` without `--profile`).
  */
 import {
   createReader,
@@ -25,6 +28,7 @@ import {
   type KmsFrame,
   type Reader,
 } from '@armtwin/protocol';
+import { parseAnnouncement } from '@armtwin/robot';
 import type { Metrics } from './metrics.ts';
 import type { LogOnce } from './log.ts';
 import {
@@ -38,6 +42,7 @@ import {
   ikLine,
   ikSeries,
   positionLine,
+  profileLine,
   servoSeries,
   SeriesClock,
   type Micros,
@@ -45,6 +50,8 @@ import {
 
 /** `arm/{id}/audit`: the controller's control events, stored as measurement `audit`. */
 const AUDIT_TOPIC = /^arm\/([^/]+)\/audit$/;
+/** `arm/{id}/profile`: the robot the arm announces (retained), stored as measurement `profile`. */
+const PROFILE_TOPIC = /^arm\/([^/]+)\/profile$/;
 
 export interface IngestOptions {
   /** A bigger message is refused whole and counted once as `oversize`. */
@@ -65,6 +72,8 @@ export class Ingest {
   private readonly readers = new Map<string, Reader>();
   private readonly o: IngestOptions;
   private readonly pendingKms = new Map<string, KmsFrame & { at: number }>();
+  /** The profile point last written per arm (its line's fields), so a repeat writes nothing. */
+  private readonly profiles = new Map<string, string>();
   readonly clock = new SeriesClock();
   // The message being handled (the readers' callbacks write here).
   private arm = '';
@@ -86,6 +95,9 @@ export class Ingest {
   handle(topic: string, payload: Uint8Array | string, arrivalMs: number): string[] {
     const audit = AUDIT_TOPIC.exec(topic);
     if (audit && isValidArmId(audit[1]!)) return this.audit(audit[1]!, payload);
+    const announced = PROFILE_TOPIC.exec(topic);
+    if (announced && isValidArmId(announced[1]!))
+      return this.profile(announced[1]!, payload, arrivalMs);
     const byUser = parseUserTopic(topic);
     const parsed =
       byUser?.kind === 'control'
@@ -142,6 +154,25 @@ export class Ingest {
     const s = auditSeries(arm, e.kind);
     this.metrics.pointsProduced++;
     return [auditLine(s, e.by, e.detail, this.clock.next(s, Math.round(e.at) * 1000))];
+  }
+
+  /** A profile announcement → one `profile` point at its arrival, unless it repeats the last. */
+  private profile(arm: string, payload: Uint8Array | string, arrivalMs: number): string[] {
+    this.metrics.count(this.metrics.messages, 'profile');
+    this.arm = arm;
+    if (payload.length === 0) return []; // a retained announcement cleared
+    const text = typeof payload === 'string' ? payload : Buffer.from(payload).toString('utf8');
+    const r = parseAnnouncement(text);
+    if (!r.ok) {
+      this.reject('bad-profile', text.slice(0, 80), r.error);
+      return [];
+    }
+    const fields = profileLine('', r.profile.name, r.profile.title, 0);
+    if (this.profiles.get(arm) === fields) return [];
+    this.profiles.set(arm, fields);
+    const s = `profile,arm=${arm}`;
+    this.metrics.pointsProduced++;
+    return [profileLine(s, r.profile.name, r.profile.title, this.clock.next(s, arrivalMs * 1000))];
   }
 
   private reader(key: string): Reader {

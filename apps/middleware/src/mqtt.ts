@@ -43,6 +43,7 @@ export function subscriptionTopics(shareGroup: string): string[] {
     allArmsTopic('control'),
     `${allArmsTopic('control')}/+`,
     'arm/+/audit', // control events (docs/protocol.md § Control), stored as `audit`
+    'arm/+/profile', // the robot each arm announces (retained), stored as `profile`
   ];
   return shareGroup ? plain.map((t) => `$share/${shareGroup}/${t}`) : plain;
 }

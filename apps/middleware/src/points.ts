@@ -109,6 +109,11 @@ export function auditLine(series: string, by: string, detail: string, t: Micros)
   return `${series} by=${stringField(by)},detail=${stringField(detail.slice(0, 500))} ${t}`;
 }
 
+/** The profile an arm announced: its name (a models folder) and title. */
+export function profileLine(series: string, name: string, title: string, t: Micros): string {
+  return `${series} name=${stringField(name)},title=${stringField(title.slice(0, 200))} ${t}`;
+}
+
 /**
  * Stamps within 1 ms of a series' last time are collisions, bumped; an older one is a late
  * arrival, kept at its own time (SeriesClock).

@@ -2,7 +2,7 @@ import fc from 'fast-check';
 import { describe, expect, test } from 'vitest';
 import { parseProfile, type UrdfJoint } from '@armtwin/robot';
 import { nsFromRfc3339 } from '../src/export/recording.ts';
-import { jointSamples, linkTransforms } from '../src/export/robot-motion.ts';
+import { jointSamples, linkTransforms, targetSamples } from '../src/export/robot-motion.ts';
 
 describe('nsFromRfc3339', () => {
   test('keeps every digit InfluxDB gives', () => {
@@ -96,5 +96,25 @@ describe('jointSamples', () => {
     expect(s[0]!.positions[1]).toBeCloseTo(2 * Math.PI, 12);
     expect((s[1]!.positions[0]! * 180) / Math.PI).toBeCloseTo(45, 9);
     expect(s[1]!.positions[1]).toBeCloseTo(2 * Math.PI, 12);
+  });
+});
+
+describe('targetSamples', () => {
+  test('a joint not commanded yet holds where it was last reported; commanded ones keep their target', () => {
+    const names = ['a', 'b', 'c'];
+    const reported = [
+      { ns: 10n, names, positions: [0.1, 0.2, NaN] },
+      { ns: 20n, names, positions: [0.3, 0.4, 0.5] },
+    ];
+    const targets = [
+      { ns: 5n, names, positions: [1, NaN, NaN] },
+      { ns: 15n, names, positions: [1, NaN, NaN] },
+      { ns: 25n, names, positions: [1, 2, NaN] },
+    ];
+    expect(targetSamples(targets, reported).map((s) => s.positions)).toEqual([
+      [1, NaN, NaN], // nothing reported yet
+      [1, 0.2, NaN],
+      [1, 2, 0.5],
+    ]);
   });
 });

@@ -58,12 +58,14 @@ describe('startMiddleware', () => {
       '$share/armtwin/arm/+/control',
       '$share/armtwin/arm/+/control/+',
       '$share/armtwin/arm/+/audit',
+      '$share/armtwin/arm/+/profile',
     ]);
     expect(subscriptionTopics('')).toEqual([
       'arm/+/status',
       'arm/+/control',
       'arm/+/control/+',
       'arm/+/audit',
+      'arm/+/profile',
     ]);
     await mw.stop();
   });

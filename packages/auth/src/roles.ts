@@ -84,7 +84,7 @@ export const ROLE_RULES: Record<Role, RoleRules> = {
     ],
   },
   middleware: {
-    read: ['arm/+/status', 'arm/+/control', 'arm/+/control/+', 'arm/+/audit'],
+    read: ['arm/+/status', 'arm/+/control', 'arm/+/control/+', 'arm/+/audit', 'arm/+/profile'],
     // Its thermal watch's early warnings (docs/protocol.md § A thermal model of each servo).
     write: ['arm/+/alert'],
   },

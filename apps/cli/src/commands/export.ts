@@ -5,8 +5,11 @@ import { historyReader, influxSource, loadConfig } from '@armtwin/middleware';
 import {
   EXPORT_FORMATS,
   exportRecording,
+  findArmProfile,
   loadRecordingRobot,
   type ExportFormat,
+  type FoundProfile,
+  type RecordingRobot,
 } from '@armtwin/middleware/export';
 import { DEFAULT_FPS } from '@armtwin/middleware/export/lerobot';
 import { runLerobotExport, type LerobotFlags } from './export-lerobot.ts';
@@ -38,6 +41,42 @@ function wholeFps(value: string): number {
   return n;
 }
 
+const FROM: Record<FoundProfile['source'], string> = {
+  flag: '--profile',
+  history: 'as the arm announced it, stored with its history',
+  broker: "as the arm announces it on the broker (none in the range's history)",
+};
+
+/** The robot for the MCAP's 3D view, and a line saying which and why (or why none). */
+function robotOf(
+  found: FoundProfile | null,
+  arm: string,
+  models: string | undefined,
+): { robot: RecordingRobot | null; note: string } {
+  if (!found)
+    return {
+      robot: null,
+      note: `no profile known for ${arm} (none stored in its history before --to, none retained on the broker): servo samples only; --profile NAME adds joint states, transforms and the robot description`,
+    };
+  let robot: RecordingRobot;
+  try {
+    robot = loadRecordingRobot(found.name, models, found.source);
+  } catch (err) {
+    if (found.source === 'flag') throw err;
+    return {
+      robot: null,
+      note: `${arm} announced profile "${found.name}", which is not loadable here (${(err as Error).message.split('\n')[0]}): servo samples only; --models DIR names the folder that has it`,
+    };
+  }
+  const missing = robot.description?.missing ?? [];
+  return {
+    robot,
+    note:
+      `profile ${found.name} (${FROM[found.source]}); ${robot.description?.meshes.length ?? 0} meshes inline` +
+      (missing.length ? `; left out: ${missing.join('; ')}` : ''),
+  };
+}
+
 export function registerExport(program: Command): void {
   program
     .command('export')
@@ -51,7 +90,7 @@ export function registerExport(program: Command): void {
     .requiredOption('--out <file>', 'file to write (lerobot: a new or empty folder)')
     .option(
       '--profile <name>',
-      "the arm's robot profile: adds joint states and link transforms for a 3D panel (MCAP); " +
+      'the robot profile: for the 3D view (mcap; default: the one the arm announced, from its history or the broker); ' +
         'names the motors and their units (lerobot, required)',
     )
     .option(
@@ -73,7 +112,10 @@ export function registerExport(program: Command): void {
       'after',
       `
 Reads InfluxDB with the middleware's settings: INFLUX_URL, INFLUX_TOKEN, INFLUX_ORG,
-INFLUX_BUCKET (README, Configuration).
+INFLUX_BUCKET (README, Configuration). The MCAP carries the robot description (meshes inline),
+link transforms and joint states of the profile the arm announced: the one the middleware
+stored with its history, else the arm's retained announcement on MQTT_URL. Open it in Foxglove
+or Lichtblick with deploy/foxglove/armtwin-arm.json (docs/foxglove-mcap.md).
 
 lerobot: the episodes marked through the HTTP API (POST /api/arms/<id>/episodes), or one
 episode [--from, --to) with --task, resampled at --fps (the last stored sample at or before
@@ -82,7 +124,7 @@ each frame; docs/dataset.md). No video yet: the dataset has no camera feature.
 Examples:
   INFLUX_URL=http://127.0.0.1:8086 armtwin export --format lerobot --arm so101 --profile so101 \\
     --episodes all --out ds/
-  INFLUX_URL=http://127.0.0.1:8086 armtwin export --arm arm1 --profile armtwin5 \\
+  INFLUX_URL=http://127.0.0.1:8086 armtwin export --arm arm1 \\
     --from 2026-11-24T06:00:00Z --to 2026-11-24T06:10:00Z --out arm1.mcap`,
     )
     .action(async (flags: ExportFlags, cmd: Command) => {
@@ -108,7 +150,22 @@ Examples:
       }
       if (startMs === undefined || stopMs === undefined)
         return cmd.error(`--format ${flags.format} needs --from and --to`);
-      const robot = flags.profile ? loadRecordingRobot(flags.profile, flags.models) : null;
+      let robot: RecordingRobot | null = null;
+      let note = '';
+      if (flags.format === 'mcap') {
+        const found = await findArmProfile({
+          reader,
+          arm: flags.arm,
+          stopMs,
+          profile: flags.profile,
+          broker: {
+            url: config.mqttUrl,
+            username: config.mqttUsername,
+            password: config.mqttPassword,
+          },
+        });
+        ({ robot, note } = robotOf(found, flags.arm, flags.models));
+      }
       const out = fs.createWriteStream(flags.out);
       await once(out, 'open');
       const summary = await exportRecording({
@@ -126,7 +183,7 @@ Examples:
       process.stderr.write(
         `${flags.out}: ${servo} servo, ${command} command and ${ik} ik points, ${audit} control events` +
           (flags.format === 'mcap'
-            ? ` in ${Object.keys(summary.topics).length} topics${robot ? '' : ' (no --profile: no joint states or transforms)'}`
+            ? ` in ${Object.keys(summary.topics).length} topics\n${flags.out}: ${note}`
             : '') +
           '\n',
       );

@@ -7,27 +7,87 @@ import path from 'node:path';
 import type { Writable } from 'node:stream';
 import { parseUrdfJoints } from '@armtwin/robot';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
+import {
+  announcedProfile,
+  storedProfile,
+  type BrokerLogin,
+  type FoundProfile,
+  type ProfileSource,
+} from './arm-profile.ts';
 import { csvLines } from './csv.ts';
 import { streamWritable, writeMcap, type McapCounts, type RecordingRobot } from './mcap.ts';
 import type { HistoryReader } from '../history/reader.ts';
 import { readRecording } from './read-recording.ts';
+import { selfContainedUrdf } from './robot-description.ts';
 
 export { readRecording } from './read-recording.ts';
 export { writeMcap, streamWritable, type RecordingRobot, type McapCounts } from './mcap.ts';
 export { csvLines, CSV_HEADER } from './csv.ts';
+export { FOXGLOVE_TOPICS } from './topics.ts';
+export { selfContainedUrdf, meshMediaType, type RobotDescription } from './robot-description.ts';
+export {
+  storedProfile,
+  announcedProfile,
+  type BrokerLogin,
+  type FoundProfile,
+  type ProfileSource,
+} from './arm-profile.ts';
 export type { Recording } from './recording.ts';
 
 export const EXPORT_FORMATS = ['mcap', 'csv'] as const;
 export type ExportFormat = (typeof EXPORT_FORMATS)[number];
 
-/** The robot of profile `name` in `modelsDir`, with its URDF's joints; throws saying what is wrong. */
-export function loadRecordingRobot(name: string, modelsDir = MODELS_DIR): RecordingRobot {
+/**
+ * A mesh of robot folder `dir` by the name its URDF (at `urdfFile`) gives it, as the HUD finds
+ * it: `package://<pkg>/<path>` is `<path>` in the folder (the folder stands for every package),
+ * anything else is relative to the URDF. Never outside the folder.
+ */
+function readFolderMesh(dir: string, urdfFile: string, filename: string): Uint8Array {
+  const pkg = /^package:\/\/[^/]+\/(.+)$/.exec(filename);
+  if (!pkg && /^[a-z][a-z0-9+.-]*:/i.test(filename))
+    throw new Error('not a file of the robot folder');
+  const file = pkg ? path.join(dir, pkg[1]!) : path.join(path.dirname(urdfFile), filename);
+  if (path.relative(dir, file).startsWith('..')) throw new Error('outside the robot folder');
+  return fs.readFileSync(file);
+}
+
+/**
+ * The robot of profile `name` in `modelsDir`: its profile, its URDF's joints and its description
+ * with the meshes inline; throws saying what is wrong.
+ */
+export function loadRecordingRobot(
+  name: string,
+  modelsDir = MODELS_DIR,
+  source?: ProfileSource,
+): RecordingRobot {
   const folder = readRobotFolder(name, modelsDir);
-  const urdf =
-    folder.urdf ?? fs.readFileSync(path.join(modelsDir, name, folder.profile.urdf), 'utf8');
+  const dir = path.join(modelsDir, name);
+  const urdfFile = path.join(dir, folder.profile.urdf);
+  const urdf = folder.urdf ?? fs.readFileSync(urdfFile, 'utf8');
   const parsed = parseUrdfJoints(urdf);
   if (!parsed.ok) throw new Error(`${folder.profile.urdf}: ${parsed.errors.join('; ')}`);
-  return { profile: folder.profile, joints: parsed.joints };
+  const description = selfContainedUrdf(urdf, (f) => readFolderMesh(dir, urdfFile, f));
+  return { profile: folder.profile, joints: parsed.joints, description, source };
+}
+
+export interface FindRobotOptions {
+  reader: HistoryReader;
+  arm: string;
+  /** The range's end: the profile announced last before it. */
+  stopMs: number;
+  /** `--profile`: wins over what the arm announced. */
+  profile?: string;
+  /** Asked for the retained announcement when the history has none (null: not asked). */
+  broker: BrokerLogin | null;
+}
+
+/** The arm's profile name and where it came from, or null when nothing says it. */
+export async function findArmProfile(o: FindRobotOptions): Promise<FoundProfile | null> {
+  if (o.profile) return { name: o.profile, source: 'flag' };
+  const stored = await storedProfile(o.reader, o.arm, o.stopMs);
+  if (stored) return { name: stored, source: 'history' };
+  const announced = o.broker ? await announcedProfile(o.broker, o.arm) : null;
+  return announced ? { name: announced, source: 'broker' } : null;
 }
 
 export interface ExportOptions {

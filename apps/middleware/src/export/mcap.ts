@@ -1,74 +1,38 @@
 /**
  * A recording as an MCAP file (the format Foxglove and Lichtblick open), written with the
- * maintained `@mcap/core` writer, messages JSON-encoded with JSON schemas:
+ * maintained `@mcap/core` writer, messages JSON-encoded with JSON schemas (names: topics.ts):
  *   /arm/{arm}/servo/{id}     armtwin.ServoSample  one per stored `servo` point: pwm, angle, temp, volt
  *   /arm/{arm}/command/{id}   armtwin.Command      one per stored `command` point
  *   /arm/{arm}/ik             armtwin.IkResult     one per stored `ik` point
- *   /arm/{arm}/joint_states   foxglove.JointStates the profile's joints at each reported instant
- *   /tf                       foxglove.FrameTransforms every URDF joint's transform at those instants
- *   /arm/{arm}/audit          foxglove.Log         one per control event (who took, gave, lost control)
- * The last two need the arm's robot (profile and URDF); without it they are left out. Every
+ *   /{arm}/log                foxglove.Log         one per control event (who took, gave, lost control);
+ *                                                  the channel is there when no event is
+ *   /{arm}/robot_description  std_msgs/String      the URDF, meshes inline, once at the range's start
+ *   /{arm}/joint_states       foxglove.JointStates the profile's joints at each reported instant
+ *   /{arm}/targets            foxglove.JointStates the joints as commanded, at each command (all joints)
+ *   /{arm}/tf                 foxglove.FrameTransforms every URDF joint's transform at each report
+ * The last four need the arm's robot (profile and URDF); without it they are left out. Every
  * message's log and publish time is the point's own time. Messages go out in time order.
  */
 import type { Writable } from 'node:stream';
 import { McapWriter, type IWritable } from '@mcap/core';
 import { FrameTransforms, JointStates, Log } from '@foxglove/schemas/jsonschema';
 import type { Profile, UrdfJoint } from '@armtwin/robot';
+import type { ProfileSource } from './arm-profile.ts';
 import type { Recording } from './recording.ts';
-import { jointSamples, linkTransforms, type JointSample } from './robot-motion.ts';
+import type { RobotDescription } from './robot-description.ts';
+import { jointSamples, linkTransforms, targetSamples, type JointSample } from './robot-motion.ts';
+import { ROBOT_DESCRIPTION_SCHEMA, SCHEMAS } from './schemas.ts';
+import { FOXGLOVE_TOPICS as TOPICS } from './topics.ts';
 
-/** The robot a recording's arm is: its profile and its URDF's joints. */
+/** The robot a recording's arm is: its profile, its URDF's joints and description. */
 export interface RecordingRobot {
   profile: Profile;
   joints: readonly UrdfJoint[];
+  /** The URDF with its meshes inline, for the 3D panel (absent: no robot description topic). */
+  description?: RobotDescription;
+  /** How the profile was found (kept in the file's metadata). */
+  source?: ProfileSource;
 }
-
-const number = { type: 'number' } as const;
-const timestamp = {
-  type: 'object',
-  properties: { sec: { type: 'integer', minimum: 0 }, nsec: { type: 'integer', minimum: 0 } },
-} as const;
-
-const SCHEMAS = {
-  servo: {
-    title: 'armtwin.ServoSample',
-    description: 'One stored servo point (PROTOCOL.md §6): a position or health report',
-    type: 'object',
-    properties: {
-      timestamp,
-      id: { type: 'string' },
-      pwm: { type: 'integer', description: 'pulse width, µs' },
-      angle: { ...number, description: 'servo angle, degrees' },
-      temp: { ...number, description: '°C' },
-      volt: { ...number, description: 'supply, V' },
-    },
-  },
-  command: {
-    title: 'armtwin.Command',
-    description: 'One stored command point (PROTOCOL.md §6): what a servo was asked',
-    type: 'object',
-    properties: {
-      timestamp,
-      id: { type: 'string' },
-      pwm: { type: 'integer' },
-      angle: number,
-      ms: { type: 'integer' },
-    },
-  },
-  ik: {
-    title: 'armtwin.IkResult',
-    description: 'One stored $KMS outcome (PROTOCOL.md §4, §6)',
-    type: 'object',
-    properties: {
-      timestamp,
-      code: { type: 'integer' },
-      x: number,
-      y: number,
-      z: number,
-      a: number,
-    },
-  },
-} as const;
 
 /** foxglove.LogLevel: INFO, WARNING. Refusals and lost or taken-over control are warnings. */
 const LOG_INFO = 2;
@@ -124,6 +88,7 @@ export async function writeMcap(
       ['start', new Date(rec.startMs).toISOString()],
       ['stop', new Date(rec.stopMs).toISOString()],
       ['robot', robot?.profile.name ?? ''],
+      ['profileSource', robot?.source ?? ''],
     ]),
   });
   const schemaIds = new Map<string, number>();
@@ -166,21 +131,23 @@ export async function writeMcap(
     counts[topic] = (counts[topic] ?? 0) + 1;
   };
 
-  const base = `/arm/${rec.arm}`;
+  const arm = rec.arm;
+  // The control log's channel even with no event in range: a Log panel finds its topic.
+  await channel(TOPICS.log(arm), Log);
   const streams: Timed[][] = [
     rec.servo.map(({ ns, ...r }) => ({
       ns,
-      write: () => add(`${base}/servo/${r.id}`, SCHEMAS.servo, ns, r),
+      write: () => add(TOPICS.servo(arm, r.id), SCHEMAS.servo, ns, r),
     })),
     rec.command.map(({ ns, ...r }) => ({
       ns,
-      write: () => add(`${base}/command/${r.id}`, SCHEMAS.command, ns, r),
+      write: () => add(TOPICS.command(arm, r.id), SCHEMAS.command, ns, r),
     })),
-    rec.ik.map(({ ns, ...r }) => ({ ns, write: () => add(`${base}/ik`, SCHEMAS.ik, ns, r) })),
+    rec.ik.map(({ ns, ...r }) => ({ ns, write: () => add(TOPICS.ik(arm), SCHEMAS.ik, ns, r) })),
     rec.audit.map(({ ns, ...e }) => ({
       ns,
       write: () =>
-        add(`${base}/audit`, Log, ns, {
+        add(TOPICS.log(arm), Log, ns, {
           level: WARNING_KINDS.has(e.kind) ? LOG_WARNING : LOG_INFO,
           message: e.detail,
           name: `${e.kind} by ${e.by || 'the plain control topic'}`,
@@ -189,28 +156,48 @@ export async function writeMcap(
         }),
     })),
   ];
-  if (robot)
-    streams.push(jointSamples(robot.profile, rec.servo).map((s) => motion(s, robot, base, add)));
+  if (robot) {
+    const description = robot.description;
+    if (description) {
+      const ns = BigInt(rec.startMs) * 1_000_000n;
+      const data = { data: description.urdf };
+      streams.push([
+        { ns, write: () => add(TOPICS.robotDescription(arm), ROBOT_DESCRIPTION_SCHEMA, ns, data) },
+      ]);
+    }
+    const reported = jointSamples(robot.profile, rec.servo);
+    streams.push(reported.map((s) => motion(s, robot, arm, add)));
+    streams.push(
+      targetSamples(jointSamples(robot.profile, rec.command), reported).map((s) => ({
+        ns: s.ns,
+        write: () => add(TOPICS.targets(arm), JointStates, s.ns, { joints: known(s) }),
+      })),
+    );
+  }
   await mergeInTimeOrder(streams);
   await w.end();
   return counts;
 }
 
+/** A sample's joints that have a value (a servo with no report yet is left out). */
+const known = (s: JointSample) =>
+  s.names.flatMap((name, i) =>
+    Number.isFinite(s.positions[i]) ? [{ name, position: s.positions[i]! }] : [],
+  );
+
 /** The joint states and link transforms of one sample. */
 function motion(
   s: JointSample,
   robot: RecordingRobot,
-  base: string,
+  arm: string,
   add: (topic: string, schema: { title: string }, ns: bigint, body: object) => Promise<void>,
 ): Timed {
   return {
     ns: s.ns,
     write: async () => {
-      const known = s.names.flatMap((name, i) =>
-        Number.isFinite(s.positions[i]) ? [{ name, position: s.positions[i]! }] : [],
-      );
-      await add(`${base}/joint_states`, JointStates, s.ns, { joints: known });
-      const values = new Map(known.map((j) => [j.name, j.position]));
+      const joints = known(s);
+      await add(TOPICS.jointStates(arm), JointStates, s.ns, { joints });
+      const values = new Map(joints.map((j) => [j.name, j.position]));
       const transforms = linkTransforms(robot.joints, values).map((t) => ({
         timestamp: stamp(s.ns),
         parent_frame_id: t.parent,
@@ -218,7 +205,7 @@ function motion(
         translation: { x: t.translation[0], y: t.translation[1], z: t.translation[2] },
         rotation: { x: t.rotation[0], y: t.rotation[1], z: t.rotation[2], w: t.rotation[3] },
       }));
-      await add('/tf', FrameTransforms, s.ns, { transforms });
+      await add(TOPICS.transforms(arm), FrameTransforms, s.ns, { transforms });
     },
   };
 }

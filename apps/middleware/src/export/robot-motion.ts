@@ -52,3 +52,24 @@ export function jointSamples(profile: Profile, rows: readonly ServoRow[]): Joint
   close();
   return out;
 }
+
+/**
+ * The joints as commanded, one sample per command instant (`targets`: `jointSamples` of the
+ * command rows), every joint filled: a servo not commanded yet in the range holds where it
+ * stands, so it takes its latest reported value (`reported`: `jointSamples` of the servo rows).
+ * Every sample then lists the same joints in the same order as the joint states.
+ */
+export function targetSamples(
+  targets: readonly JointSample[],
+  reported: readonly JointSample[],
+): JointSample[] {
+  let r = -1;
+  return targets.map((t) => {
+    while (r + 1 < reported.length && reported[r + 1]!.ns <= t.ns) r++;
+    const stands = reported[r]?.positions;
+    return {
+      ...t,
+      positions: t.positions.map((q, i) => (Number.isNaN(q) ? (stands?.[i] ?? NaN) : q)),
+    };
+  });
+}

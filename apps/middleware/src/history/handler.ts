@@ -17,6 +17,7 @@ import {
   EXPORT_FORMATS,
   exportRecording,
   loadRecordingRobot,
+  storedProfile,
   type ExportFormat,
   type RecordingRobot,
 } from '../export/index.ts';
@@ -73,7 +74,10 @@ export function createHistoryHandler(deps: HistoryHandlerDeps): HistoryHandler {
   const ctx: endpoints.EndpointContext = { reader: deps.reader, options };
   const robotFor = deps.robotFor ?? ((profile: string) => loadRecordingRobot(profile));
 
-  /** `/history/export?arm&start&stop&format=mcap|csv&profile=NAME`: the range as a download. */
+  /**
+   * `/history/export?arm&start&stop&format=mcap|csv&profile=NAME`: the range as a download. An
+   * MCAP without `profile` takes the one the arm announced, as stored with its history.
+   */
   async function exportFile(
     res: ServerResponse,
     head: boolean,
@@ -99,7 +103,7 @@ export function createHistoryHandler(deps: HistoryHandlerDeps): HistoryHandler {
           head,
         );
       try {
-        robot = robotFor(profile);
+        robot = { ...robotFor(profile), source: 'flag' };
       } catch (err) {
         return send(
           res,
@@ -107,6 +111,20 @@ export function createHistoryHandler(deps: HistoryHandlerDeps): HistoryHandler {
           { error: (err as Error).message.split('\n')[0], parameter: 'profile' },
           head,
         );
+      }
+    } else if (format === 'mcap') {
+      let announced: string | null;
+      try {
+        announced = await storedProfile(deps.reader, p.arm, p.stopMs);
+      } catch (err) {
+        deps.onError?.(err, '/history/export');
+        const message = err instanceof Error ? err.message : String(err);
+        return send(res, 502, { error: `InfluxDB query failed: ${message.slice(0, 300)}` }, head);
+      }
+      try {
+        robot = announced ? { ...robotFor(announced), source: 'history' } : null;
+      } catch {
+        robot = null; // a profile this server has no folder for: positions and fields only
       }
     }
     const stamp = new Date(p.startMs).toISOString().replace(/[:.]/g, '-');
