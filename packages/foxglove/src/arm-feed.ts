@@ -54,7 +54,13 @@ export class ArmFeed {
   private readonly alert: string;
   private out: FoxgloveMessage[] = [];
   private stampMs = 0;
-  private targets: { name: string; position: number; ms: number }[] = [];
+  /** Each servo's last commanded joint value (profile order; NaN: none yet). */
+  private readonly commanded: number[];
+  /** Each joint's last reported value, by joint name. */
+  private readonly reported = new Map<string, number>();
+  /** The servos (profile index → ms) the control payload being read moves. */
+  private moved = new Map<number, number>();
+  private readonly slotById: Map<number, number>;
   private readonly statusReader;
   private readonly controlReader;
 
@@ -65,6 +71,8 @@ export class ArmFeed {
   ) {
     this.joints = new JointStateBuilder(profile);
     this.byId = new Map(profile.servos.map((s) => [s.id, s]));
+    this.slotById = new Map(profile.servos.map((s, i) => [s.id, i]));
+    this.commanded = profile.servos.map(() => NaN);
     this.status = topic(armId, 'status');
     this.control = topic(armId, 'control');
     this.audit = auditTopic(armId);
@@ -117,6 +125,7 @@ export class ArmFeed {
     if (!js) return;
     const ms = js.stamp_ms ?? this.stampMs;
     const joints = js.name.map((name, i) => ({ name, position: js.position[i]! }));
+    for (const j of joints) this.reported.set(j.name, j.position);
     this.push('joint_states', ms, (timestamp) => ({ timestamp, joints }));
     const values = new Map(joints.map((j) => [j.name, j.position]));
     this.push('tf', ms, (timestamp) => ({
@@ -147,21 +156,32 @@ export class ArmFeed {
       this.log(ms, WARNING, `${this.armId}/controller`, f.text);
   }
 
+  /**
+   * Every joint, in servo order, as the arm was last sent (the MCAP export's `/{arm}/targets`
+   * too, so a plot by index reads both): a joint this command moves carries its `ms`, one it
+   * leaves holds its last target, or where it was last reported (`ms` 0).
+   */
   private onControl(by: string, payload: Uint8Array): void {
-    this.targets = [];
+    this.moved = new Map();
     this.controlReader.clearStamp();
     this.controlReader.feed(payload);
-    if (this.targets.length === 0) return;
-    const joints = this.targets;
+    if (this.moved.size === 0) return;
+    const joints = this.profile.servos.map((s, i) => {
+      const target = this.commanded[i]!;
+      const position = Number.isNaN(target) ? (this.reported.get(s.joint) ?? NaN) : target;
+      return { name: s.joint, position, ms: this.moved.get(i) ?? 0 };
+    });
     this.push('targets', this.stampMs, (timestamp) => ({ timestamp, by, joints }));
   }
 
   private onControlFrame(f: Frame): void {
     if (f.type !== 'move' && f.type !== 'angleMove') return;
     const servo = this.byId.get(f.id);
-    if (!servo) return;
-    const position = f.type === 'move' ? jointFromPwm(servo, f.pwm) : jointFromServo(servo, f.deg);
-    this.targets.push({ name: servo.joint, position, ms: f.ms });
+    const i = this.slotById.get(f.id);
+    if (!servo || i === undefined) return;
+    this.commanded[i] =
+      f.type === 'move' ? jointFromPwm(servo, f.pwm) : jointFromServo(servo, f.deg);
+    this.moved.set(i, f.ms);
   }
 
   private onAudit(payload: Uint8Array): void {

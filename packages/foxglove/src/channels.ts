@@ -27,7 +27,7 @@ const time = {
 const TARGETS = {
   title: 'armtwin.JointTargets',
   description:
-    'Where a command sent the arm (PROTOCOL.md §1, §8): each moved joint in URDF units (rad, m), by whom, in how long',
+    'Where the arm was last sent (PROTOCOL.md §1, §8): every joint in servo order, URDF units (rad, m); a joint the command moves has its ms, the others hold (ms 0); by whom',
   type: 'object',
   properties: {
     timestamp: time,

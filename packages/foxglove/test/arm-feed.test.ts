@@ -43,7 +43,13 @@ describe('ArmFeed', () => {
       level: 'warning',
     });
     const [target] = f.feed('arm/arm1/control/alice', bytes('#000P1600T0500!'), 3000);
-    expect(target!.body).toMatchObject({ by: 'alice', joints: [{ name: 'base_yaw', ms: 500 }] });
+    const joints = (target!.body as { joints: { name: string; position: number; ms: number }[] })
+      .joints;
+    // every joint in servo order: the moved one with its ms, the others where they stand
+    expect(target!.body).toMatchObject({ by: 'alice' });
+    expect(joints.map((j) => j.name)).toEqual(profile.servos.map((s) => s.joint));
+    expect(joints.map((j) => j.ms)).toEqual(profile.servos.map((s) => (s.id === 0 ? 500 : 0)));
+    expect(joints[0]!.position).toBeCloseTo(jointFromPwm(profile.servos[0]!, 1600), 12);
     expect(target!.ns).toBe(3_000_000_000n);
     const audit = { at: 4000, by: 'bob', kind: 'refused-command', detail: 'controlled by alice' };
     const [log] = f.feed('arm/arm1/audit', bytes(JSON.stringify(audit)), 0);
