@@ -36,6 +36,7 @@ test.beforeAll(async ({}, testInfo) => {
     path.join(testInfo.project.outputDir, `armtwin-up-so101-${process.pid}.log`),
     [],
     '',
+    { so101: true },
   );
   observer = await ArmObserver.connect(up.mqttUrl, ARM);
   await until(

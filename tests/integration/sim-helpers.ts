@@ -59,6 +59,8 @@ export const armtwin = (args: string[], env?: Record<string, string>) =>
 /**
  * `armtwin up` (through `script`, e.g. scripts/start.mjs or the CLI) on free HTTP and MQTT ports,
  * resolved once it prints that it is running; fails with its output if it exits or takes 30 s.
+ * Without the second arm (`--no-so101`: its emulated bus polls all the time, load no test here
+ * needs; tests/integration/up-so101.test.ts runs `npm start` with it).
  */
 export async function startUpProcess(
   script: string[],
@@ -67,6 +69,7 @@ export async function startUpProcess(
 ): Promise<Child> {
   const up = runNode([
     ...script,
+    '--no-so101',
     ...args,
     ...['--port', String(ports.httpPort), '--mqtt-port', String(ports.mqttPort)],
   ]);

@@ -27,10 +27,15 @@ export interface UpProcess {
   stop(): Promise<void>;
 }
 
+/**
+ * `npm start`'s `armtwin up` (no HUD build, no middleware) on free ports. Without the second arm
+ * unless `so101` (its emulated bus polls all the time: load a spec about arm1 does not need).
+ */
 export async function startUp(
   logFile: string,
   extraArgs: string[] = [],
   usersFile = USERS_FILE,
+  { so101 = false }: { so101?: boolean } = {},
 ): Promise<UpProcess> {
   const [httpPort = 0, mqttPort = 0] = await freePorts(2);
   fs.mkdirSync(path.dirname(logFile), { recursive: true });
@@ -40,6 +45,7 @@ export async function startUp(
       'scripts/start.mjs',
       '--no-web',
       '--no-middleware',
+      ...(so101 ? [] : ['--no-so101']),
       '--port',
       String(httpPort),
       '--mqtt-port',
