@@ -43,6 +43,7 @@ import { handoverSection } from './handover.ts';
 import { soakSection } from './soak.ts';
 import { twinSection } from './twin.ts';
 import { ros2Section } from './ros2.ts';
+import { lerobotSection } from './lerobot.ts';
 import { CHROMIUM_ARGS, GPU_CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
 
 const SECTIONS: Section[] = [
@@ -59,6 +60,7 @@ const SECTIONS: Section[] = [
   holdJogSection,
   handoverSection,
   ros2Section,
+  lerobotSection,
   soakSection,
 ];
 /** Sections left out of a run without `--only` (the soak alone takes `--soak-minutes`, 30 min). */
@@ -77,6 +79,7 @@ const NEEDS_BROKER = new Set([
   'handover',
   'soak',
   'twin',
+  'lerobot',
 ]);
 const NEEDS_INFLUX = new Set(['ingest', 'cpu', 'telegraf', 'soak']);
 
