@@ -34,6 +34,13 @@ def patient_packet_timeout(self, packet_length):
     self.packet_timeout = self.tx_time_per_byte * (packet_length + 3.0) + 500
 
 
+def answers(bus, motor):
+    try:
+        return bus.ping(motor) is not None
+    except IndexError:  # the servo SDK's ping on a reply cut short
+        return False
+
+
 def direct_robot(req):
     from lerobot.robots.so_follower import SO101Follower, SO101FollowerConfig
 
@@ -47,6 +54,13 @@ def direct_robot(req):
         for i, m in enumerate(MOTORS)
     }
     robot._save_calibration()
+    # A fresh emulated bus can miss the first packets while node warms up on a loaded machine;
+    # wait until every servo answers LeRobot's own ping (30 s at most), then let it connect.
+    robot.bus.connect(handshake=False)
+    deadline = time.monotonic() + 30
+    while not all(answers(robot.bus, m) for m in robot.bus.motors) and time.monotonic() < deadline:
+        time.sleep(0.2)
+    robot.bus.disconnect(disable_torque=False)
     robot.connect(calibrate=False)
     robot.bus.write_calibration(robot.calibration)
     return robot
