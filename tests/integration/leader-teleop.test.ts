@@ -15,8 +15,8 @@ import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { parseAudit, type AuditEvent } from '@armtwin/protocol';
-import { MODELS_DIR } from '@armtwin/sim';
 import { useMosquitto } from '../helpers/use-services.ts';
+import { startSo101Follower } from './so101-follower.ts';
 import { armtwin, ARMTWIN, StatusWatcher, type Child } from './sim-helpers.ts';
 import { REPO_ROOT } from '../helpers/services.ts';
 
@@ -26,8 +26,6 @@ const MODELS = path.join(dir, 'models');
 const ARM = 'follower';
 const USER = 'alice';
 const LEADER = `arm/${ARM}/leader/${USER}`;
-/** Where the SO-101's gripper frame sweeps with shoulder_pan past about +30° (others at 0). */
-const ZONE = { name: 'bin', shape: 'box', min: [250, -280, 150], max: [360, -190, 300] };
 
 let socat: ChildProcess;
 let leaderBus: ChildProcess;
@@ -54,19 +52,7 @@ async function until(ok: () => boolean, what: string, ms = 20_000): Promise<void
 }
 
 beforeAll(async () => {
-  const raw = JSON.parse(
-    fs.readFileSync(path.join(MODELS_DIR, 'so101', 'profile.json'), 'utf8'),
-  ) as Record<string, unknown>;
-  fs.cpSync(path.join(MODELS_DIR, 'so101'), path.join(MODELS, 'so101'), { recursive: true });
-  fs.writeFileSync(
-    path.join(MODELS, 'so101', 'profile.json'),
-    JSON.stringify({ ...raw, keepOut: { zones: [ZONE] } }),
-  );
-  follower = armtwin([
-    'sim',
-    ...['--mqtt', broker().url, '--arm', ARM, '--profile', 'so101', '--models', MODELS],
-    ...['--report', 'angle', '--rate', '50'],
-  ]);
+  follower = startSo101Follower(broker().url, ARM, MODELS);
   w = await StatusWatcher.connect(broker().url, ARM);
   w.client.on('message', (topic, payload) => {
     if (topic === `arm/${ARM}/audit`) {

@@ -17,11 +17,11 @@ import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { parseAudit, type AuditEvent } from '@armtwin/protocol';
-import { MODELS_DIR } from '@armtwin/sim';
 import { LEROBOT_SCRIPTS, lerobotPython } from '../helpers/lerobot-python.ts';
 import { REPO_ROOT } from '../helpers/services.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
-import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
+import { startSo101Follower } from './so101-follower.ts';
+import { StatusWatcher, type Child } from './sim-helpers.ts';
 import { serialLine } from './serial-line.ts';
 
 const broker = useMosquitto();
@@ -30,8 +30,6 @@ const MODELS = path.join(dir, 'models');
 const ARM = 'follower';
 const PLUGIN_DIR = path.join(REPO_ROOT, 'packages', 'lerobot', 'python');
 const MOTORS = ['shoulder_pan', 'shoulder_lift', 'elbow_flex', 'wrist_flex', 'wrist_roll'];
-/** Where the SO-101's gripper frame sweeps with shoulder_pan past about +30° (others at 0). */
-const ZONE = { name: 'bin', shape: 'box', min: [250, -280, 150], max: [360, -190, 300] };
 
 /** The leader's calibration as LeRobot writes it: a full turn, zero homing but shoulder_pan's. */
 const leaderCalibration = (panOffset: number) =>
@@ -56,19 +54,7 @@ const audit: AuditEvent[] = [];
 const pan = (from = 0) => w.angles(1, from);
 
 beforeAll(async () => {
-  const raw = JSON.parse(
-    fs.readFileSync(path.join(MODELS_DIR, 'so101', 'profile.json'), 'utf8'),
-  ) as Record<string, unknown>;
-  fs.cpSync(path.join(MODELS_DIR, 'so101'), path.join(MODELS, 'so101'), { recursive: true });
-  fs.writeFileSync(
-    path.join(MODELS, 'so101', 'profile.json'),
-    JSON.stringify({ ...raw, keepOut: { zones: [ZONE] } }),
-  );
-  follower = armtwin([
-    'sim',
-    ...['--mqtt', broker().url, '--arm', ARM, '--profile', 'so101', '--models', MODELS],
-    ...['--report', 'angle', '--rate', '50'],
-  ]);
+  follower = startSo101Follower(broker().url, ARM, MODELS);
   w = await StatusWatcher.connect(broker().url, ARM);
   w.client.on('message', (topic, payload) => {
     const e = topic === `arm/${ARM}/audit` ? parseAudit(payload.toString()) : undefined;
