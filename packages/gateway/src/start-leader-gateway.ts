@@ -66,7 +66,11 @@ export function startLeaderGateway(
     },
     {
       ...SYSTEM_CLOCK,
-      publish: (t, p, opts) => client.connected && client.publish(t, p, opts),
+      publish: (t, p, opts) => {
+        // Every change of whether it follows is logged (the retained state says it too).
+        if (t === topics.state) log?.info({ follower: o.follower, state: p }, 'leader: state');
+        if (client.connected) client.publish(t, p, opts);
+      },
       onFirst: o.onFirst,
     },
   );
