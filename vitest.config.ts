@@ -14,6 +14,7 @@ const SERIAL_LINE = [
   'tests/integration/gateway-doctor.test.ts',
   'tests/integration/lerobot-plugin.test.ts',
   'tests/integration/up-so101.test.ts',
+  'tests/integration/leader-teleop.test.ts',
 ];
 const INTEGRATION = { testTimeout: 180_000, hookTimeout: 240_000 };
 

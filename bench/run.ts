@@ -44,6 +44,7 @@ import { soakSection } from './soak.ts';
 import { twinSection } from './twin.ts';
 import { ros2Section } from './ros2.ts';
 import { foxgloveSection } from './foxglove.ts';
+import { lerobotSection } from './lerobot.ts';
 import { CHROMIUM_ARGS, GPU_CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
 
 const SECTIONS: Section[] = [
@@ -61,6 +62,7 @@ const SECTIONS: Section[] = [
   handoverSection,
   ros2Section,
   foxgloveSection,
+  lerobotSection,
   soakSection,
 ];
 /** Sections left out of a run without `--only` (the soak alone takes `--soak-minutes`, 30 min). */
@@ -79,6 +81,7 @@ const NEEDS_BROKER = new Set([
   'handover',
   'soak',
   'twin',
+  'lerobot',
 ]);
 const NEEDS_INFLUX = new Set(['ingest', 'cpu', 'telegraf', 'soak']);
 

@@ -17,11 +17,11 @@ import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { parseAudit, type AuditEvent } from '@armtwin/protocol';
-import { MODELS_DIR } from '@armtwin/sim';
 import { LEROBOT_SCRIPTS, lerobotPython } from '../helpers/lerobot-python.ts';
 import { REPO_ROOT } from '../helpers/services.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
-import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
+import { startSo101Follower } from './so101-follower.ts';
+import { StatusWatcher, type Child } from './sim-helpers.ts';
 import { serialLine } from './serial-line.ts';
 
 const broker = useMosquitto();
@@ -30,8 +30,6 @@ const MODELS = path.join(dir, 'models');
 const ARM = 'follower';
 const PLUGIN_DIR = path.join(REPO_ROOT, 'packages', 'lerobot', 'python');
 const MOTORS = ['shoulder_pan', 'shoulder_lift', 'elbow_flex', 'wrist_flex', 'wrist_roll'];
-/** Where the SO-101's gripper frame sweeps with shoulder_pan past about +30° (others at 0). */
-const ZONE = { name: 'bin', shape: 'box', min: [250, -280, 150], max: [360, -190, 300] };
 
 /** The leader's calibration as LeRobot writes it: a full turn, zero homing but shoulder_pan's. */
 const leaderCalibration = (panOffset: number) =>
@@ -56,19 +54,7 @@ const audit: AuditEvent[] = [];
 const pan = (from = 0) => w.angles(1, from);
 
 beforeAll(async () => {
-  const raw = JSON.parse(
-    fs.readFileSync(path.join(MODELS_DIR, 'so101', 'profile.json'), 'utf8'),
-  ) as Record<string, unknown>;
-  fs.cpSync(path.join(MODELS_DIR, 'so101'), path.join(MODELS, 'so101'), { recursive: true });
-  fs.writeFileSync(
-    path.join(MODELS, 'so101', 'profile.json'),
-    JSON.stringify({ ...raw, keepOut: { zones: [ZONE] } }),
-  );
-  follower = armtwin([
-    'sim',
-    ...['--mqtt', broker().url, '--arm', ARM, '--profile', 'so101', '--models', MODELS],
-    ...['--report', 'angle', '--rate', '50'],
-  ]);
+  follower = startSo101Follower(broker().url, ARM, MODELS);
   w = await StatusWatcher.connect(broker().url, ARM);
   w.client.on('message', (topic, payload) => {
     const e = topic === `arm/${ARM}/audit` ? parseAudit(payload.toString()) : undefined;
@@ -85,6 +71,8 @@ afterAll(async () => {
 });
 
 let sessions = 0;
+/** The dataset lerobot-record wrote through armtwin (the record test's). */
+let recorded = '';
 /**
  * One LeRobot session (`op` teleoperate or record, tests/helpers/lerobot/session_armtwin.py)
  * with the leader's shoulder_pan at `panOffset`; `during` runs while it does.
@@ -167,6 +155,7 @@ describe('LeRobot through armtwin (lerobot_robot_armtwin)', () => {
   test('lerobot-record: the follower goes where the leader is, and the dataset holds it', async () => {
     const from = w.items.length;
     const r = await session('record', 455, { time_s: 3 });
+    recorded = path.join(dir, `session${sessions}`, 'dataset');
     expect(r.code, r.err).toBe(0);
     const target = leaderPan(455); // about -40°
     expect(pan(from).some((d) => near(d, target))).toBe(true);
@@ -223,5 +212,50 @@ describe('LeRobot through armtwin (lerobot_robot_armtwin)', () => {
     const after = pan(w.items.length - 10);
     expect(after.every((d) => near(d, stoppedAt))).toBe(true);
     expect(near(stoppedAt, target, 5)).toBe(false);
+  }, 180_000);
+
+  test("lerobot-replay: LeRobot's own replay of the recorded episode drives the follower back to its actions", async () => {
+    expect(recorded, 'the record test ran first').not.toBe('');
+    // Somewhere else first (nobody holds the arm now: the plain control topic moves it).
+    await w.send('{#001A+010.00T0000!}');
+    await w.until(
+      () => (near(pan().at(-1) ?? NaN, 10) ? true : undefined),
+      20_000,
+      'the follower at +10°',
+    );
+    const from = w.items.length;
+    const auditFrom = audit.length;
+    const py = spawn(
+      lerobotPython('lerobot, lerobot_robot_armtwin'),
+      [path.join(LEROBOT_SCRIPTS, 'replay_armtwin.py')],
+      {
+        env: { ...process.env, PYTHONPATH: PLUGIN_DIR },
+      },
+    );
+    let out = '';
+    let err = '';
+    py.stdout.on('data', (d: Buffer) => (out += d.toString()));
+    py.stderr.on('data', (d: Buffer) => (err += d.toString()));
+    const code = new Promise<number | null>((r) => py.once('exit', r));
+    py.stdin.end(
+      JSON.stringify({
+        broker: broker().url,
+        arm: ARM,
+        user: 'lerobot-replay',
+        repo_id: 'local/armtwin-so101',
+        root: recorded,
+        episode: 0,
+        fps: 30,
+      }),
+    );
+    expect(await code, err.slice(-3000)).toBe(0);
+    const ep = JSON.parse(out) as { frames: number; first: number[]; last: number[] };
+    expect(ep.frames).toBeGreaterThan(10);
+    // The follower went from +10° to the episode's shoulder_pan (the leader's −40°), as replayed.
+    expect(pan(from).some((d) => near(d, ep.last[0]!))).toBe(true);
+    expect(
+      audit.slice(auditFrom).some((e) => e.kind === 'taken' && e.by === 'lerobot-replay'),
+    ).toBe(true);
+    expect(audit.at(-1)).toMatchObject({ kind: 'released', by: 'lerobot-replay' });
   }, 180_000);
 });

@@ -33,6 +33,10 @@ const VIEWER_READ = [
   // The thermal model's early warnings, raised by the middleware (docs/protocol.md § A thermal
   // model of each servo).
   'arm/+/alert',
+  // A leader arm driving the arm (`armtwin gateway --leader-of`, docs/so101.md): its pose (the
+  // HUD's ghost), whether it follows, and its user's enable.
+  'arm/+/leader/+',
+  'arm/+/leader/+/+',
 ] as const;
 
 // An operator moves an arm only on its own control topic, and claims it on its own claim topic:
@@ -46,6 +50,10 @@ const OPERATOR_WRITE = [
   'arm/+/sim',
   'arm/+/torque',
   'arm/+/camera/+/calibration',
+  // The leader arm of this user (`armtwin gateway --leader-of ARM --user {user}`, logged in as
+  // the user): its pose, its state (and last will), and its enable after a stop.
+  'arm/+/leader/{user}',
+  'arm/+/leader/{user}/+',
 ] as const;
 
 export const ROLE_RULES: Record<Role, RoleRules> = {

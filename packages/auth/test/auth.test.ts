@@ -91,6 +91,15 @@ describe('roles', () => {
     expect(canPublish(operator, 'arm/arm7/sim/faults')).toBe(false);
   });
 
+  test("an operator's leader arm announces only its own pose and state, and only they re-enable it", () => {
+    for (const k of ['', '/state', '/enable'])
+      expect(canPublish(operator, `arm/arm7/leader/${operator.name}${k}`)).toBe(true);
+    expect(canPublish(operator, 'arm/arm7/leader/someone-else/enable')).toBe(false);
+    expect(canPublish(viewer, `arm/arm7/leader/${operator.name}`)).toBe(false);
+    expect(canSubscribe(viewer, 'arm/+/leader/+')).toBe(true);
+    expect(canSubscribe(viewer, 'arm/+/leader/+/state')).toBe(true);
+  });
+
   test('a device is confined to its own arm', () => {
     expect(canPublish(device, 'arm/arm1/status')).toBe(true);
     expect(canPublish(device, 'arm/arm2/status')).toBe(false);

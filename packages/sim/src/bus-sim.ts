@@ -21,6 +21,7 @@ import {
   type EmulatedBus,
 } from '@armtwin/servo-bus';
 import type { Fault } from './faults.ts';
+import type { HandMove } from './hand.ts';
 import { DEFAULT_SIM_MODEL_OPTIONS } from './options.ts';
 
 export interface BusSimOptions {
@@ -117,6 +118,19 @@ export class BusSimCore {
   feed(bytes: Uint8Array, nowMs: number): Uint8Array {
     this.advance(nowMs);
     return this.bus.feed(bytes);
+  }
+
+  /**
+   * A hand puts servo `id`'s shaft at `degrees` (servo angle, the profile's polarity) at
+   * `nowMs`; false when the bus has no such servo.
+   */
+  hand(move: HandMove, nowMs: number): boolean {
+    this.advance(nowMs);
+    const s = this.bus.servo(move.id);
+    const servo = this.o.profile.servos.find((p) => p.id === move.id);
+    if (!s) return false;
+    s.setPosition(degreesToTicks(move.degrees, { id: move.id, direction: servo?.polarity ?? 1 }));
+    return true;
   }
 
   /** Moves the shafts to `nowMs`; a stalled shaft stays where it jammed. */

@@ -4,6 +4,7 @@
  */
 export * from './bus-sim.ts';
 export * from './faults.ts';
+export * from './hand.ts';
 export * from './mqtt-sim.ts';
 export * from './options.ts';
 export * from './profile.ts';

@@ -4,6 +4,7 @@
  * profile, starts the runner with the faults in force, and logs what it does; the caller
  * decides when to stop.
  */
+import readline from 'node:readline';
 import type { Logger } from 'pino';
 import { connectBrokers } from '@armtwin/link';
 import { linkOptions, OPERATOR_LEASE_MS } from '@armtwin/protocol';
@@ -11,6 +12,7 @@ import { describeBroker, parseBrokerList, redactBrokerUrl } from '@armtwin/link'
 import type { BenchFault, BusProtocol } from '@armtwin/servo-bus';
 import { startBusSim, type BusSimCore } from './bus-sim.ts';
 import type { Fault } from './faults.ts';
+import { parseHandLine } from './hand.ts';
 import { simWill, startMqttSim } from './mqtt-sim.ts';
 import type { ReportUnits } from './options.ts';
 import { DEFAULT_PROFILE, loadSimProfile, MODELS_DIR } from './profile.ts';
@@ -51,6 +53,8 @@ export interface SimOptions {
   benchFaults: BenchFault[];
   /** A beating operator is let go after this long without a `1`, ms (0 = only a `0`). */
   operatorLeaseMs: number;
+  /** On a servo bus: hand moves, one line each (`1:30,2:-15`, ./hand.ts), e.g. stdin. */
+  handInput?: NodeJS.ReadableStream;
   log: Logger;
   /** Told the first time each kind of problem happens (later ones are only counted). */
   onFirst: (kind: string, message: string) => void;
@@ -85,6 +89,25 @@ export interface Sim {
   stop(): Promise<void>;
 }
 
+/** Moves the bus's shafts by the lines of `input` (./hand.ts); bad lines are told once, by kind. */
+function followHand(
+  input: NodeJS.ReadableStream,
+  core: BusSimCore,
+  onFirst: SimOptions['onFirst'],
+): readline.Interface {
+  const lines = readline.createInterface({ input });
+  lines.on('line', (line) => {
+    try {
+      for (const m of parseHandLine(line))
+        if (!core.hand(m, Date.now()))
+          onFirst('hand:no-servo', `hand: no servo ${m.id} on the bus`);
+    } catch (err) {
+      onFirst('hand:bad-line', (err as Error).message);
+    }
+  });
+  return lines;
+}
+
 export async function startSim(
   options: Partial<SimOptions> & Pick<SimOptions, 'mqttUrl' | 'armId' | 'log'>,
 ): Promise<Sim> {
@@ -108,11 +131,19 @@ export async function startSim(
       baudRate: o.baudRate,
       onFirst: o.onFirst,
     });
+    const hands = o.handInput && followHand(o.handInput, sim.core, o.onFirst);
     log.info(
       { serial: o.serialPath, bus: o.bus, ids: profile.profile.servos.map((s) => s.id) },
       'simulated servo bus on the serial line',
     );
-    return { bus: sim.core, closed: sim.closed, stop: () => sim.stop() };
+    return {
+      bus: sim.core,
+      closed: sim.closed,
+      stop: async () => {
+        hands?.close();
+        await sim.stop();
+      },
+    };
   }
   if (o.serialPath) {
     const sim = await startSerialSim({

@@ -8,6 +8,7 @@ import {
   runBusDoctor,
   startBusGateway,
   startGateway,
+  startLeaderGateway,
 } from '@armtwin/gateway';
 import { BUS_PROTOCOLS, type BusProtocol } from '@armtwin/servo-bus';
 import { DEFAULT_ROS2_GATEWAY_START, MAX_ROS2_DOMAIN, startRos2Gateway } from '@armtwin/ros2';
@@ -35,6 +36,8 @@ interface GatewayFlags {
   password?: string;
   operatorLease: number;
   doctor: boolean;
+  leaderOf?: string;
+  user: string;
 }
 
 export function registerGateway(program: Command): void {
@@ -100,6 +103,16 @@ export function registerGateway(program: Command): void {
     .option('--password <secret>', 'broker password (env MQTT_PASSWORD)')
     .addOption(operatorLeaseOption())
     .option(
+      '--leader-of <arm>',
+      'servo bus: the bus holds a leader arm (torque off, moved by hand) whose pose drives this follower arm through its controller',
+      armId,
+    )
+    .option(
+      '--user <name>',
+      "--leader-of: who the leader is to the follower's controller (its lease and commands)",
+      'leader',
+    )
+    .option(
       '--doctor',
       'servo bus: scan every baud rate and id, report what is wrong and how to fix it, and exit (1 when an error is found)',
       false,
@@ -128,6 +141,14 @@ is on at start; 0 on arm/{id}/torque turns it off, 1 back on. $KMS goes through 
 Before it starts, the servo doctor checks the bus at --baud (ids, model, firmware, supply against
 the servos' voltage, overheat and overload flags...) and logs each finding with its fix; with
 --doctor it also tries every baud rate, prints the report and exits (docs/so101.md).
+
+With --leader-of ARM the bus holds a leader arm (an SO-101 leader: same servo names as its
+follower): torque goes off, its positions are read at --rate and announced on
+arm/ARM/leader/USER ($TIM + angle frames, for the HUD's ghost), and each pose that moved goes to
+ARM as USER's angle moves (--user, default leader) on arm/ARM/control/USER, holding ARM's lease:
+ARM's controller checks limits and keep-out zones. After an emergency stop (or a lost lease) the
+leader stops driving ARM until 1 is published on arm/ARM/leader/USER/enable; whether it follows is
+retained on arm/ARM/leader/USER/state (docs/so101.md).
 
 With --ros2 (needs bash scripts/install-ros2.sh once) the arm is a ROS 2 arm, e.g. under
 ros2_control: its joint states (matched to --profile by joint name) are published as angle frames
@@ -166,6 +187,23 @@ the joints are. The arm is offline while no joint state arrives.`,
         } catch (err) {
           log.warn(`servo doctor: could not check the bus (${(err as Error).message})`);
         }
+      }
+      if (flags.leaderOf) {
+        if (flags.ros2 || flags.bus === 'lsc')
+          program.error('--leader-of needs a servo bus: --bus feetech|dynamixel --serial <path>');
+        const leader = startLeaderGateway({
+          ...line,
+          bus: flags.bus,
+          profile: flags.profile,
+          modelsDir: flags.models,
+          follower: flags.leaderOf,
+          user: flags.user,
+          stateRate: flags.rate,
+          baudRate: flags.baud ?? DEFAULT_BUS_GATEWAY_OPTIONS.baudRate,
+        });
+        await untilSignal(log);
+        await leader.stop();
+        return;
       }
       const gw = flags.ros2
         ? await startRos2Gateway({

@@ -47,6 +47,7 @@ interface SimFlags {
   baud: number;
   bus?: BusProtocol;
   busFault?: BenchFault[];
+  hand: boolean;
   stall?: number[];
   overheat?: Fault[];
   undervolt?: number;
@@ -145,6 +146,11 @@ export function registerSim(program: Command): void {
         "with --serial: answer as a servo bus of the profile's servos (ids from the profile) instead of frames",
       ).choices(BUS_PROTOCOLS),
     )
+    .option(
+      '--hand',
+      'with --bus: read hand moves from stdin, one line each: ID:DEGREES[,ID:DEGREES…] puts the shafts there (a leader arm, torque off)',
+      false,
+    )
     .option('--stall <id>', 'stall this servo (repeatable)', collect(servo))
     .option(
       '--bus-fault <fault>',
@@ -167,6 +173,7 @@ export function registerSim(program: Command): void {
     .addHelpText('after', FAULT_HELP + MOTION_HELP)
     .action(async (flags: SimFlags) => {
       if (flags.bus && !flags.serial) program.error('--bus needs --serial <path>');
+      if (flags.hand && !flags.bus) program.error('--hand needs --bus <protocol>');
       const env = loadCliConfig();
       const log = createLogger('sim', env.logLevel);
       const sim = await startSim({
@@ -186,6 +193,7 @@ export function registerSim(program: Command): void {
         faults: faultsFrom(flags),
         benchFaults: flags.busFault ?? [],
         operatorLeaseMs: flags.operatorLease,
+        ...(flags.hand ? { handInput: process.stdin } : {}),
         log,
         onFirst: firstOnly(log),
       });
