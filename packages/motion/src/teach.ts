@@ -198,7 +198,7 @@ function findStops(c: Clean, m: Metric, o: TeachOptions): Key[] {
  * b further out) extrapolated at their speed to the stop's pose, along the fastest servo.
  * Returns the time, within [t(a), t(edge)] (the stop's first or last sample).
  */
-function crossing(c: Clean, stop: Key, a: number, b: number, edge: number): number {
+function crossing(c: Clean, m: Metric, stop: Key, a: number, b: number, edge: number): number {
   const ta = c.t[a]!;
   const te = c.t[edge]!;
   if (b < 0 || b >= c.t.length) return te;
@@ -211,6 +211,10 @@ function crossing(c: Clean, stop: Key, a: number, b: number, edge: number): numb
   if (Math.abs(v) < 1e-9) return te;
   const tau = (stop.pwm[s]! - qa[s]!) / v;
   const span = Math.abs(te - ta);
+  // The fastest servo is there already, but the sample as a whole is not within tolerance of
+  // the stop (another servo, or the tip): the arm reached it between the two samples, not at
+  // sample a (a waypoint at a and the stop at the same instant would be a jump in no time).
+  if (tau <= 0 && m.ratio(qa, stop.pwm) > 1) return (ta + te) / 2;
   const dt = Math.min(span, Math.max(0, tau));
   return te > ta ? ta + dt : ta - dt;
 }
@@ -219,12 +223,12 @@ function crossing(c: Clean, stop: Key, a: number, b: number, edge: number): numb
  * Stops' arrival and departure times refined between samples, where the sample next to the stop
  * is a moving one (not another stop's). A stop's own samples stay within [arrive, leave].
  */
-function refine(c: Clean, stops: Key[]): void {
+function refine(c: Clean, m: Metric, stops: Key[]): void {
   stops.forEach((k, j) => {
     const prevLast = stops[j - 1]?.last ?? -1;
     const nextFirst = stops[j + 1]?.first ?? c.t.length;
-    if (k.first - 1 > prevLast) k.arrive = crossing(c, k, k.first - 1, k.first - 2, k.first);
-    if (k.last + 1 < nextFirst) k.leave = crossing(c, k, k.last + 1, k.last + 2, k.last);
+    if (k.first - 1 > prevLast) k.arrive = crossing(c, m, k, k.first - 1, k.first - 2, k.first);
+    if (k.last + 1 < nextFirst) k.leave = crossing(c, m, k, k.last + 1, k.last + 2, k.last);
   });
 }
 
@@ -315,7 +319,7 @@ export function teachFromRecording(
     };
   const m = new Metric(robot, o);
   const stops = findStops(c, m, o);
-  refine(c, stops);
+  refine(c, m, stops);
   const ends: Key[] = [...stops];
   if (ends[0]?.first !== 0) ends.unshift(sampleKey(c, 0));
   if (ends[ends.length - 1]!.last !== samples - 1) ends.push(sampleKey(c, samples - 1));
