@@ -272,11 +272,14 @@ export class BusGatewayCore {
     this.line.readPositions(
       present,
       (r) => {
-        const goals = r.servos.map((s) => ({
-          id: s.id,
-          degrees: s.degrees,
-          speedDegPerS: this.joint(s.id).servo.maxSpeed,
-        }));
+        // A servo whose read was missed holds where it was last read: torque must never come on
+        // over a stale goal (one written while it was limp, say), which it would run to.
+        const read = new Map(r.servos.map((s) => [s.id, s.degrees]));
+        const goals = present.flatMap((id) => {
+          const degrees = read.get(id) ?? this.reports.positions.get(id);
+          if (degrees === undefined) return [];
+          return [{ id, degrees, speedDegPerS: this.joint(id).servo.maxSpeed }];
+        });
         this.reports.remember(goals);
         if (goals.length)
           this.line.send(goalsWrite(this.o.protocol, goals, this.calibration), 'hold', true);

@@ -168,6 +168,20 @@ describe.each(['dynamixel', 'feetech'] as const)('bus gateway core on %s', (prot
     expect(r.angle(0)).toBe(held);
   });
 
+  test('#255PDST! holds the arm even when the read of where it is gets no answer', () => {
+    const r = rig(protocol);
+    r.core.fromControl('#000A+090.00T9000!');
+    r.clock.advance(1000);
+    r.setMuted(true); // the stop's read of the present positions is missed
+    r.core.fromControl('#255PDST!');
+    r.clock.advance(300);
+    r.setMuted(false);
+    r.clock.advance(2000);
+    const held = r.angle(0)!;
+    expect(held).toBeGreaterThan(5);
+    expect(held).toBeLessThan(20);
+  });
+
   test('the deadman holds position when a beating operator falls silent', () => {
     const r = rig(protocol);
     r.core.fromOperator('1');
@@ -263,6 +277,23 @@ describe.each(['dynamixel', 'feetech'] as const)('bus gateway core on %s', (prot
     r.clock.advance(400);
     expect(missing()).toEqual(['missing servos 000 001 002 003 004 005']);
     expect(r.core.found.size).toBe(0);
+  });
+
+  test('torque on after a missed read holds where the servo was, not at a goal sent while limp', () => {
+    const r = rig(protocol);
+    r.core.fromTorque('0');
+    r.clock.advance(100);
+    r.core.fromControl('#002A-030.00T0500!'); // written to the limp servo: it does not move
+    r.clock.advance(700);
+    const at = r.angle(2)!;
+    expect(at).toBeCloseTo(0, 0);
+    r.setMuted(true); // the hold's read of the present positions gets no answer
+    r.core.fromTorque('1');
+    r.clock.advance(300);
+    r.setMuted(false);
+    r.clock.advance(1000);
+    expect(r.bus.servos.every((s) => s.torque)).toBe(true);
+    expect(r.angle(2)).toBeCloseTo(at, 0);
   });
 
   test('torque off and on by request; the line going and coming back', () => {
