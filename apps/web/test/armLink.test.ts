@@ -99,6 +99,28 @@ describe('ArmLink', () => {
     link.stop();
   });
 
+  it('hears its own command back as that command, however late; the same from another as a new one', () => {
+    const { store, client, link, commands } = setup();
+    const enc = (s: string) => new TextEncoder().encode(s);
+    client.emit('message', 'arm/arm1/status', enc(encodeGroup([encodePosition(2, 1500)])));
+    link.jog(2, 1900);
+    const [sent] = commands();
+    const j = store.predictor.joint(2)!;
+    const course = () => ({ start: j.start, from: j.from, v: j.vCmd });
+    const before = course();
+    expect(before.v).toBeGreaterThan(0);
+    // The echo comes back 1.5 s later (a loaded page): still the command already drawn.
+    const t = performance.now();
+    const clock = vi.spyOn(performance, 'now').mockReturnValue(t + 1500);
+    client.emit('message', 'arm/arm1/control', enc(sent!));
+    expect(course()).toEqual(before);
+    // The same bytes again are someone's second command: the course starts over from there.
+    client.emit('message', 'arm/arm1/control', enc(sent!));
+    expect(course()).not.toEqual(before);
+    clock.mockRestore();
+    link.stop();
+  });
+
   it('emergency stop publishes #255PDST! at QoS 1 and drops pending jogs', () => {
     const { client, link, commands, store } = setup();
     link.jog(0, 1600);

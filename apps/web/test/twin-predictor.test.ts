@@ -76,6 +76,33 @@ describe('JointPredictor', () => {
     expect(j.predict(100)).toBeCloseTo(37.5, 6);
   });
 
+  it('keeps to the course when the arm begins the command after the next report', () => {
+    // Reports at 5 Hz; the page saw the command at 4.8 ms, the arm began it at 35 ms (the
+    // command's way to the arm on a loaded machine), after the report at 17 ms still showed
+    // it where it was (seen on a fresh clone: the twin then left the course and jumped).
+    const j = new JointPredictor(-135, 135, VMAX);
+    const v = 80 / 4000;
+    const truth = (t: number) => Math.max(0, (t - 35) * v);
+    j.report(-183, 0);
+    j.command(80, 4000, 4.8);
+    for (let t = 17; t <= 1417; t += 200) {
+      j.report(t, truth(t));
+      expect(j.following).toBe(true);
+      // From the first report that shows the move, the course is the arm's own.
+      if (t > 17)
+        for (let dt = 0; dt < 200; dt += 50) expect(j.predict(t + dt)).toBeCloseTo(truth(t + dt), 6);
+    }
+  });
+
+  it('follows a command that never begins once the arm had time to take it', () => {
+    const j = new JointPredictor(-135, 135, VMAX);
+    j.report(0, 0);
+    j.command(40, 1000, 0);
+    for (let t = 20; t <= 400; t += 20) j.report(t, 0);
+    expect(j.following).toBe(false);
+    expect(j.predict(410)).toBe(0);
+  });
+
   it('follows a stall at the first report that shows it', () => {
     const j = new JointPredictor(-135, 135, VMAX);
     const truth = simMove(0, 60, 1000, VMAX);

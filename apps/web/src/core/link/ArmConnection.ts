@@ -18,6 +18,7 @@ import { modelArmId, type ArmMode } from './modes.ts';
 import { NATIVE_INTERVALS, type IntervalTimers } from './intervalTimers.ts';
 import { BrokerTracker } from './BrokerTracker.ts';
 import { wireClient } from './clientEvents.ts';
+import { OwnEchoes } from './OwnEchoes.ts';
 import { LinkInbox, type LinkTap } from './LinkInbox.ts';
 
 /** What the page hears from the link besides data (src/core/auth/Session.ts listens). */
@@ -65,6 +66,8 @@ export class ArmConnection {
   armMode: ArmMode = 'twin';
   private readonly brokers = new BrokerTracker();
   private readonly inbox: LinkInbox;
+  /** The commands this page sent, so their echo is not a second command (./OwnEchoes.ts). */
+  readonly own = new OwnEchoes();
   /** The callback of every publish: a failure is kept for the Status panel. */
   readonly onPublished = (err?: Error) => {
     if (err) this.lastPublishError = err.message;
@@ -96,6 +99,7 @@ export class ArmConnection {
       this.copy,
       (err) => err && onError(`subscribe failed: ${err.message}`),
       now,
+      this.own,
     );
   }
 

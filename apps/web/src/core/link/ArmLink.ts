@@ -193,7 +193,9 @@ export class ArmLink implements ArmCommands {
     }
     if (isCommand) this.store.counters.published++;
     // The predictive twin of the real arm hears only what goes to the real arm.
-    (this.armMode === 'model' ? this.copy.store : this.store)?.noteControl(payload, now());
+    const t = now();
+    (this.armMode === 'model' ? this.copy.store : this.store)?.noteControl(payload, t);
+    this.conn.own.note(route.to, payload, t);
     client.publish(route.to, payload, { qos: 1 }, this.onPublished);
     return true;
   }
@@ -270,7 +272,11 @@ export class ArmLink implements ArmCommands {
       const claim = arm === this.settings.armId ? this.conn.armClaim : this.copy.claim;
       const to = commandTopic(arm, 'twin', claimUser(claim));
       this.store.counters.published++;
-      if (arm === this.settings.armId) this.store.noteControl(EMERGENCY_STOP, now());
+      if (arm === this.settings.armId) {
+        const t = now();
+        this.store.noteControl(EMERGENCY_STOP, t);
+        this.conn.own.note(to!, EMERGENCY_STOP, t);
+      }
       client.publish(to!, EMERGENCY_STOP, { qos: 1 }, this.onPublished);
     }
     flushNow(client);

@@ -9,6 +9,7 @@ import type { ArmStore } from '../store/ArmStore.ts';
 import type { ControlClaim } from './ControlClaim.ts';
 import type { ModelCopySide } from './ModelCopySide.ts';
 import type { MqttLike } from './MqttLike.ts';
+import type { OwnEchoes } from './OwnEchoes.ts';
 
 /**
  * Another reader of this link's client (the cameras of the arm, src/core/cameras/CameraHub.ts): its
@@ -37,6 +38,8 @@ export class LinkInbox {
     /** A failed subscription, said on the page. */
     readonly onSubscribed: (err: Error | null) => void,
     private readonly now: () => number,
+    /** What this page sent and its twin has noted: not noted again when it comes back. */
+    private readonly own: OwnEchoes,
   ) {
     this.holderTopic = holderTopic(armId);
     this.auditTopic = auditTopic(armId);
@@ -74,7 +77,8 @@ export class LinkInbox {
     if (topic === this.topics.status) {
       this.store.ingest(payload, this.now());
     } else if (topic === this.topics.control || topic.startsWith(`${this.topics.control}/`)) {
-      this.store.noteControl(payload, this.now());
+      const now = this.now();
+      if (!this.own.take(topic, payload, now)) this.store.noteControl(payload, now);
     } else if (topic === this.holderTopic) {
       this.armClaim().onHolder(payload);
     } else if (topic === this.auditTopic) {

@@ -30,6 +30,12 @@ export interface JointPredictorOptions {
   maxGapMs: number;
   /** The same target again within this time is the same command (a page hears its own), ms. */
   sameCommandMs: number;
+  /**
+   * How long after the page saw a command the arm may still not have begun it (its way to the
+   * arm), ms: a report in that time that shows the joint exactly where it was moves the
+   * course's start on, instead of fixing it there.
+   */
+  startLatencyMs: number;
 }
 
 export const DEFAULT_JOINT_PREDICTOR_OPTIONS: JointPredictorOptions = {
@@ -39,6 +45,7 @@ export const DEFAULT_JOINT_PREDICTOR_OPTIONS: JointPredictorOptions = {
   maxCourseLeadMs: 1000,
   maxGapMs: 250,
   sameCommandMs: 300,
+  startLatencyMs: 300,
 };
 
 export class JointPredictor {
@@ -54,6 +61,8 @@ export class JointPredictor {
   vCmd = 0;
   start = NaN;
   end = NaN;
+  /** When the page saw the command (arm ms): its course starts no earlier. */
+  private issued = NaN;
   /** Whether the reports still agree with the command (its velocity is used). */
   following = false;
   /** A report has come since the command started (the first may correct its start). */
@@ -86,7 +95,17 @@ export class JointPredictor {
       const expected = this.along(stamp);
       const moved = angle - this.a0;
       const onItsWay = moved * this.vCmd > 0 && Math.abs(moved) > tol;
-      if (!this.confirmed && (stamp > this.start || onItsWay)) {
+      if (
+        !this.confirmed &&
+        moved === 0 &&
+        stamp > this.start &&
+        stamp <= this.issued + this.opts.startLatencyMs
+      ) {
+        // Not begun by this report: the command is still on its way to the arm (a loaded page,
+        // broker or network), so its course starts after this report, not at it.
+        this.end += stamp - this.start;
+        this.start = stamp;
+      } else if (!this.confirmed && (stamp > this.start || onItsWay)) {
         // The command's start is the page's estimate (when the page took the command in); the
         // first report after it, or the first that shows the joint on its way, sets the phase.
         this.confirmed = true;
@@ -127,7 +146,7 @@ export class JointPredictor {
     this.target = target;
     this.from = from;
     this.vCmd = dur > 0 ? (target - from) / dur : 0;
-    this.start = at;
+    this.start = this.issued = at;
     this.end = at + dur;
     this.following = true;
     this.confirmed = false;
@@ -200,7 +219,7 @@ export class JointPredictor {
   /** Forgets everything (a new arm, a reconnect). */
   reset(): void {
     this.s0 = this.a0 = this.s1 = this.a1 = NaN;
-    this.target = this.from = this.start = this.end = this.cs = this.ca = NaN;
+    this.target = this.from = this.start = this.end = this.issued = this.cs = this.ca = NaN;
     this.vCmd = 0;
     this.following = this.confirmed = false;
     this.heldFrom = Infinity;
