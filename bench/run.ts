@@ -25,7 +25,7 @@ import {
   type CarriedSection,
   type RunRecord,
 } from './lib/report.ts';
-import { REPO } from './lib/stack.ts';
+import { BROKER_EXTRA, REPO } from './lib/stack.ts';
 import { parseBenchArgs } from './lib/args.ts';
 import { HUD_DIST } from './lib/hud-browser.ts';
 import type { BenchContext, Section, SectionResult } from './lib/types.ts';
@@ -68,7 +68,6 @@ const SECTIONS: Section[] = [
 /** Sections left out of a run without `--only` (the soak alone takes `--soak-minutes`, 30 min). */
 const NOT_BY_DEFAULT = new Set(['soak']);
 /** Broker settings for every section (recorded in the JSON): see BENCHMARKS.md on Nagle. */
-export const BROKER_EXTRA = ['set_tcp_nodelay true', 'max_queued_messages 1000000'];
 const NEEDS_BROKER = new Set([
   'rtt',
   'ingest',

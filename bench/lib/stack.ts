@@ -14,6 +14,8 @@ export const REPO = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '
 const ARMTWIN = path.join(REPO, 'apps', 'cli', 'bin', 'armtwin.mjs');
 const MIDDLEWARE = path.join(REPO, 'apps', 'middleware', 'src', 'main.ts');
 export const AGENTS = path.join(REPO, 'bench', 'agents');
+/** The bench's Mosquitto settings (no Nagle, a deep queue for a subscriber behind). */
+export const BROKER_EXTRA = ['set_tcp_nodelay true', 'max_queued_messages 1000000'];
 
 /** Connects an mqtt.js client (clean session, no reconnect storms) and waits for CONNACK. */
 export async function connectMqtt(url: string, clientId: string): Promise<MqttClient> {
@@ -96,9 +98,11 @@ export interface Middleware {
 export async function startMiddleware(
   env: Record<string, string>,
   logFile: string,
+  /** Extra node options before the script (e.g. `--cpu-prof`). */
+  nodeArgs: readonly string[] = [],
 ): Promise<Middleware> {
   const port = await freePort();
-  const child = spawnChild(process.execPath, ['--import', 'tsx', MIDDLEWARE], {
+  const child = spawnChild(process.execPath, [...nodeArgs, '--import', 'tsx', MIDDLEWARE], {
     cwd: REPO,
     logFile,
     env: { ...process.env, LOG_LEVEL: 'warn', ...env, PORT: String(port), HOST: '127.0.0.1' },
