@@ -135,6 +135,17 @@ export async function startMiddleware(
   };
 }
 
+/** The first row of an InfluxQL query's first series in `db` ([] when empty or failed). */
+export async function firstRow(influxUrl: string, db: string, q: string): Promise<unknown[]> {
+  const res = await fetch(`${influxUrl}/query?db=${encodeURIComponent(db)}`, {
+    method: 'POST',
+    body: new URLSearchParams({ q }),
+  }).catch(() => null);
+  if (!res?.ok) return [];
+  const body = (await res.json()) as { results?: { series?: { values: unknown[][] }[] }[] };
+  return body.results?.[0]?.series?.[0]?.values?.[0] ?? [];
+}
+
 /** `SELECT count(field) FROM measurement WHERE arm = …` in `db` (0 when empty). */
 export async function countPoints(
   influxUrl: string,
@@ -144,14 +155,12 @@ export async function countPoints(
   arm?: string,
 ): Promise<number> {
   const where = arm ? ` WHERE "arm" = '${arm}'` : '';
-  const q = `SELECT count("${field}") FROM "${measurement}"${where}`;
-  const res = await fetch(`${influxUrl}/query?db=${encodeURIComponent(db)}`, {
-    method: 'POST',
-    body: new URLSearchParams({ q }),
-  }).catch(() => null);
-  if (!res?.ok) return 0;
-  const body = (await res.json()) as { results?: { series?: { values: unknown[][] }[] }[] };
-  return Number(body.results?.[0]?.series?.[0]?.values?.[0]?.[1] ?? 0);
+  const row = await firstRow(
+    influxUrl,
+    db,
+    `SELECT count("${field}") FROM "${measurement}"${where}`,
+  );
+  return Number(row[1] ?? 0);
 }
 
 /** Polls a count until it reaches `want` or stops growing for `stallMs` / `timeoutMs` passes. */
