@@ -25,7 +25,7 @@ import {
   type CarriedSection,
   type RunRecord,
 } from './lib/report.ts';
-import { REPO } from './lib/stack.ts';
+import { BROKER_EXTRA, REPO } from './lib/stack.ts';
 import { parseBenchArgs } from './lib/args.ts';
 import { HUD_DIST } from './lib/hud-browser.ts';
 import type { BenchContext, Section, SectionResult } from './lib/types.ts';
@@ -45,6 +45,7 @@ import { twinSection } from './twin.ts';
 import { ros2Section } from './ros2.ts';
 import { foxgloveSection } from './foxglove.ts';
 import { lerobotSection } from './lerobot.ts';
+import { fleetSection } from './fleet.ts';
 import { CHROMIUM_ARGS, GPU_CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
 
 const SECTIONS: Section[] = [
@@ -63,12 +64,15 @@ const SECTIONS: Section[] = [
   ros2Section,
   foxgloveSection,
   lerobotSection,
+  fleetSection,
   soakSection,
 ];
-/** Sections left out of a run without `--only` (the soak alone takes `--soak-minutes`, 30 min). */
-const NOT_BY_DEFAULT = new Set(['soak']);
+/**
+ * Sections left out of a run without `--only`: the soak (alone it takes `--soak-minutes`, 30
+ * min), and the fleet while it is a skeleton (issue 34 item 3; up to 800 arms).
+ */
+const NOT_BY_DEFAULT = new Set(['soak', 'fleet']);
 /** Broker settings for every section (recorded in the JSON): see BENCHMARKS.md on Nagle. */
-export const BROKER_EXTRA = ['set_tcp_nodelay true', 'max_queued_messages 1000000'];
 const NEEDS_BROKER = new Set([
   'rtt',
   'ingest',
@@ -82,8 +86,9 @@ const NEEDS_BROKER = new Set([
   'soak',
   'twin',
   'lerobot',
+  'fleet',
 ]);
-const NEEDS_INFLUX = new Set(['ingest', 'cpu', 'telegraf', 'soak']);
+const NEEDS_INFLUX = new Set(['ingest', 'cpu', 'telegraf', 'soak', 'fleet']);
 
 const log = (m: string) => console.log(`[bench ${new Date().toISOString().slice(11, 19)}] ${m}`);
 

@@ -14,6 +14,8 @@ export const REPO = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '
 const ARMTWIN = path.join(REPO, 'apps', 'cli', 'bin', 'armtwin.mjs');
 const MIDDLEWARE = path.join(REPO, 'apps', 'middleware', 'src', 'main.ts');
 export const AGENTS = path.join(REPO, 'bench', 'agents');
+/** The bench's Mosquitto settings (no Nagle, a deep queue for a subscriber behind). */
+export const BROKER_EXTRA = ['set_tcp_nodelay true', 'max_queued_messages 1000000'];
 
 /** Connects an mqtt.js client (clean session, no reconnect storms) and waits for CONNACK. */
 export async function connectMqtt(url: string, clientId: string): Promise<MqttClient> {
@@ -96,9 +98,11 @@ export interface Middleware {
 export async function startMiddleware(
   env: Record<string, string>,
   logFile: string,
+  /** Extra node options before the script (e.g. `--cpu-prof`). */
+  nodeArgs: readonly string[] = [],
 ): Promise<Middleware> {
   const port = await freePort();
-  const child = spawnChild(process.execPath, ['--import', 'tsx', MIDDLEWARE], {
+  const child = spawnChild(process.execPath, [...nodeArgs, '--import', 'tsx', MIDDLEWARE], {
     cwd: REPO,
     logFile,
     env: { ...process.env, LOG_LEVEL: 'warn', ...env, PORT: String(port), HOST: '127.0.0.1' },
@@ -131,6 +135,17 @@ export async function startMiddleware(
   };
 }
 
+/** The first row of an InfluxQL query's first series in `db` ([] when empty or failed). */
+export async function firstRow(influxUrl: string, db: string, q: string): Promise<unknown[]> {
+  const res = await fetch(`${influxUrl}/query?db=${encodeURIComponent(db)}`, {
+    method: 'POST',
+    body: new URLSearchParams({ q }),
+  }).catch(() => null);
+  if (!res?.ok) return [];
+  const body = (await res.json()) as { results?: { series?: { values: unknown[][] }[] }[] };
+  return body.results?.[0]?.series?.[0]?.values?.[0] ?? [];
+}
+
 /** `SELECT count(field) FROM measurement WHERE arm = …` in `db` (0 when empty). */
 export async function countPoints(
   influxUrl: string,
@@ -140,14 +155,12 @@ export async function countPoints(
   arm?: string,
 ): Promise<number> {
   const where = arm ? ` WHERE "arm" = '${arm}'` : '';
-  const q = `SELECT count("${field}") FROM "${measurement}"${where}`;
-  const res = await fetch(`${influxUrl}/query?db=${encodeURIComponent(db)}`, {
-    method: 'POST',
-    body: new URLSearchParams({ q }),
-  }).catch(() => null);
-  if (!res?.ok) return 0;
-  const body = (await res.json()) as { results?: { series?: { values: unknown[][] }[] }[] };
-  return Number(body.results?.[0]?.series?.[0]?.values?.[0]?.[1] ?? 0);
+  const row = await firstRow(
+    influxUrl,
+    db,
+    `SELECT count("${field}") FROM "${measurement}"${where}`,
+  );
+  return Number(row[1] ?? 0);
 }
 
 /** Polls a count until it reaches `want` or stops growing for `stallMs` / `timeoutMs` passes. */

@@ -141,6 +141,7 @@ export async function startMiddleware(
           },
         )
       : null;
+  if (heat) ingest.onStatusFrames = (arm, frames) => heat.frames(arm, frames);
 
   const client = startMqtt(
     {
@@ -157,8 +158,8 @@ export async function startMiddleware(
       onMessage: (topic, payload) => {
         const lines = ingest.handle(topic, payload, now());
         storage?.add(lines);
-        heat?.handle(topic, payload);
       },
+      commit: () => storage?.commit(),
       onConnect: () => {
         metrics.mqttConnected = true;
         metrics.mqttConnects++;

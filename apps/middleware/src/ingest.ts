@@ -32,20 +32,19 @@ import { parseAnnouncement } from '@armtwin/robot';
 import type { Metrics } from './metrics.ts';
 import type { LogOnce } from './log.ts';
 import {
-  angleCommandLine,
-  angleLine,
+  angleCommandFields,
+  angleFields,
   auditLine,
   auditSeries,
-  commandLine,
+  commandFields,
   commandSeries,
-  healthLine,
-  ikLine,
+  healthFields,
+  ikFields,
   ikSeries,
-  positionLine,
+  positionFields,
   profileLine,
   servoSeries,
   SeriesClock,
-  type Micros,
 } from './points.ts';
 
 /** `arm/{id}/audit`: the controller's control events, stored as measurement `audit`. */
@@ -68,19 +67,48 @@ export const DEFAULT_INGEST_OPTIONS: IngestOptions = {
   maxReaders: 4096,
 };
 
+/** What a topic says: the reader's key, and the arm and author of its frames. */
+interface TopicInfo {
+  key: string;
+  arm: string;
+  kind: 'status' | 'control';
+  author: string;
+}
+
+/**
+ * A reader, and the series names of its frames built once per servo id (the command series
+ * with the author's tag): a message's points only add their fields and time.
+ */
+interface ReaderEntry {
+  reader: Reader;
+  servo: string[];
+  command: string[];
+}
+
+/** Topics remembered (parsed once); beyond it the memory is cleared and fills again. */
+const MAX_TOPICS = 8192;
+
 export class Ingest {
-  private readonly readers = new Map<string, Reader>();
+  private readonly readers = new Map<string, ReaderEntry>();
+  private readonly topics = new Map<string, TopicInfo | null>();
   private readonly o: IngestOptions;
   private readonly pendingKms = new Map<string, KmsFrame & { at: number }>();
   /** The profile point last written per arm (its line's fields), so a repeat writes nothing. */
   private readonly profiles = new Map<string, string>();
   readonly clock = new SeriesClock();
+  /**
+   * Given the frames of each message on a status topic (the thermal watch: one parse of a
+   * payload, not two). Called before `handle` returns; the array is reused after.
+   */
+  onStatusFrames: ((arm: string, frames: readonly Frame[]) => void) | null = null;
+  private readonly statusFrames: Frame[] = [];
   // The message being handled (the readers' callbacks write here).
   private arm = '';
   private onControl = false;
   /** The author of the message being read (its per-user control topic), '' = unknown. */
   private author = '';
   private arrival = 0;
+  private entry: ReaderEntry | null = null;
   private out: string[] = [];
 
   constructor(
@@ -93,25 +121,24 @@ export class Ingest {
 
   /** Lines for one message (possibly none); `arrivalMs` is the fallback time. */
   handle(topic: string, payload: Uint8Array | string, arrivalMs: number): string[] {
-    const audit = AUDIT_TOPIC.exec(topic);
-    if (audit && isValidArmId(audit[1]!)) return this.audit(audit[1]!, payload);
-    const announced = PROFILE_TOPIC.exec(topic);
-    if (announced && isValidArmId(announced[1]!))
-      return this.profile(announced[1]!, payload, arrivalMs);
-    const byUser = parseUserTopic(topic);
-    const parsed =
-      byUser?.kind === 'control'
-        ? { armId: byUser.armId, kind: 'control' as const }
-        : parseTopic(topic);
-    const kind =
-      parsed && (parsed.kind === 'status' || parsed.kind === 'control') ? parsed.kind : null;
-    this.metrics.count(this.metrics.messages, kind ?? 'other');
-    if (!parsed || !kind) {
+    let info = this.topics.get(topic);
+    if (info === undefined) {
+      const audit = AUDIT_TOPIC.exec(topic);
+      if (audit && isValidArmId(audit[1]!)) return this.audit(audit[1]!, payload);
+      const announced = PROFILE_TOPIC.exec(topic);
+      if (announced && isValidArmId(announced[1]!))
+        return this.profile(announced[1]!, payload, arrivalMs);
+      info = frameTopic(topic);
+      if (this.topics.size >= MAX_TOPICS) this.topics.clear();
+      this.topics.set(topic, info);
+    }
+    this.metrics.count(this.metrics.messages, info?.kind ?? 'other');
+    if (!info) {
       this.reject('bad-topic', topic);
       return [];
     }
+    this.arm = info.arm;
     if (payload.length > this.o.maxPayloadBytes) {
-      this.arm = parsed.armId;
       this.reject(
         'oversize',
         `${payload.length} bytes`,
@@ -119,14 +146,18 @@ export class Ingest {
       );
       return [];
     }
-    this.arm = parsed.armId;
-    this.onControl = kind === 'control';
-    this.author = byUser?.kind === 'control' ? byUser.user : '';
+    this.onControl = info.kind === 'control';
+    this.author = info.author;
     this.arrival = arrivalMs;
     this.out = [];
-    const reader = this.reader(`${kind}/${parsed.armId}${this.author ? `/${this.author}` : ''}`);
-    reader.clearStamp();
-    reader.feed(payload);
+    const entry = (this.entry = this.reader(info.key));
+    entry.reader.clearStamp();
+    entry.reader.feed(typeof payload === 'string' ? payload : latin1(payload));
+    this.entry = null;
+    if (this.statusFrames.length > 0) {
+      this.onStatusFrames?.(info.arm, this.statusFrames);
+      this.statusFrames.length = 0;
+    }
     const lines = this.out;
     this.out = [];
     this.metrics.pointsProduced += lines.length;
@@ -175,10 +206,10 @@ export class Ingest {
     return [profileLine(s, r.profile.name, r.profile.title, this.clock.next(s, arrivalMs * 1000))];
   }
 
-  private reader(key: string): Reader {
+  private reader(key: string): ReaderEntry {
     let r = this.readers.get(key);
     if (!r) {
-      r = createReader({
+      const reader = createReader({
         onFrame: (f) => this.frame(f, true),
         onGroup: (g) => {
           const executed = g.invalid === 0;
@@ -194,6 +225,7 @@ export class Ingest {
           'too many (arm, topic) readers: forgetting the oldest',
         );
       }
+      r = { reader, servo: [], command: [] };
       this.readers.set(key, r);
     }
     return r;
@@ -208,13 +240,9 @@ export class Ingest {
     );
   }
 
-  /** A command series with its author's tag (user names need no line-protocol escaping). */
-  private byAuthor(series: string): string {
-    return this.author ? `${series},user=${this.author}` : series;
-  }
-
   private frame(f: Frame, executed: boolean): void {
     this.metrics.count(this.metrics.frames, f.type);
+    if (!this.onControl && this.onStatusFrames) this.statusFrames.push(f);
     const allowed = FRAME_TOPICS[f.type];
     if (!(this.onControl ? allowed.control : allowed.status)) {
       this.reject(
@@ -228,34 +256,20 @@ export class Ingest {
     // A stamped report received twice is one report (SeriesClock); unstamped ones are not.
     const stamped = f.time !== undefined;
     const arm = this.arm;
+    const names = this.entry!;
     switch (f.type) {
-      case 'position': {
-        const s = servoSeries(arm, f.id);
-        this.point(s, ms, stamped, (t) => positionLine(s, f, t));
-        return;
-      }
-      case 'angle': {
-        const s = servoSeries(arm, f.id);
-        this.point(s, ms, stamped, (t) => angleLine(s, f, t));
-        return;
-      }
-      case 'health': {
-        const s = servoSeries(arm, f.id);
-        this.point(s, ms, stamped, (t) => healthLine(s, f, t));
-        return;
-      }
-      case 'move': {
+      case 'position':
+        return this.point(this.servo(names, f.id), ms, stamped, positionFields(f.pwm));
+      case 'angle':
+        return this.point(this.servo(names, f.id), ms, stamped, angleFields(f));
+      case 'health':
+        return this.point(this.servo(names, f.id), ms, stamped, healthFields(f));
+      case 'move':
         if (!executed) return void this.metrics.count(this.metrics.rejected, 'group-not-executed');
-        const s = this.byAuthor(commandSeries(arm, f.id));
-        this.point(s, ms, stamped, (t) => commandLine(s, f, t));
-        return;
-      }
-      case 'angleMove': {
+        return this.point(this.command(names, f.id), ms, stamped, commandFields(f));
+      case 'angleMove':
         if (!executed) return void this.metrics.count(this.metrics.rejected, 'group-not-executed');
-        const s = this.byAuthor(commandSeries(arm, f.id));
-        this.point(s, ms, stamped, (t) => angleCommandLine(s, f, t));
-        return;
-      }
+        return this.point(this.command(names, f.id), ms, stamped, angleCommandFields(f));
       case 'kms': {
         this.flushPendingKms(arm);
         this.pendingKms.set(arm, { ...f, at: ms });
@@ -264,9 +278,7 @@ export class Ingest {
       case 'kmsResult': {
         const req = this.pendingKms.get(arm);
         this.pendingKms.delete(arm);
-        const s = ikSeries(arm);
-        this.point(s, ms, stamped, (t) => ikLine(s, f.code, req, t));
-        return;
+        return this.point(ikSeries(arm), ms, stamped, ikFields(f.code, req));
       }
       case 'ping':
       case 'time':
@@ -280,14 +292,26 @@ export class Ingest {
     }
   }
 
+  /** The servo series of servo `id` of the message's arm (made once per reader). */
+  private servo(names: ReaderEntry, id: number): string {
+    return (names.servo[id] ??= servoSeries(this.arm, id));
+  }
+
+  /** The command series, with its author's tag (user names need no line-protocol escaping). */
+  private command(names: ReaderEntry, id: number): string {
+    return (names.command[id] ??= this.author
+      ? `${commandSeries(this.arm, id)},user=${this.author}`
+      : commandSeries(this.arm, id));
+  }
+
   /**
-   * One point of `series`, its line built by `line`, at the report's time `ms` as the series'
-   * clock places it. For a `stamped` report (its own `$TIM`) the line's text tells the clock the
+   * One point of `series` with its `fields`, at the report's time `ms` as the series' clock
+   * places it. For a `stamped` report (its own `$TIM`) the point's text tells the clock the
    * same report received again (points.ts SeriesClock).
    */
-  private point(series: string, ms: number, stamped: boolean, line: (t: Micros) => string): void {
-    const fields = stamped ? line(0) : '';
-    this.out.push(line(this.clock.next(series, ms * 1000, fields)));
+  private point(series: string, ms: number, stamped: boolean, fields: string): void {
+    const head = `${series} ${fields}`;
+    this.out.push(`${head} ${this.clock.next(series, ms * 1000, stamped ? head : '')}`);
   }
 
   /** Writes an unanswered request alone (no code). */
@@ -296,6 +320,27 @@ export class Ingest {
     if (!req) return;
     this.pendingKms.delete(arm);
     const s = ikSeries(arm);
-    this.out.push(ikLine(s, undefined, req, this.clock.next(s, req.at * 1000)));
+    this.out.push(`${s} ${ikFields(undefined, req)} ${this.clock.next(s, req.at * 1000)}`);
   }
 }
+
+/** A status or control topic (plain, or a user's own control topic); null for anything else. */
+function frameTopic(topic: string): TopicInfo | null {
+  const byUser = parseUserTopic(topic);
+  if (byUser?.kind === 'control') {
+    const { armId: arm, user: author } = byUser;
+    return { key: `control/${arm}/${author}`, arm, kind: 'control', author };
+  }
+  const parsed = parseTopic(topic);
+  if (!parsed || (parsed.kind !== 'status' && parsed.kind !== 'control')) return null;
+  return {
+    key: `${parsed.kind}/${parsed.armId}`,
+    arm: parsed.armId,
+    kind: parsed.kind,
+    author: '',
+  };
+}
+
+/** A payload's bytes as text, one character per byte (Node's own conversion, not a loop). */
+const latin1 = (bytes: Uint8Array): string =>
+  Buffer.from(bytes.buffer, bytes.byteOffset, bytes.length).toString('latin1');

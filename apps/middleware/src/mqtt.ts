@@ -5,10 +5,14 @@
  * optionally through a shared subscription `$share/<group>/…`.
  *
  * mqtt.js emits 'message' and only then calls `handleMessage(packet, done)`; the PUBACK of a
- * QoS 1 message is sent when `done` runs, and the next packet is not processed before. The
- * middleware's 'message' listener puts the points on disk synchronously, so a message is
- * acknowledged only once it is durable. While the spool is full `done` waits: intake pauses
- * and the broker keeps the messages queued in the session.
+ * QoS 1 message is written when `done` runs, and the next packet is handled after it (on the
+ * next tick). The middleware's 'message' listener takes the points into memory (`onMessage`);
+ * they reach the journal in one write per event-loop turn (`commit`, at setImmediate, after
+ * every packet the turn's socket reads brought). So that a message is still acknowledged only
+ * once it is durable, the connection's socket is corked from the first QoS 1 message of a turn
+ * until that commit: the PUBACKs leave after the write, in one segment. (A transport without
+ * cork commits before each acknowledgement, one write per message as before.) While the spool
+ * is full `done` waits: intake pauses and the broker keeps the messages queued in the session.
  *
  * Several brokers (`url` a comma-separated list, docs/protocol.md § Several brokers): the
  * middleware does not move from broker to broker as the publishers do; it keeps a connection,
@@ -49,7 +53,10 @@ export function subscriptionTopics(shareGroup: string): string[] {
 }
 
 export interface MqttHandlers {
+  /** Takes a message in (into memory: durable at the next `commit`). */
   onMessage(topic: string, payload: Buffer): void;
+  /** Makes what `onMessage` took durable; the messages' acknowledgements leave after it. */
+  commit(): void;
   onConnect(): void;
   onClose(): void;
   onError(err: Error): void;
@@ -57,6 +64,12 @@ export interface MqttHandlers {
   onMove(move: BrokerMove): void;
   /** Resolves when intake may go on (immediately unless the spool is full). */
   gate(): Promise<void> | null;
+}
+
+/** A writable that holds its writes while corked (Node's streams, the socket under mqtt.js). */
+interface Corkable {
+  cork(): void;
+  uncork(): void;
 }
 
 export type ConnectFn = (url: string, opts: IClientOptions) => MqttClient;
@@ -114,16 +127,39 @@ export function startMqtt(
     used = next;
     h.onConnect();
   };
+  // One commit per event-loop turn; the sockets corked meanwhile hold that turn's PUBACKs.
+  const corked = new Set<Corkable>();
+  let scheduled = false;
+  const commitNow = () => {
+    scheduled = false;
+    h.commit();
+    for (const stream of corked) stream.uncork();
+    corked.clear();
+  };
+  /** Lets mqtt.js go on (write the PUBACK, take the next packet) once the message may be acked. */
+  const release = (client: MqttClient, qos: number | undefined, done: () => void) => {
+    if (!scheduled) {
+      scheduled = true;
+      setImmediate(commitNow);
+    }
+    if (qos !== 0) {
+      const stream = client.stream as Partial<Corkable> | undefined;
+      if (stream?.cork && stream.uncork) {
+        if (!corked.has(stream as Corkable)) {
+          stream.cork();
+          corked.add(stream as Corkable);
+        }
+      } else h.commit();
+    }
+    done();
+  };
   const clients = urls.map((url, i) => {
     const client = connectFn(url, options);
-    client.handleMessage = (_packet, done) => {
+    client.handleMessage = (packet, done) => {
       const wait = h.gate();
-      if (wait)
-        void wait.then(
-          () => done(),
-          () => done(),
-        );
-      else done();
+      const go = () => release(client, packet.qos, done);
+      if (wait) void wait.then(go, go);
+      else go();
     };
     client.on('message', (topic, payload) => h.onMessage(topic, payload));
     client.on('connect', () => {

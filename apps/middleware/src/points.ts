@@ -19,7 +19,6 @@ import {
   type HealthFrame,
   type KmsFrame,
   type MoveFrame,
-  type PositionFrame,
 } from '@armtwin/protocol';
 
 /** Microseconds since the epoch, the unit of every point's time. */
@@ -36,45 +35,42 @@ export const commandSeries = (arm: string, id: number): string =>
   `command,arm=${arm},id=${servoId(id)}`;
 export const ikSeries = (arm: string): string => `ik,arm=${arm}`;
 
-export function positionLine(series: string, f: PositionFrame, t: Micros): string {
-  return `${series} pwm=${f.pwm}i,angle=${float(angleFromPwm(f.pwm))} ${t}`;
+/**
+ * The field text of a position (`pwm=…i,angle=…`): a pure function of the pwm, so the text of
+ * each pwm up to PWM_TEXT_CACHE is made once (a stream repeats a few hundred values).
+ */
+export function positionFields(pwm: number): string {
+  const cacheable = Number.isInteger(pwm) && pwm >= 0 && pwm < PWM_TEXT_CACHE;
+  const hit = cacheable ? pwmText[pwm] : undefined;
+  if (hit !== undefined) return hit;
+  const text = `pwm=${pwm}i,angle=${float(angleFromPwm(pwm))}`;
+  if (cacheable) pwmText[pwm] = text;
+  return text;
 }
+const PWM_TEXT_CACHE = 4096;
+const pwmText: (string | undefined)[] = new Array<string | undefined>(PWM_TEXT_CACHE);
 
 /** A bus servo's report (§8): the angle as it came, and no `pwm`. */
-export function angleLine(series: string, f: AngleFrame, t: Micros): string {
-  return `${series} angle=${float(f.deg)} ${t}`;
-}
-
-export function healthLine(series: string, f: HealthFrame, t: Micros): string {
-  return `${series} temp=${float(f.temp)},volt=${float(f.mv / 1000)} ${t}`;
-}
-
-export function commandLine(series: string, f: MoveFrame, t: Micros): string {
-  return `${series} pwm=${f.pwm}i,angle=${float(angleFromPwm(f.pwm))},ms=${f.ms}i ${t}`;
-}
-
+export const angleFields = (f: AngleFrame): string => `angle=${float(f.deg)}`;
+export const healthFields = (f: HealthFrame): string =>
+  `temp=${float(f.temp)},volt=${float(f.mv / 1000)}`;
+export const commandFields = (f: MoveFrame): string => `${positionFields(f.pwm)},ms=${f.ms}i`;
 /** A bus servo's command (§8): the target angle and time, and no `pwm`. */
-export function angleCommandLine(series: string, f: AngleMoveFrame, t: Micros): string {
-  return `${series} angle=${float(f.deg)},ms=${f.ms}i ${t}`;
-}
+export const angleCommandFields = (f: AngleMoveFrame): string =>
+  `angle=${float(f.deg)},ms=${f.ms}i`;
 
 /**
- * One `ik` point: the result code (absent when the request never got one) and the request's
- * target (absent when the result came without a request this instance saw).
+ * An `ik` point's fields: the result code (absent when the request never got one) and the
+ * request's target (absent when the result came without a request this instance saw).
  */
-export function ikLine(
-  series: string,
-  code: number | undefined,
-  req: KmsFrame | undefined,
-  t: Micros,
-): string {
+export function ikFields(code: number | undefined, req: KmsFrame | undefined): string {
   const fields: string[] = [];
   if (code !== undefined) fields.push(`code=${code}i`);
   if (req) {
     fields.push(`x=${float(req.x)}`, `y=${float(req.y)}`, `z=${float(req.z)}`);
     if (req.alpha !== undefined) fields.push(`a=${float(req.alpha)}`);
   }
-  return `${series} ${fields.join(',')} ${t}`;
+  return fields.join(',');
 }
 
 /** A line-protocol string field value: `"…"` with `\` and `"` escaped, line breaks as spaces. */
@@ -142,16 +138,21 @@ export class SeriesClock {
   /** The time for a point of `series` stamped `t`; `fields` (its values) says a repeat. */
   next(series: string, t: Micros, fields = ''): Micros {
     const prev = this.last.get(series);
-    let at = t;
-    if (prev !== undefined) {
-      if (fields !== '' && t === prev.stamp && fields === prev.fields) return prev.at;
-      if (t < prev.at - COLLISION_WINDOW_US) return t; // late: its own time
-      if (t <= prev.at) {
-        at = prev.at + 1;
-        this.bumped++;
-      }
+    if (prev === undefined) {
+      this.last.set(series, { stamp: t, at: t, fields });
+      return t;
     }
-    this.last.set(series, { stamp: t, at, fields });
+    if (fields !== '' && t === prev.stamp && fields === prev.fields) return prev.at;
+    if (t < prev.at - COLLISION_WINDOW_US) return t; // late: its own time
+    let at = t;
+    if (t <= prev.at) {
+      at = prev.at + 1;
+      this.bumped++;
+    }
+    // updated in place: no object per point
+    prev.stamp = t;
+    prev.at = at;
+    prev.fields = fields;
     return at;
   }
 

@@ -2,7 +2,8 @@
  * The durable spool: every point is on disk before its MQTT message is acknowledged, and
  * stays there until InfluxDB has it.
  *
- *   <dir>/journal.lp                 the open batch: one append (write(2)) per MQTT message
+ *   <dir>/journal.lp                 the open batch: one append (write(2)) per commit, i.e. per
+ *                                    event-loop turn of MQTT messages (../README.md § Spool)
  *   <dir>/batches/<seq>-<n>.lp       sealed batches of n points, oldest = smallest seq
  *   <dir>/rejected/<seq>-<n>.lp(.err) batches InfluxDB refused as bad data, with the reason
  *
@@ -13,6 +14,10 @@
  * a restarted middleware replays everything. The appends are not fsync'd one by one: a
  * SIGKILL loses nothing (the page cache survives), a power cut can lose the open batch and a
  * batch sealed in the last milliseconds whose fsync had not finished.
+ *
+ * `hold` takes a message's lines into memory, `commit` appends everything held in one write;
+ * the MQTT edge acknowledges the messages of a commit only after it (src/mqtt.ts). `append` is
+ * both at once.
  */
 import fs from 'node:fs';
 import path from 'node:path';
@@ -46,7 +51,9 @@ export class Spool {
   private readonly journal: string;
   private fd: number | null = null;
   private nextSeq = 1;
-  private open: string[] = []; // the open batch's bodies (one per message), for the cache
+  /** The open batch's text (for the cache), and its tail not yet written to the journal. */
+  private open = '';
+  private held = '';
   private openPoints = 0;
   private openBytes = 0;
   private cached = 0;
@@ -104,11 +111,25 @@ export class Spool {
 
   /** Appends one message's lines to the open batch (on disk before this returns). */
   append(lines: readonly string[]): void {
-    if (lines.length === 0) return;
-    const body = lines.join('\n') + '\n';
-    this.open.push(body);
+    this.hold(lines);
+    this.commit();
+  }
+
+  /** Adds one message's lines to the open batch, in memory until the next `commit`. */
+  hold(lines: readonly string[]): void {
+    let body = '';
+    for (const line of lines) body += line + '\n';
+    this.held += body;
     this.openPoints += lines.length;
     this.openBytes += body.length;
+  }
+
+  /** Writes what `hold` took since the last commit to the journal, in one write. */
+  commit(): void {
+    if (this.held === '') return;
+    const body = this.held;
+    this.held = '';
+    this.open += body;
     try {
       this.fd ??= fs.openSync(this.journal, 'a');
       fs.writeSync(this.fd, body, null, 'latin1');
@@ -124,9 +145,10 @@ export class Spool {
    */
   seal(): SpoolEntry | null {
     if (this.openPoints === 0) return null;
-    const body = this.open.join('');
+    this.commit();
+    const body = this.open;
     const points = this.openPoints;
-    this.open = [];
+    this.open = '';
     this.openPoints = 0;
     this.openBytes = 0;
     const seq = this.nextSeq++;
@@ -224,6 +246,7 @@ export class Spool {
 
   /** Closes the journal file (keeps it on disk: sealed again at the next init). */
   close(): void {
+    this.commit();
     this.closeJournal(false);
   }
 

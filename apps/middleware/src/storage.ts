@@ -92,16 +92,21 @@ export class Storage {
     this.shipper.kick();
   }
 
-  /** Takes one message's lines; they are durable (batch mode) when this returns. */
+  /** Takes one message's lines; in batch mode they are durable at the next `commit`. */
   add(lines: readonly string[]): void {
     if (lines.length === 0) return;
     if (this.config.writeMode === 'sync') {
       for (const line of lines) this.syncWrite(line);
       return;
     }
-    this.spool.append(lines);
+    this.spool.hold(lines);
     this.batcher.added(lines.length);
     this.checkFull();
+  }
+
+  /** Writes the lines taken since the last commit to the journal (one write). */
+  commit(): void {
+    this.spool.commit();
   }
 
   /** null, or a promise intake must wait for (spool full). */

@@ -4,6 +4,7 @@
  * arm's log at its own time; each arm's models are refitted from the last `fitSpanMs` of its
  * history every `refitMs` (`/history/thermal-model`'s code, read through the history reader).
  */
+import type { Frame } from '@armtwin/protocol';
 import { thermalAlertTopic, type ThermalAlert } from '@armtwin/thermal';
 import { DEFAULT_HISTORY_OPTIONS } from './history/options.ts';
 import type { HistoryReader } from './history/reader.ts';
@@ -25,7 +26,8 @@ export interface ThermalAlertsRunDeps {
 }
 
 export interface ThermalAlertsRun {
-  handle(topic: string, payload: Uint8Array): void;
+  /** The frames of one message on `arm/{arm}/status`, as the ingest decoded them. */
+  frames(arm: string, frames: readonly Frame[]): void;
   stop(): void;
 }
 
@@ -75,11 +77,8 @@ export function startThermalAlerts(
   };
 
   return {
-    handle(topic, payload) {
-      const events = heat.handle(topic, payload, deps.now());
-      if (events.length === 0) return;
-      const arm = topic.split('/')[1]!;
-      for (const e of events) raise(arm, e);
+    frames(arm, frames) {
+      for (const e of heat.frames(arm, frames, deps.now())) raise(arm, e);
     },
     stop() {
       clearInterval(timer);

@@ -65,6 +65,14 @@ class ArmHeat {
     return this.out;
   }
 
+  /** Frames another reader decoded from one message (a group's frames carry its stamp). */
+  frames(frames: readonly Frame[], arrival: number): ThermalAlert[] {
+    this.arrival = arrival;
+    this.out = [];
+    for (const f of frames) this.frame(f);
+    return this.out;
+  }
+
   private servo(id: number): ThermalWatch | undefined {
     let w = this.watches.get(id);
     if (!w && this.watches.size < MAX_SERVOS) {
@@ -106,13 +114,25 @@ export class ThermalAlerts {
   handle(topic: string, payload: Uint8Array, arrival: number): ThermalAlert[] {
     const m = STATUS_TOPIC.exec(topic);
     if (!m || !isValidArmId(m[1]!)) return [];
-    let arm = this.arms.get(m[1]!);
+    return this.arm(m[1]!)?.feed(payload, arrival) ?? [];
+  }
+
+  /**
+   * The frames of one message on `arm/{armId}/status` as the ingest decoded them (one parse of
+   * each payload in the middleware, not two): the same answer as `handle` of that message.
+   */
+  frames(armId: string, frames: readonly Frame[], arrival: number): ThermalAlert[] {
+    return this.arm(armId)?.frames(frames, arrival) ?? [];
+  }
+
+  private arm(id: string): ArmHeat | undefined {
+    let arm = this.arms.get(id);
     if (!arm) {
-      if (this.arms.size >= this.options.maxArms) return [];
+      if (this.arms.size >= this.options.maxArms) return undefined;
       arm = new ArmHeat(this.options.watch);
-      this.arms.set(m[1]!, arm);
+      this.arms.set(id, arm);
     }
-    return arm.feed(payload, arrival);
+    return arm;
   }
 
   /** The arms whose models are due for a (re)fit at `now`, epoch ms. */

@@ -13,6 +13,8 @@ import {
   type ThermalAlert,
   type ThermalParams,
 } from '@armtwin/thermal';
+import { Ingest } from '../src/ingest.ts';
+import { Metrics } from '../src/metrics.ts';
 import { SeriesClock } from '../src/points.ts';
 import { ThermalAlerts, thermalAlertLine } from '../src/thermal-alerts.ts';
 
@@ -113,6 +115,25 @@ describe('ThermalAlerts', () => {
     }
     expect(peak).toBeGreaterThan(45); // it did warm
     expect(events).toEqual([]);
+  });
+
+  test("fed the ingest's decoded frames, it raises what it raises from the payloads", () => {
+    const byPayload = new ThermalAlerts();
+    const byFrames = new ThermalAlerts();
+    const ingest = new Ingest(new Metrics());
+    ingest.onStatusFrames = (arm, frames) => got.push(...byFrames.frames(arm, frames, t));
+    const want: ThermalAlert[] = [];
+    const got: ThermalAlert[] = [];
+    let t = T0;
+    for (let k = 0; k < 60; k++) {
+      t += 500;
+      const temp = 34 + (k < 20 ? 0 : 1.25 * (k - 20)); // rest, then a stall
+      const payload = status(t, `{${position(0, 1500)}${health(0, 34)}${health(1, temp)}}`);
+      want.push(...byPayload.handle('arm/a1/status', payload, t));
+      ingest.handle('arm/a1/status', payload, t);
+    }
+    expect(want.map((e) => e.kind)).toEqual(['thermal-warning']);
+    expect(got).toEqual(want);
   });
 
   test('only status topics of valid arms are watched; new arms are due for a fit at once', () => {

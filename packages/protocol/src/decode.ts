@@ -61,11 +61,35 @@ export function decodeFrame(text: string): DecodeResult {
   return text.charCodeAt(0) === 35 /* # */ ? decodeServoFrame(text) : decodeDollarFrame(text);
 }
 
+/** `text`'s characters [from, to) as a decimal integer, or -1 if one is not a digit. */
+function digits(text: string, from: number, to: number): number {
+  let v = 0;
+  for (let i = from; i < to; i++) {
+    const d = text.charCodeAt(i) - 48;
+    if (d < 0 || d > 9) return -1;
+    v = v * 10 + d;
+  }
+  return v;
+}
+
+/**
+ * A position report (`#IIIPpppp!`, the bulk of every status stream) read without the regular
+ * expression: exactly what FRAME_PATTERNS.position accepts, or -1 for "not this shape".
+ */
+function positionPwm(text: string): number {
+  const n = text.length;
+  if (n < 7 || n > 11 || text.charCodeAt(4) !== 80 /* P */ || text.charCodeAt(n - 1) !== 33)
+    return -1;
+  return digits(text, 5, n - 1);
+}
+
 function decodeServoFrame(text: string): DecodeResult {
   let m: RegExpExecArray | null;
-  if ((m = FRAME_PATTERNS.position.exec(text))) {
-    const id = Number(m[1]);
-    const pwm = Number(m[2]);
+  const fastPwm = positionPwm(text);
+  const fastId = fastPwm < 0 ? -1 : digits(text, 1, 4);
+  if (fastId >= 0 || (m = FRAME_PATTERNS.position.exec(text))) {
+    const id = fastId >= 0 ? fastId : Number(m![1]);
+    const pwm = fastId >= 0 ? fastPwm : Number(m![2]);
     return (
       rangeError(text, 'id', id, 0, SERVO_ID_ALL - 1) ??
       rangeError(text, 'pwm', pwm, PWM_MIN, PWM_MAX) ?? { ok: true, frame: { type: 'position', id, pwm } }

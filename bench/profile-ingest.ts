@@ -1,0 +1,85 @@
+/**
+ * The middleware's CPU profile under the ingest load (issue 34 item 1): a throwaway Mosquitto and
+ * influxd, the middleware under `node --cpu-prof`, the bench's publisher at R six-servo groups/s
+ * for D s (QoS 0, as ./ingest.ts), every point awaited in InfluxDB, then SIGTERM (the profile is
+ * written at exit) and the functions by self time, as shares of the samples outside `(idle)`.
+ * Shares, not rates: on a loaded machine the rates move, the shares much less.
+ *
+ *   npx tsx bench/profile-ingest.ts [rate=20000] [seconds=10] [top=25]
+ */
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { startInflux } from '../tests/helpers/influx.ts';
+import { startMosquitto } from '../tests/helpers/mosquitto.ts';
+import { selfTimes, type CpuProfile } from './lib/cpuprofile.ts';
+import { cpuMeter } from './lib/proc.ts';
+import {
+  agentResult,
+  BROKER_EXTRA,
+  countPoints,
+  REPO,
+  startAgent,
+  startMiddleware,
+  waitForCount,
+} from './lib/stack.ts';
+
+const [rateS = '20000', secondsS = '10', topS = '25'] = process.argv.slice(2);
+const rate = Number(rateS);
+const seconds = Number(secondsS);
+const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-profile-'));
+const broker = await startMosquitto({ extraConfig: BROKER_EXTRA });
+const influx = await startInflux();
+try {
+  const mw = await startMiddleware(
+    {
+      MQTT_URL: broker.url,
+      MQTT_CLIENT_ID: `profile-ingest-${process.pid}`,
+      INFLUX_URL: influx.url,
+      INFLUX_BUCKET: influx.bucket,
+      SPOOL_DIR: path.join(dir, 'spool'),
+      WRITE_MODE: 'batch',
+    },
+    path.join(dir, 'middleware.log'),
+    ['--cpu-prof', `--cpu-prof-dir=${dir}`],
+  );
+  const arm = 'profile-arm';
+  const cpu = cpuMeter(mw.child.pid);
+  cpu.start();
+  const pub = startAgent(
+    'publisher',
+    [broker.url, `arm/${arm}/status`, String(rate), String(seconds), String(Date.now()), '0'],
+    path.join(dir, 'publisher.log'),
+  );
+  const r = await agentResult<{ sent: number; sendS: number }>(pub, seconds * 4000 + 30_000);
+  const { got } = await waitForCount(
+    () => countPoints(influx.url, influx.db, 'servo', 'pwm', arm),
+    r.sent * 6,
+    60_000,
+  );
+  const c = cpu.stop();
+  await mw.child.stop(20_000);
+  const file = fs.readdirSync(dir).find((f) => f.endsWith('.cpuprofile'));
+  if (!file) throw new Error(`no profile in ${dir}`);
+  const { rows } = selfTimes(
+    JSON.parse(fs.readFileSync(path.join(dir, file), 'utf8')) as CpuProfile,
+    REPO,
+  );
+  const busy = rows.filter((x) => x.fn !== '(idle)');
+  const busyMs = busy.reduce((s, x) => s + x.selfMs, 0);
+  const load = os
+    .loadavg()
+    .map((l) => l.toFixed(1))
+    .join(' ');
+  console.log(
+    `${r.sent} groups in ${r.sendS.toFixed(1)} s (${Math.round(r.sent / r.sendS)}/s offered ${rate}), ` +
+      `${got}/${r.sent * 6} points stored; middleware CPU ${((c.cpuS * 1e6) / Math.max(1, got)).toFixed(2)} ms per 1,000 points; ` +
+      `load ${load}; profile ${path.join(dir, file)}`,
+  );
+  console.log(`self time, share of the busy samples (${busyMs.toFixed(0)} ms):`);
+  for (const x of busy.slice(0, Number(topS)))
+    console.log(`${((x.selfMs / busyMs) * 100).toFixed(1).padStart(5)} %  ${x.fn}`);
+} finally {
+  await broker.dispose().catch(() => {});
+  await influx.dispose().catch(() => {});
+}
