@@ -1,7 +1,9 @@
 /**
- * A serial line for gateway tests: a socat pseudo-terminal pair with a simulated device
- * (`armtwin sim --serial …`) on its far end. `start()` makes the pair and starts the device,
- * resolved once it says `ready`; `stop()` takes both away (the line "unplugged").
+ * A serial line for gateway tests and the bench: a socat pseudo-terminal pair with a simulated
+ * device (`armtwin sim --serial …`, or `--bus …` for an emulated servo bus) on its far end.
+ * `start()` makes the pair and starts the device, resolved once it says `ready`; `stop()` takes
+ * both away (the line "unplugged"). With `hand`, lines written by `hand()` go to the device's
+ * stdin (`armtwin sim --bus … --hand`: its shafts moved as a hand would).
  */
 import { spawn, type ChildProcess } from 'node:child_process';
 import fs from 'node:fs';
@@ -12,6 +14,10 @@ export interface SerialLine {
   hostSide: string;
   start(): Promise<void>;
   stop(): Promise<void>;
+  /** One line to the device's stdin (only with `hand`). */
+  hand(line: string): void;
+  /** What the device printed so far. */
+  output(): string;
 }
 
 /**
@@ -23,6 +29,7 @@ export function serialLine(
   armSide: string,
   simArgs: (armSide: string) => string[],
   ready: string,
+  { hand = false }: { hand?: boolean } = {},
 ): SerialLine {
   let socat: ChildProcess | undefined;
   let device: Child | undefined;
@@ -39,7 +46,7 @@ export function serialLine(
         if (Date.now() > deadline) throw new Error('socat made no pty pair');
         await new Promise((r) => setTimeout(r, 50));
       }
-      const c = (device = armtwin(simArgs(armSide)));
+      const c = (device = armtwin(simArgs(armSide), undefined, { stdin: hand }));
       while (!c.output().includes(ready)) {
         if (Date.now() > deadline + 15_000)
           throw new Error(`the simulated device did not start:\n${c.output()}`);
@@ -57,5 +64,10 @@ export function serialLine(
       await device?.stop('SIGKILL');
       device = undefined;
     },
+    hand(line: string) {
+      if (!device?.proc.stdin) throw new Error('this serial line was started without hand');
+      device.proc.stdin.write(`${line}\n`);
+    },
+    output: () => device?.output() ?? '',
   };
 }
