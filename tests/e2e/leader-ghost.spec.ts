@@ -16,7 +16,7 @@ import type { Page } from '@playwright/test';
 import { expect, test } from './fixtures.ts';
 import { ArmObserver, startSim, until, type SimProcess } from './support/sim.ts';
 import { joints } from './support/robots-window.ts';
-import { serialLine, type SerialLine } from '../integration/serial-line.ts';
+import { so101BusLine, type SerialLine } from '../integration/serial-line.ts';
 import { armtwin, type Child } from '../integration/sim-helpers.ts';
 
 const USER = 'alice';
@@ -47,16 +47,7 @@ test.beforeEach(async ({ stack }, testInfo) => {
     30_000,
     'the simulated SO-101 follower online',
   );
-  leader = serialLine(
-    path.join(dir, 'leader-host'),
-    path.join(dir, 'leader-arm'),
-    (armSide) => [
-      ...['sim', '--bus', 'feetech', '--serial', armSide, '--baud', '1000000'],
-      ...['--profile', 'so101', '--hand'],
-    ],
-    'simulated servo bus on the serial line',
-    { hand: true },
-  );
+  leader = so101BusLine(dir, 'leader', { hand: true });
   await leader.start();
   gateway = armtwin([
     ...['gateway', '--bus', 'feetech', '--serial', leader.hostSide, '--baud', '1000000'],

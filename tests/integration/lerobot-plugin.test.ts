@@ -22,7 +22,7 @@ import { REPO_ROOT } from '../helpers/services.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { startSo101Follower } from './so101-follower.ts';
 import { StatusWatcher, type Child } from './sim-helpers.ts';
-import { serialLine } from './serial-line.ts';
+import { so101BusLine } from './serial-line.ts';
 
 const broker = useMosquitto();
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-lerobot-plugin-'));
@@ -84,17 +84,10 @@ async function session(
   during: (ended: () => boolean) => Promise<void> = async () => {},
 ): Promise<{ code: number | null; out: string; err: string }> {
   const k = ++sessions;
-  const host = path.join(dir, `leader${k}`);
-  const line = serialLine(
-    host,
-    path.join(dir, `leader-arm${k}`),
-    (armSide) => [
-      'sim',
-      ...['--bus', 'feetech', '--serial', armSide, '--baud', '1000000', '--profile', 'so101'],
-      ...['--bus-fault', `field:1:homingOffset=${panOffset}`],
-    ],
-    'simulated servo bus on the serial line',
-  );
+  const line = so101BusLine(dir, `leader${k}`, {
+    extra: ['--bus-fault', `field:1:homingOffset=${panOffset}`],
+  });
+  const host = line.hostSide;
   await line.start();
   try {
     // LeRobot finds the installed distribution (scripts/pyenv-lerobot.sh); its module is imported

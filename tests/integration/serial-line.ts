@@ -7,6 +7,7 @@
  */
 import { spawn, type ChildProcess } from 'node:child_process';
 import fs from 'node:fs';
+import path from 'node:path';
 import { armtwin, type Child } from './sim-helpers.ts';
 
 export interface SerialLine {
@@ -70,4 +71,40 @@ export function serialLine(
     },
     output: () => device?.output() ?? '',
   };
+}
+
+/** What the emulated servo bus prints once it serves its end of the line. */
+export const BUS_READY = 'simulated servo bus on the serial line';
+
+/**
+ * An emulated SO-101 (six STS3215 on a Feetech bus at 1 Mbaud, `armtwin sim --bus feetech
+ * --profile so101`) on a pty pair `{dir}/{name}-host` ⇄ `{dir}/{name}-arm`; `extra` are more sim
+ * arguments (a `--bus-fault`), `hand` moves its shafts from `hand()` (`--hand`).
+ */
+export function so101BusLine(
+  dir: string,
+  name: string,
+  { hand = false, extra = [] }: { hand?: boolean; extra?: string[] } = {},
+): SerialLine {
+  return serialLine(
+    path.join(dir, `${name}-host`),
+    path.join(dir, `${name}-arm`),
+    (armSide) => [
+      ...[
+        'sim',
+        '--bus',
+        'feetech',
+        '--serial',
+        armSide,
+        '--baud',
+        '1000000',
+        '--profile',
+        'so101',
+      ],
+      ...(hand ? ['--hand'] : []),
+      ...extra,
+    ],
+    BUS_READY,
+    { hand },
+  );
 }
