@@ -17,7 +17,7 @@ import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { lerobotPython, lerobotVenv } from '../tests/helpers/lerobot-python.ts';
+import { lerobotPython, lerobotVenv, PLUGIN_DIR } from '../tests/helpers/lerobot-python.ts';
 import { so101BusLine } from '../tests/integration/serial-line.ts';
 import { spawnChild, type Child } from './lib/proc.ts';
 import type { MqttClient } from 'mqtt';
@@ -27,7 +27,6 @@ import { fmt, type BenchContext, type Row, type Section, type SectionOutput } fr
 
 const ARMTWIN = path.join(REPO, 'apps', 'cli', 'bin', 'armtwin.mjs');
 const LOOP = path.join(REPO, 'bench', 'lerobot', 'control_loop.py');
-const PLUGIN_DIR = path.join(REPO, 'packages', 'lerobot', 'python');
 const RATES = [30, 60] as const;
 const LOOP_SETTINGS = {
   step: 0.5,

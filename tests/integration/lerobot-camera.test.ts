@@ -7,14 +7,12 @@
  * `get_observation` holds the camera's picture, RGB of that shape, and it is fresh: the clock
  * ffmpeg burned into it is close to now and advances from one observation to the next.
  */
-import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, expect, test } from 'vitest';
 import { readTimeStripe } from '@armtwin/camera/client';
-import { LEROBOT_SCRIPTS, lerobotPython } from '../helpers/lerobot-python.ts';
-import { REPO_ROOT } from '../helpers/services.ts';
+import { startPluginScript } from '../helpers/lerobot-python.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { startSo101Follower } from './so101-follower.ts';
 import { armtwin, type Child } from './sim-helpers.ts';
@@ -24,7 +22,6 @@ const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-lerobot-camera-'));
 const ARM = 'follower';
 const W = 640;
 const H = 480;
-const PLUGIN_DIR = path.join(REPO_ROOT, 'packages', 'lerobot', 'python');
 
 let follower: Child;
 let camera: Child;
@@ -51,22 +48,13 @@ interface Observed {
 
 /** tests/helpers/lerobot/camera_armtwin.py with `input`; its JSON. */
 async function observe(input: object): Promise<Observed> {
-  const py = spawn(
-    lerobotPython('lerobot, lerobot_robot_armtwin'),
-    [path.join(LEROBOT_SCRIPTS, 'camera_armtwin.py')],
-    { env: { ...process.env, PYTHONPATH: PLUGIN_DIR } },
-  );
-  let out = '';
-  let err = '';
-  py.stdout.on('data', (d: Buffer) => (out += d.toString()));
-  py.stderr.on('data', (d: Buffer) => (err += d.toString()));
-  py.stdin.end(JSON.stringify(input));
-  const code = await new Promise<number | null>((r) => py.once('exit', r));
+  const py = startPluginScript('camera_armtwin.py', input);
+  const code = await py.exited;
   if (code !== 0)
     throw new Error(
-      `camera_armtwin.py exited ${code}:\n${err.slice(-3000)}\ncamera server:\n${camera.output().slice(-2000)}`,
+      `camera_armtwin.py exited ${code}:\n${py.err().slice(-3000)}\ncamera server:\n${camera.output().slice(-2000)}`,
     );
-  return JSON.parse(out) as Observed;
+  return JSON.parse(py.out()) as Observed;
 }
 
 test("get_observation holds armtwin's camera picture, of the configured shape and fresh", async () => {
