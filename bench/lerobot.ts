@@ -17,8 +17,9 @@ import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { lerobotPython, lerobotVenv } from '../tests/helpers/lerobot-python.ts';
-import { spawnChild, until, type Child } from './lib/proc.ts';
+import { lerobotPython, lerobotVenv, PLUGIN_DIR } from '../tests/helpers/lerobot-python.ts';
+import { so101BusLine } from '../tests/integration/serial-line.ts';
+import { spawnChild, type Child } from './lib/proc.ts';
 import type { MqttClient } from 'mqtt';
 import { connectMqtt, REPO, waitOnline } from './lib/stack.ts';
 import { round, summarize } from './lib/stats.ts';
@@ -26,7 +27,6 @@ import { fmt, type BenchContext, type Row, type Section, type SectionOutput } fr
 
 const ARMTWIN = path.join(REPO, 'apps', 'cli', 'bin', 'armtwin.mjs');
 const LOOP = path.join(REPO, 'bench', 'lerobot', 'control_loop.py');
-const PLUGIN_DIR = path.join(REPO, 'packages', 'lerobot', 'python');
 const RATES = [30, 60] as const;
 const LOOP_SETTINGS = {
   step: 0.5,
@@ -49,41 +49,14 @@ interface LoopResult {
 }
 
 /** A socat pty pair with the emulated SO-101 bus on one end; `host` is the other. */
-async function emulatedBus(
-  ctx: BenchContext,
-  name: string,
-): Promise<{ host: string; stop(): Promise<void> }> {
+async function emulatedBus(name: string): Promise<{ host: string; stop(): Promise<void> }> {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-bench-lerobot-'));
-  const host = path.join(dir, 'host');
-  const arm = path.join(dir, 'arm');
-  const socat = spawnChild('socat', [`pty,raw,echo=0,link=${host}`, `pty,raw,echo=0,link=${arm}`]);
-  if (!(await until(() => fs.existsSync(host) && fs.existsSync(arm), 5000)))
-    throw new Error('socat made no pty pair');
-  const log = path.join(ctx.logDir, `lerobot-${name}-bus.log`);
-  const sim = spawnChild(
-    process.execPath,
-    [
-      ARMTWIN,
-      'sim',
-      '--bus',
-      'feetech',
-      '--serial',
-      arm,
-      '--baud',
-      '1000000',
-      '--profile',
-      'so101',
-    ],
-    { cwd: REPO, logFile: log, env: { ...process.env, LOG_LEVEL: 'info' } },
-  );
-  const ready = () =>
-    fs.readFileSync(log, 'utf8').includes('simulated servo bus on the serial line');
-  if (!(await until(ready, 60_000))) throw new Error(`the emulated bus did not start (${log})`);
+  const line = so101BusLine(dir, name);
+  await line.start();
   return {
-    host,
+    host: line.hostSide,
     async stop() {
-      await sim.stop();
-      await socat.stop();
+      await line.stop();
       fs.rmSync(dir, { recursive: true, force: true });
     },
   };
@@ -111,7 +84,7 @@ async function loop(
 }
 
 async function direct(ctx: BenchContext, fps: number, seconds: number): Promise<LoopResult> {
-  const bus = await emulatedBus(ctx, `direct-${fps}`);
+  const bus = await emulatedBus(`direct-${fps}`);
   const calibration = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-bench-lerobot-cal-'));
   try {
     return await loop(ctx, `direct-${fps}`, {
@@ -133,7 +106,7 @@ async function throughArmtwin(
   fps: number,
   seconds: number,
 ): Promise<LoopResult & { errors: Record<string, number> }> {
-  const bus = await emulatedBus(ctx, `armtwin-${fps}`);
+  const bus = await emulatedBus(`armtwin-${fps}`);
   const arm = `lerobot-bench-${fps}`;
   let gateway: Child | undefined;
   let watcher: MqttClient | undefined;

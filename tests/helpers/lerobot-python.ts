@@ -4,7 +4,7 @@
  * descriptions) and `yourdfpy` (an FK that is not armtwin's), cached beside the servo-SDK venv.
  * Missing is an error, not a skip: these are how the SO-101 support is proved.
  */
-import { execFileSync } from 'node:child_process';
+import { execFileSync, spawn } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { REPO_ROOT } from './services.ts';
@@ -43,4 +43,40 @@ export function runLerobotScript<T>(script: string, input: unknown, modules?: st
     maxBuffer: 64 * 1024 * 1024,
   });
   return JSON.parse(out.toString()) as T;
+}
+
+/** armtwin's LeRobot plugin in this clone (packages/lerobot/python). */
+export const PLUGIN_DIR = path.join(REPO_ROOT, 'packages', 'lerobot', 'python');
+
+export interface PluginScript {
+  /** What it printed so far. */
+  out(): string;
+  err(): string;
+  /** It has exited. */
+  ended(): boolean;
+  /** Its exit code. */
+  exited: Promise<number | null>;
+}
+
+/**
+ * Starts `script` (in tests/helpers/lerobot) in the venv with `input` as JSON on stdin. LeRobot
+ * finds the installed plugin distribution (scripts/pyenv-lerobot.sh); its module is imported
+ * from this clone's sources, first on the path.
+ */
+export function startPluginScript(script: string, input: unknown): PluginScript {
+  const py = spawn(
+    lerobotPython('lerobot, lerobot_robot_armtwin'),
+    [path.join(LEROBOT_SCRIPTS, script)],
+    { env: { ...process.env, PYTHONPATH: PLUGIN_DIR } },
+  );
+  let out = '';
+  let err = '';
+  let ended = false;
+  py.stdout.on('data', (d: Buffer) => (out += d.toString()));
+  py.stderr.on('data', (d: Buffer) => (err += d.toString()));
+  const exited = new Promise<number | null>((r) => py.once('exit', r)).finally(
+    () => (ended = true),
+  );
+  py.stdin.end(JSON.stringify(input));
+  return { out: () => out, err: () => err, ended: () => ended, exited };
 }

@@ -9,7 +9,6 @@
  * refused and the follower stays out; an e-stop stops the follower while the leader keeps moving,
  * and only a `1` on the enable topic sets it following again.
  */
-import { spawn, type ChildProcess } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -17,8 +16,8 @@ import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { parseAudit, type AuditEvent } from '@armtwin/protocol';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { startSo101Follower } from './so101-follower.ts';
-import { armtwin, ARMTWIN, StatusWatcher, type Child } from './sim-helpers.ts';
-import { REPO_ROOT } from '../helpers/services.ts';
+import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
+import { so101BusLine } from './serial-line.ts';
 
 const broker = useMosquitto();
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-leader-'));
@@ -27,9 +26,7 @@ const ARM = 'follower';
 const USER = 'alice';
 const LEADER = `arm/${ARM}/leader/${USER}`;
 
-let socat: ChildProcess;
-let leaderBus: ChildProcess;
-let leaderOut = '';
+const leader = so101BusLine(dir, 'leader', { hand: true });
 let gateway: Child;
 let follower: Child;
 let w: StatusWatcher;
@@ -39,10 +36,10 @@ const pan = (from = 0) => w.angles(1, from);
 const near = (a: number, b: number, tol = 0.5) => Math.abs(a - b) < tol;
 /** Moves the leader's shafts by hand: `{1: -20}` puts shoulder_pan at −20°. */
 const hand = (moves: Record<number, number>) =>
-  leaderBus.stdin!.write(
-    `${Object.entries(moves)
+  leader.hand(
+    Object.entries(moves)
       .map(([id, deg]) => `${id}:${deg}`)
-      .join(',')}\n`,
+      .join(','),
   );
 const state = () =>
   JSON.parse(w.retained.get(`${LEADER}/state`) ?? '{}') as { following?: boolean; reason?: string };
@@ -66,43 +63,10 @@ beforeAll(async () => {
   );
   await w.online();
 
-  const host = path.join(dir, 'leader-host');
-  const armSide = path.join(dir, 'leader-arm');
-  socat = spawn('socat', [`pty,raw,echo=0,link=${host}`, `pty,raw,echo=0,link=${armSide}`], {
-    stdio: 'ignore',
-  });
-  const deadline = Date.now() + 5000;
-  while (!(fs.existsSync(host) && fs.existsSync(armSide))) {
-    if (Date.now() > deadline) throw new Error('socat made no pty pair');
-    await new Promise((r) => setTimeout(r, 50));
-  }
-  leaderBus = spawn(
-    process.execPath,
-    [
-      ARMTWIN,
-      'sim',
-      '--bus',
-      'feetech',
-      '--serial',
-      armSide,
-      '--baud',
-      '1000000',
-      '--profile',
-      'so101',
-      '--hand',
-    ],
-    { cwd: REPO_ROOT, stdio: ['pipe', 'pipe', 'pipe'] },
-  );
-  leaderBus.stdout!.on('data', (d: Buffer) => (leaderOut += d.toString()));
-  leaderBus.stderr!.on('data', (d: Buffer) => (leaderOut += d.toString()));
-  while (!leaderOut.includes('simulated servo bus on the serial line')) {
-    if (Date.now() > deadline + 20_000)
-      throw new Error(`the leader's bus did not start:\n${leaderOut}`);
-    await new Promise((r) => setTimeout(r, 50));
-  }
+  await leader.start();
   gateway = armtwin([
     'gateway',
-    ...['--bus', 'feetech', '--serial', host, '--baud', '1000000', '--profile', 'so101'],
+    ...['--bus', 'feetech', '--serial', leader.hostSide, '--baud', '1000000', '--profile', 'so101'],
     ...['--leader-of', ARM, '--user', USER, '--rate', '30', '--mqtt', broker().url],
   ]);
   await until(() => state().following === true && poses.length > 0, 'the leader following');
@@ -110,8 +74,7 @@ beforeAll(async () => {
 
 afterAll(async () => {
   await gateway?.stop();
-  leaderBus?.kill('SIGKILL');
-  socat?.kill('SIGTERM');
+  await leader.stop();
   await w?.client.endAsync();
   await follower?.stop('SIGKILL');
   fs.rmSync(dir, { recursive: true, force: true });

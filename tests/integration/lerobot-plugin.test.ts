@@ -11,24 +11,22 @@
  * the follower stays; an emergency stop from someone else wins over LeRobot's lease, and the arm
  * stays stopped for the rest of the session.
  */
-import { execFileSync, spawn } from 'node:child_process';
+import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { parseAudit, type AuditEvent } from '@armtwin/protocol';
-import { LEROBOT_SCRIPTS, lerobotPython } from '../helpers/lerobot-python.ts';
-import { REPO_ROOT } from '../helpers/services.ts';
+import { lerobotPython, PLUGIN_DIR, startPluginScript } from '../helpers/lerobot-python.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { startSo101Follower } from './so101-follower.ts';
 import { StatusWatcher, type Child } from './sim-helpers.ts';
-import { serialLine } from './serial-line.ts';
+import { so101BusLine } from './serial-line.ts';
 
 const broker = useMosquitto();
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-lerobot-plugin-'));
 const MODELS = path.join(dir, 'models');
 const ARM = 'follower';
-const PLUGIN_DIR = path.join(REPO_ROOT, 'packages', 'lerobot', 'python');
 const MOTORS = ['shoulder_pan', 'shoulder_lift', 'elbow_flex', 'wrist_flex', 'wrist_roll'];
 
 /** The leader's calibration as LeRobot writes it: a full turn, zero homing but shoulder_pan's. */
@@ -84,53 +82,29 @@ async function session(
   during: (ended: () => boolean) => Promise<void> = async () => {},
 ): Promise<{ code: number | null; out: string; err: string }> {
   const k = ++sessions;
-  const host = path.join(dir, `leader${k}`);
-  const line = serialLine(
-    host,
-    path.join(dir, `leader-arm${k}`),
-    (armSide) => [
-      'sim',
-      ...['--bus', 'feetech', '--serial', armSide, '--baud', '1000000', '--profile', 'so101'],
-      ...['--bus-fault', `field:1:homingOffset=${panOffset}`],
-    ],
-    'simulated servo bus on the serial line',
-  );
+  const line = so101BusLine(dir, `leader${k}`, {
+    extra: ['--bus-fault', `field:1:homingOffset=${panOffset}`],
+  });
+  const host = line.hostSide;
   await line.start();
   try {
-    // LeRobot finds the installed distribution (scripts/pyenv-lerobot.sh); its module is imported
-    // from this clone's sources, first on the path.
-    const py = spawn(
-      lerobotPython('lerobot, lerobot_robot_armtwin'),
-      [path.join(LEROBOT_SCRIPTS, 'session_armtwin.py')],
-      { env: { ...process.env, PYTHONPATH: PLUGIN_DIR } },
-    );
-    let out = '';
-    let err = '';
-    py.stdout.on('data', (d: Buffer) => (out += d.toString()));
-    py.stderr.on('data', (d: Buffer) => (err += d.toString()));
-    let ended = false;
-    const exited = new Promise<number | null>((r) => py.once('exit', r)).finally(
-      () => (ended = true),
-    );
-    py.stdin.end(
-      JSON.stringify({
-        op,
-        broker: broker().url,
-        arm: ARM,
-        user: 'lerobot',
-        leader_port: host,
-        leader_calibration: leaderCalibration(panOffset),
-        dir: path.join(dir, `session${k}`),
-        fps: 30,
-        ...extra,
-      }),
-    );
+    const py = startPluginScript('session_armtwin.py', {
+      op,
+      broker: broker().url,
+      arm: ARM,
+      user: 'lerobot',
+      leader_port: host,
+      leader_calibration: leaderCalibration(panOffset),
+      dir: path.join(dir, `session${k}`),
+      fps: 30,
+      ...extra,
+    });
     try {
-      await during(() => ended);
+      await during(py.ended);
     } catch (e) {
-      throw new Error(`${String(e)}; LeRobot said:\n${err.slice(-3000)}`, { cause: e });
+      throw new Error(`${String(e)}; LeRobot said:\n${py.err().slice(-3000)}`, { cause: e });
     }
-    return { code: await exited, out, err };
+    return { code: await py.exited, out: py.out(), err: py.err() };
   } finally {
     await line.stop();
   }
@@ -144,7 +118,7 @@ describe('LeRobot through armtwin (lerobot_robot_armtwin)', () => {
       lerobotPython('lerobot, paho.mqtt'),
       ['-m', 'unittest', 'discover', '-s', 'tests'],
       {
-        cwd: path.join(REPO_ROOT, 'packages', 'lerobot', 'python'),
+        cwd: PLUGIN_DIR,
         encoding: 'utf8',
         stdio: 'pipe',
       },
@@ -225,31 +199,17 @@ describe('LeRobot through armtwin (lerobot_robot_armtwin)', () => {
     );
     const from = w.items.length;
     const auditFrom = audit.length;
-    const py = spawn(
-      lerobotPython('lerobot, lerobot_robot_armtwin'),
-      [path.join(LEROBOT_SCRIPTS, 'replay_armtwin.py')],
-      {
-        env: { ...process.env, PYTHONPATH: PLUGIN_DIR },
-      },
-    );
-    let out = '';
-    let err = '';
-    py.stdout.on('data', (d: Buffer) => (out += d.toString()));
-    py.stderr.on('data', (d: Buffer) => (err += d.toString()));
-    const code = new Promise<number | null>((r) => py.once('exit', r));
-    py.stdin.end(
-      JSON.stringify({
-        broker: broker().url,
-        arm: ARM,
-        user: 'lerobot-replay',
-        repo_id: 'local/armtwin-so101',
-        root: recorded,
-        episode: 0,
-        fps: 30,
-      }),
-    );
-    expect(await code, err.slice(-3000)).toBe(0);
-    const ep = JSON.parse(out) as { frames: number; first: number[]; last: number[] };
+    const py = startPluginScript('replay_armtwin.py', {
+      broker: broker().url,
+      arm: ARM,
+      user: 'lerobot-replay',
+      repo_id: 'local/armtwin-so101',
+      root: recorded,
+      episode: 0,
+      fps: 30,
+    });
+    expect(await py.exited, py.err().slice(-3000)).toBe(0);
+    const ep = JSON.parse(py.out()) as { frames: number; first: number[]; last: number[] };
     expect(ep.frames).toBeGreaterThan(10);
     // The follower went from +10° to the episode's shoulder_pan (the leader's −40°), as replayed.
     expect(pan(from).some((d) => near(d, ep.last[0]!))).toBe(true);

@@ -23,11 +23,16 @@ process.on('exit', () => {
   for (const c of children) c.kill('SIGKILL');
 });
 
-export function runNode(args: string[], env: Record<string, string> = {}): Child {
+/** With `stdin`, the child's stdin is a pipe (`proc.stdin`), else it reads nothing. */
+export function runNode(
+  args: string[],
+  env: Record<string, string> = {},
+  { stdin = false }: { stdin?: boolean } = {},
+): Child {
   const proc = spawn(process.execPath, args, {
     cwd: REPO_ROOT,
     env: { ...process.env, ...env },
-    stdio: ['ignore', 'pipe', 'pipe'],
+    stdio: [stdin ? 'pipe' : 'ignore', 'pipe', 'pipe'],
   });
   children.add(proc);
   let out = '';
@@ -52,8 +57,8 @@ export function runNode(args: string[], env: Record<string, string> = {}): Child
   };
 }
 
-export const armtwin = (args: string[], env?: Record<string, string>) =>
-  runNode([ARMTWIN, ...args], env);
+export const armtwin = (args: string[], env?: Record<string, string>, opts?: { stdin?: boolean }) =>
+  runNode([ARMTWIN, ...args], env, opts);
 
 /** A decoded status item: a top-level frame or a group, with the `$TIM` it came under. */
 /**

@@ -7,7 +7,7 @@
  * `$TIM`-stamped angle and health groups. Control frames go to the controller core
  * (@armtwin/controller: limits, floor and zones, `$KMS`, the rate limit, the deadman, the
  * e-stop), whose goals the bus carries out (`./bus-driver.ts`); a stop, the deadman or torque
- * going back on write the present position as the goal. One request on the half-duplex line at a time (`./bus-line.ts`). The bytes, the
+ * going back on write the present position as the goal (`./bus-holds.ts`). One request on the half-duplex line at a time (`./bus-line.ts`). The bytes, the
  * clock, the timers and the publish function are injected.
  */
 import type { Profile } from '@armtwin/robot';
@@ -33,7 +33,8 @@ import { BusDriver } from './bus-driver.ts';
 import { BusLine, type BusLineCounters } from './bus-line.ts';
 import { BusReports, LOST_AFTER_MS } from './bus-reports.ts';
 import { busCalibration, busJoints, type BusGoal, type BusJoint } from './bus-servos.ts';
-import { goalsWrite, multiTurnWrites } from './bus-writes.ts';
+import { goalsWrite } from './bus-writes.ts';
+import { BusHolds } from './bus-holds.ts';
 
 export interface BusGatewayIo extends OperatorTimers {
   publish(topic: string, payload: string, opts: { qos: 0 | 1; retain: boolean }): void;
@@ -100,9 +101,10 @@ export class BusGatewayCore {
   private o: BusGatewayOptions;
   private readonly topics;
   private readonly line: BusLine;
+  /** Hold, set-up and torque: goals where the servos are. */
+  private readonly holds: BusHolds;
   private lineOpen = false;
   private brokerUp = false;
-  private torqueWanted = true;
   private pollTimer: unknown;
   private nextHealthMs = 0;
   private nextPingMs = 0;
@@ -115,6 +117,14 @@ export class BusGatewayCore {
     this.topics = armTopics(this.o.armId);
     this.joints = busJoints(this.o.profile);
     this.line = new BusLine(this.o.protocol, this.joints, this.o.baudRate, io);
+    this.holds = new BusHolds({
+      protocol: this.o.protocol,
+      line: this.line,
+      reports: this.reports,
+      found: this.found,
+      joint: (id) => this.joint(id),
+      calibration: (id) => this.calibration(id),
+    });
     ({
       controller: this.controller,
       input: this.input,
@@ -162,7 +172,7 @@ export class BusGatewayCore {
     this.line.ping(ids, (found, missing) => {
       for (const id of found) this.found.add(id);
       this.reportMissing(missing);
-      this.setUp(found);
+      this.holds.setUp(found);
       this.line.markReady();
     });
     this.schedule();
@@ -208,11 +218,7 @@ export class BusGatewayCore {
   fromTorque(payload: Uint8Array | string): void {
     const text = (typeof payload === 'string' ? payload : Buffer.from(payload).toString()).trim();
     if (text !== '0' && text !== '1') return;
-    this.torqueWanted = text === '1';
-    if (!this.ready) return;
-    const ids = [...this.found];
-    if (this.torqueWanted) this.holdThen(ids, () => this.line.torque(true, ids), true);
-    else this.line.torque(false, ids, true);
+    this.holds.torque(text === '1', this.ready);
   }
 
   /**
@@ -254,8 +260,7 @@ export class BusGatewayCore {
   /** Stops `ids` where they are: goals = present positions, ahead of any queued goal. */
   hold(ids: number[]): void {
     this.counters.holds++;
-    this.line.dropGoals();
-    this.holdThen(ids, () => {}, true);
+    this.holds.hold(ids);
   }
 
   /** Publishes frames (already encoded) as one `$TIM`-stamped status payload. */
@@ -265,49 +270,11 @@ export class BusGatewayCore {
     this.io.publish(this.topics.status, payload, { qos: 0, retain: false });
   }
 
-  /** Reads `ids`, writes their present positions as goals, then `then()`. */
-  private holdThen(ids: number[], then: () => void, first: boolean): void {
-    const present = ids.filter((id) => this.found.has(id));
-    if (present.length === 0) return then();
-    this.line.readPositions(
-      present,
-      (r) => {
-        // A servo whose read was missed holds where it was last read: torque must never come on
-        // over a stale goal (one written while it was limp, say), which it would run to.
-        const read = new Map(r.servos.map((s) => [s.id, s.degrees]));
-        const goals = present.flatMap((id) => {
-          const degrees = read.get(id) ?? this.reports.positions.get(id);
-          if (degrees === undefined) return [];
-          return [{ id, degrees, speedDegPerS: this.joint(id).servo.maxSpeed }];
-        });
-        this.reports.remember(goals);
-        if (goals.length)
-          this.line.send(goalsWrite(this.o.protocol, goals, this.calibration), 'hold', true);
-        then();
-      },
-      first,
-    );
-  }
-
   /** A servo's zero and direction on the bus (its profile polarity). */
   private readonly calibration = (id: number): ServoCalibration => busCalibration(this.joint(id));
 
   private joint(id: number): BusJoint {
     return this.joints.find((j) => j.id === id)!;
-  }
-
-  /**
-   * Torque off (at line open; not for a servo that comes back, which may only have missed
-   * reads), multi-turn where needed (refused harmlessly by a servo whose torque is on), goals =
-   * present positions, torque on (as wanted).
-   */
-  private setUp(ids: number[], torqueOff = true): void {
-    if (ids.length === 0) return;
-    if (torqueOff) this.line.torque(false, ids);
-    for (const id of ids)
-      if (this.joint(id).multiTurn)
-        for (const w of multiTurnWrites(this.o.protocol)) this.line.config(id, w);
-    this.holdThen(ids, () => this.torqueWanted && this.line.torque(true, ids), false);
   }
 
   private reportMissing(missing: number[]): void {
@@ -341,7 +308,7 @@ export class BusGatewayCore {
       this.nextPingMs = now + this.o.repingMs;
       this.line.ping(lost, (back) => {
         for (const id of back) this.found.add(id);
-        this.setUp(back, false);
+        this.holds.setUp(back, false);
       });
     }
   }

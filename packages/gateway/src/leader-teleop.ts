@@ -18,18 +18,18 @@ import {
   encodeAngleMove,
   encodeGroup,
   encodeTime,
+  leaderTopics as leaderOwnTopics,
   parseAudit,
   parseHolder,
   userTopic,
+  type LeaderState,
 } from '@armtwin/protocol';
 
-/** The leader's topics under its follower: pose, state (retained), enable. */
+/** The leader's topics under its follower: pose, state (retained), enable; and the follower's. */
 export function leaderTopics(follower: string, user: string) {
-  const pose = `arm/${assertArmId(follower)}/leader/${user}`;
+  assertArmId(follower);
   return {
-    pose,
-    state: `${pose}/state`,
-    enable: `${pose}/enable`,
+    ...leaderOwnTopics(follower, user),
     control: userTopic(follower, 'control', user),
     claim: userTopic(follower, 'claim', user),
     profile: `arm/${follower}/profile`,
@@ -53,12 +53,6 @@ export interface LeaderTeleopOptions {
   servos: readonly { id: number; name: string }[];
   /** A pose is sent when some servo moved at least this much since the last one sent, degrees. */
   deadbandDeg: number;
-}
-
-/** The retained state: whether the leader drives the follower, and why not. */
-export interface LeaderState {
-  following: boolean;
-  reason: string;
 }
 
 export const LEADER_DEADBAND_DEG = 0.1;

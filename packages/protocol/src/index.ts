@@ -13,3 +13,4 @@ export * from './backoff.ts';
 export * from './clock.ts';
 export * from './linear-solve.ts';
 export * from './control-claims.ts';
+export * from './leader.ts';

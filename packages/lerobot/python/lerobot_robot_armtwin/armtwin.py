@@ -1,7 +1,8 @@
 """An arm driven through armtwin, as a LeRobot Robot: actions become the contract's angle moves
 on the user's control topic, so armtwin's controller checks each against the joint limits and
 keep-out zones and the lease, and an emergency stop wins over LeRobot; observations are the
-positions the arm reports on MQTT (and LeRobot's own cameras, if configured)."""
+positions the arm reports on MQTT, the pictures of armtwin's cameras of the arm (configured by name:
+their MJPEG streams, as their announcements give them) and LeRobot's own cameras, if configured."""
 
 import logging
 from functools import cached_property
@@ -11,6 +12,7 @@ from lerobot.robots.robot import Robot
 from lerobot.robots.utils import ensure_safe_goal_position
 
 from . import frames
+from .camera_stream import CameraStream
 from .config_armtwin import ArmtwinConfig
 from .link import ArmLink
 
@@ -29,12 +31,17 @@ class Armtwin(Robot):
         super().__init__(config)
         self.config = config
         self.cameras = make_cameras_from_configs(config.cameras)
+        both = set(config.cameras) & set(config.armtwin_cameras)
+        if both:
+            raise ValueError(f"camera names {sorted(both)} are both LeRobot's and armtwin's: rename one")
         self.link: ArmLink | None = None
+        self.armtwin_cameras: dict[str, CameraStream] = {}
 
     @cached_property
     def observation_features(self) -> dict:
         cams = {c: (cam.height, cam.width, 3) for c, cam in self.config.cameras.items()}
-        return {**self.action_features, **cams}
+        ours = {c: (cam.height, cam.width, 3) for c, cam in self.config.armtwin_cameras.items()}
+        return {**self.action_features, **cams, **ours}
 
     @cached_property
     def action_features(self) -> dict:
@@ -58,19 +65,41 @@ class Armtwin(Robot):
         if self.link is not None:
             raise ConnectionError(f"{self} is already connected")
         c = self.config
-        link = ArmLink(c.broker, c.arm, c.user, c.username, c.password)
+        link = ArmLink(c.broker, c.arm, c.user, c.username, c.password, tuple(c.armtwin_cameras))
         try:
             link.take(c.connect_timeout_s)
             names = tuple(m.name for m in link.motors)
             if names != SO101_MOTORS:
                 raise ValueError(f"armtwin arm {c.arm!r} has servos {names}, not an SO-101's {SO101_MOTORS}")
+            self._open_armtwin_cameras(link)
         except BaseException:
+            self._close_armtwin_cameras()
             link.close()
             raise
         self.link = link
         for cam in self.cameras.values():
             cam.connect()
         logger.info("%s connected to armtwin arm %s as %s", self, c.arm, c.user)
+
+    def _open_armtwin_cameras(self, link: ArmLink) -> None:
+        """Each armtwin camera's stream, from its announcement; returns once each gave a picture."""
+        c = self.config
+        for name, cam in c.armtwin_cameras.items():
+            link.wait(
+                f"announcement of camera {name!r} on arm/{c.arm}/camera/{name} (is `armtwin camera` running?)",
+                lambda n=name: n in link.camera_urls,
+                c.connect_timeout_s,
+            )
+            with link.lock:
+                url = link.camera_urls[name]
+            stream = CameraStream(name, url, cam.width, cam.height, c.username, c.password)
+            self.armtwin_cameras[name] = stream
+            stream.start(c.connect_timeout_s)
+
+    def _close_armtwin_cameras(self) -> None:
+        for stream in self.armtwin_cameras.values():
+            stream.stop()
+        self.armtwin_cameras = {}
 
     def _present(self) -> dict[str, float]:
         link = self._connected()
@@ -86,6 +115,8 @@ class Armtwin(Robot):
         obs = self._present()
         for key, cam in self.cameras.items():
             obs[key] = cam.read_latest()
+        for key, stream in self.armtwin_cameras.items():
+            obs[key] = stream.read_latest(self.config.camera_max_age_s)
         return obs
 
     def send_action(self, action: dict) -> dict:
@@ -115,6 +146,7 @@ class Armtwin(Robot):
         link = self._connected()
         self.link = None
         link.close()
+        self._close_armtwin_cameras()
         for cam in self.cameras.values():
             cam.disconnect()
         logger.info("%s disconnected (refused: %s)", self, dict(link.refused))

@@ -10,7 +10,7 @@ from urllib.parse import urlparse
 
 import paho.mqtt.client as mqtt
 
-from . import frames
+from . import frames, mjpeg
 
 logger = logging.getLogger(__name__)
 BEAT_S = 0.5  # the HUD's beat: a holder that stops beating loses the arm after the lease
@@ -25,11 +25,16 @@ def broker_address(url: str) -> tuple[str, int]:
 
 
 class ArmLink:
-    def __init__(self, broker: str, arm: str, user: str, username: str | None, password: str | None):
+    def __init__(
+        self, broker: str, arm: str, user: str, username: str | None, password: str | None, cameras: tuple[str, ...] = ()
+    ):
         self.arm, self.user = arm, user
         self.topics = {
             s: f"arm/{arm}/{s}" for s in ("status", "profile", "holder", "audit")
         }
+        # The announcements of armtwin's cameras to observe: their MJPEG stream URLs, by name.
+        self.camera_topics = {f"arm/{arm}/camera/{name}": name for name in cameras}
+        self.camera_urls: dict[str, str] = {}
         self.control = f"arm/{arm}/control/{user}"
         self.claim = f"arm/{arm}/claim/{user}"
         self.lock = threading.Lock()
@@ -56,13 +61,18 @@ class ArmLink:
         if reason.is_failure:
             logger.error("armtwin broker refused the connection: %s", reason)
             return
-        client.subscribe([(t, 1) for t in self.topics.values()])
+        client.subscribe([(t, 1) for t in [*self.topics.values(), *self.camera_topics]])
 
     def _on_message(self, _client, _userdata, msg):
-        kind = msg.topic.rsplit("/", 1)[-1]
+        camera = self.camera_topics.get(msg.topic)
+        kind = "camera" if camera else msg.topic.rsplit("/", 1)[-1]
         with self.changed:
             try:
-                if kind == "status":
+                if camera:
+                    self.camera_urls.pop(camera, None)
+                    if msg.payload:  # empty: the camera went away
+                        self.camera_urls[camera] = mjpeg.mjpeg_url(msg.payload)
+                elif kind == "status":
                     text = msg.payload.decode("ascii", "replace")
                     self.present.update(frames.positions(text))
                     for err in frames.errors(text):

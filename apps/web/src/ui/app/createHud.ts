@@ -41,6 +41,7 @@ import { RunReplay } from '../../core/plan/RunReplay.ts';
 import { RequestLog } from '../../core/robots/RequestLog.ts';
 import { CameraHub } from '../../core/cameras/CameraHub.ts';
 import { CameraScreens } from '../../scene/CameraScreens.ts';
+import { LeaderFeed } from '../../core/leader/LeaderFeed.ts';
 import { CalibrationSession } from '../../core/calibration/CalibrationSession.ts';
 import { HoldJog } from '../../core/jog/HoldJog.ts';
 import { GamepadJog } from '../../core/jog/GamepadJog.ts';
@@ -152,8 +153,14 @@ export function createHud(els: HudElements, render: (parts: HudParts) => void): 
   // The cameras ride on the arm link's client: it is rebuilt for each arm and log-in, so the
   // list follows the selected arm and reads with the page's credentials and role.
   const cameras = new CameraHub();
+  // The leader arms ride on it too (their poses: the ghost, below).
+  const leaders = new LeaderFeed(
+    () => store.opts.arm.servos,
+    () => performance.now(),
+  );
   const firstLink = new ArmLink(store, settings, connect, workerIntervals);
   cameras.attach(firstLink);
+  leaders.attach(firstLink);
   const cameraScreens = new CameraScreens(viewer, cameras, cameras.decoders);
   // Hold-to-jog reads the link live (it is replaced on reconnect); the e-stop lets go of it.
   const hold = new HoldJog({
@@ -196,6 +203,7 @@ export function createHud(els: HudElements, render: (parts: HudParts) => void): 
       hud.settings = next;
       hud.link = new ArmLink(store, next, connect, workerIntervals);
       cameras.attach(hud.link);
+      leaders.attach(hud.link);
       letGoOnStop(hud.link);
       plan.runner.cancel(prev.armId === next.armId ? '' : 'stopped: another arm was selected');
       plan.preview.clear();
@@ -216,6 +224,7 @@ export function createHud(els: HudElements, render: (parts: HudParts) => void): 
     plan,
     requests,
     cameras: { hub: cameras, screens: cameraScreens },
+    leaders,
     calibration,
     jog: { hold, gamepad },
     modes,
@@ -227,12 +236,15 @@ export function createHud(els: HudElements, render: (parts: HudParts) => void): 
   built = true;
 
   // The ghost runs along the plan being previewed, and along each re-plan of a run.
-  // (the calibration wizard's ghost, while it is open, comes first)
+  // (the calibration wizard's ghost, while it is open, comes first); else it shows where a
+  // leader arm asks the arm to go.
   viewer.ghostSource = {
     sample: (now, out) =>
       calibration.sample(now, out) ||
       plan.runReplay.sample(now, out) || // "Replay run": the rehearsal beside the actual run
-      plan.preview.sample(now, out),
+      plan.preview.sample(now, out)
+        ? leaders.notShown()
+        : leaders.sample(now, out),
   };
   plan.runner.onPlan((p) => plan.preview.show(p, polaritiesOf(store.opts.arm), performance.now()));
   plan.runner.onEnd(() => plan.preview.clear()); // the ghost goes when the plan is over

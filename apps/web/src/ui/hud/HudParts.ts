@@ -16,6 +16,7 @@ import type { Session } from '../../core/auth/Session.ts';
 import type { RobotsHub } from '../../core/robots/RobotsHub.ts';
 import type { RequestLog } from '../../core/robots/RequestLog.ts';
 import type { CameraHub } from '../../core/cameras/CameraHub.ts';
+import type { LeaderFeed } from '../../core/leader/LeaderFeed.ts';
 import type { CameraScreens } from '../../scene/CameraScreens.ts';
 import type { CalibrationSession } from '../../core/calibration/CalibrationSession.ts';
 import type { HoldJog } from '../../core/jog/HoldJog.ts';
@@ -56,6 +57,8 @@ export interface HudParts {
   readonly requests: RequestLog;
   /** The selected arm's cameras (PROTOCOL.md §7) and their screens in the 3D view. */
   readonly cameras: { readonly hub: CameraHub; readonly screens: CameraScreens };
+  /** The selected arm's leader arms (`armtwin gateway --leader-of`): the ghost shows their pose. */
+  readonly leaders: LeaderFeed;
   /** The calibration wizard of a bus arm (its ghost comes before the plan preview's). */
   readonly calibration: CalibrationSession;
   /** Hold-to-jog (buttons, keys, gamepad) of the Jog panel. */
@@ -86,6 +89,7 @@ export const HUD_CONTEXTS: Contexts = {
   plan: createContext<PlanTools | null>(null),
   requests: createContext<RequestLog | null>(null),
   cameras: createContext<HudParts['cameras'] | null>(null),
+  leaders: createContext<LeaderFeed | null>(null),
   calibration: createContext<CalibrationSession | null>(null),
   jog: createContext<HudParts['jog'] | null>(null),
   modes: createContext<ModeSwitch | null>(null),
@@ -116,6 +120,9 @@ export const useRobots = (): Pick<RobotsHub, 'active' | 'fleet'> => usePart('rob
 export const usePlan = (): PlanTools => usePart('plan');
 export const useRequests = (): RequestLog => usePart('requests');
 export const useCameras = (): HudParts['cameras'] => usePart('cameras');
+/** The selected arm's leader arms: who drives it by a leader, and whether it still does. */
+export const useLeaders = (): Pick<LeaderFeed, 'list' | 'version' | 'onGhost' | 'rejected'> =>
+  usePart('leaders');
 export const useCalibration = (): CalibrationSession => usePart('calibration');
 export const useJog = (): HudParts['jog'] => usePart('jog');
 export const useModes = (): Pick<ModeSwitch, 'mode' | 'note' | 'noteBad' | 'set' | 'driven'> =>
