@@ -9,7 +9,8 @@
  *   - the per-link transforms on /{arm}/tf put every link where the IK's own chain FK does (within
  *     0.1 mm) at sample times, for the joint values of the samples InfluxDB holds;
  *   - the joint states are the stored samples, in the profile's joint units;
- *   - every topic the Foxglove layout deploy/foxglove/armtwin-arm.json reads is in the file.
+ *   - every topic the Foxglove layout deploy/foxglove/armtwin-arm.json reads is in the file;
+ *   - every `/{arm}/…` topic has the live Foxglove server's name and schema (one home for both).
  */
 import fs from 'node:fs';
 import path from 'node:path';
@@ -29,6 +30,7 @@ import {
   type Profile,
 } from '@armtwin/robot';
 import { MODELS_DIR } from '@armtwin/motion/robot-folder';
+import { armChannels } from '@armtwin/foxglove';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
 import { select, waitForValue } from '../../apps/middleware/test/support/harness.ts';
@@ -341,6 +343,13 @@ describe('armtwin export --arm ID --format mcap, typed without --profile, in Fox
     expect(urdf).toMatchObject({ sourceType: 'topic', topic: `/${ARM}/robot_description` });
     expect(exported.channels.get(urdf!.topic!)).toBe('std_msgs/String');
     expect(exported.channels.get(`/${ARM}/tf`)).toBe('foxglove.FrameTransforms');
+  });
+
+  test('every /{arm}/… topic in the file is one the live server advertises, with its schema', () => {
+    const live = new Map(armChannels(ARM).map(({ spec }) => [spec.topic, spec.schemaName]));
+    const shared = [...exported.channels].filter(([t]) => t.startsWith(`/${ARM}/`));
+    expect(shared.length).toBeGreaterThanOrEqual(5);
+    for (const [topic, schema] of shared) expect([topic, live.get(topic)]).toEqual([topic, schema]);
   });
 });
 

@@ -27,7 +27,8 @@ import {
   type Frame,
 } from '@armtwin/protocol';
 import { parseThermalAlert, thermalAlertTopic } from '@armtwin/thermal';
-import { stampOf, type ChannelKind } from './channels.ts';
+import { stampOf } from './channels.ts';
+import type { ChannelKind } from './topics.ts';
 
 export interface FoxgloveMessage {
   kind: ChannelKind;

@@ -19,7 +19,8 @@ import {
   type HolderRecord,
 } from '@armtwin/protocol';
 import { parseAnnouncement, parseUrdfJoints } from '@armtwin/robot';
-import { armChannels, LATCHED, type ChannelKind } from './channels.ts';
+import { armChannels, LATCHED } from './channels.ts';
+import type { ChannelKind } from './topics.ts';
 import { ArmFeed } from './arm-feed.ts';
 import { urdfWithPackagePaths } from './robot-assets.ts';
 
