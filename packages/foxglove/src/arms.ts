@@ -76,7 +76,8 @@ export class ArmRegistry {
     o.fox.on('subscribe', (id) => this.subscribed.add(id));
     o.fox.on('unsubscribe', (id) => this.subscribed.delete(id));
     o.mqtt.on('message', (t, payload) => this.onMessage(t, payload));
-    o.control?.on('message', (t, payload) => this.onMessage(t, payload));
+    if (o.control && o.control !== o.mqtt)
+      o.control.on('message', (t, payload) => this.onMessage(t, payload));
     const subscribe = () =>
       o.mqtt.subscribe([allArmsTopic('profile'), 'arm/+/holder'], { qos: 1 }, (err) => {
         if (err) o.onFirst('subscribe', `arm profiles not followed: ${err.message}`);

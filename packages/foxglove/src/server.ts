@@ -17,7 +17,7 @@ import { ServerCapability, StatusLevel } from '@foxglove/ws-protocol';
 import { FoxgloveServer } from './ws-protocol.ts';
 import type { MqttClient } from 'mqtt';
 import { WebSocketServer, type WebSocket } from 'ws';
-import type { LoginThrottle, Principal } from '@armtwin/auth';
+import { basicCredentials, type LoginThrottle, type Principal } from '@armtwin/auth';
 import { createAuthorize, isLoopback, refusal } from '@armtwin/http-api';
 import { SYSTEM_CLOCK, type Clock } from '@armtwin/protocol';
 import { ArmRegistry } from './arms.ts';
@@ -43,7 +43,7 @@ export interface FoxgloveServerOptions {
   modelDirs: readonly string[];
   /** Reads what a viewer may (profiles, holders, status, audit, alerts). */
   watch: MqttClient;
-  /** Reads the control topics, for the commanded targets; absent: none shown. */
+  /** Reads the control topics, for the commanded targets (may be `watch` itself); absent: none. */
   control?: MqttClient;
   /** Connects as a client's own identity, for its commands. */
   connectAs: ConnectAs;
@@ -152,7 +152,11 @@ export async function startFoxgloveServer(o: FoxgloveServerOptions): Promise<Arm
           : { name: `foxglove-${++anonymous}`, role: 'operator' };
       wss.handleUpgrade(req, socket, head, (ws) => {
         counts.clients++;
-        sessions.set(ws, new Session(who, o.connectAs, clock));
+        const password =
+          caller.kind === 'user'
+            ? (basicCredentials(req.headers.authorization ?? '')?.password ?? null)
+            : null;
+        sessions.set(ws, new Session(who, password, o.connectAs, clock));
         fox.handleConnection(ws, `${who.name} (${ws.protocol})`);
         latchedOnSubscribe(ws, registry, () => stampOf(clock.now()).ns);
         ws.on('close', () => {
