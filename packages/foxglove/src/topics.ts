@@ -20,6 +20,10 @@ export type ChannelKind = (typeof CHANNEL_KINDS)[number];
 
 export const channelTopic = (armId: string, kind: ChannelKind): string => `/${armId}/${kind}`;
 
+/** An arm's camera `camId` (foxglove.CompressedImage, live only: PROTOCOL.md §7 cameras). */
+export const cameraChannelTopic = (armId: string, camId: string): string =>
+  `/${armId}/camera/${camId}`;
+
 /** The per-arm topics by what they carry (the names the export's code reads best). */
 export const FOXGLOVE_TOPICS = {
   /** The URDF (std_msgs/String shape: `{"data": "<robot …>"}`). */
@@ -34,6 +38,8 @@ export const FOXGLOVE_TOPICS = {
   health: (arm: string) => channelTopic(arm, 'health'),
   /** foxglove.Log: the control log (who took, gave, lost control; refusals; alarms). */
   log: (arm: string) => channelTopic(arm, 'log'),
+  /** foxglove.CompressedImage (jpeg), per camera (live only). */
+  camera: cameraChannelTopic,
 } as const;
 
 const time = {
