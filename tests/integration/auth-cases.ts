@@ -68,6 +68,7 @@ export const SUBSCRIBE_CASES: [User, string, string, boolean][] = [
   ['middleware', 'arm/+/holder', 'arm/arm1/holder', true],
   ['middleware', 'arm/+/alert', 'arm/arm1/alert', true],
   ['middleware', 'arm/+/camera/+', 'arm/arm1/camera/front', true],
+  ['middleware', 'arm/+/feedback', 'arm/arm1/feedback', true],
   ['middleware', 'arm/+/claim/+', 'arm/arm1/claim/operator', false],
   ['middleware', 'arm/+/online', 'arm/arm1/online', false],
   ['middleware', '#', 'arm/arm1/operator', false],

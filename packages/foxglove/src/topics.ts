@@ -15,6 +15,8 @@ export const CHANNEL_KINDS = [
   'robot_description',
   'health',
   'log',
+  'plan',
+  'plan_tf',
 ] as const;
 export type ChannelKind = (typeof CHANNEL_KINDS)[number];
 
@@ -38,6 +40,10 @@ export const FOXGLOVE_TOPICS = {
   health: (arm: string) => channelTopic(arm, 'health'),
   /** foxglove.Log: the control log (who took, gave, lost control; refusals; alarms). */
   log: (arm: string) => channelTopic(arm, 'log'),
+  /** armtwin.PlannedPose: where each motion request's plan ends (live only). */
+  plan: (arm: string) => channelTopic(arm, 'plan'),
+  /** foxglove.FrameTransforms of that pose, frames prefixed `plan/` (the 3D panel's ghost). */
+  planTransforms: (arm: string) => channelTopic(arm, 'plan_tf'),
   /** foxglove.CompressedImage (jpeg), per camera (live only). */
   camera: cameraChannelTopic,
 } as const;
@@ -95,6 +101,30 @@ const HEALTH = {
   },
 } as const;
 
+const PLANNED_POSE = {
+  title: 'armtwin.PlannedPose',
+  description:
+    "Where a motion request's plan ends (docs/protocol.md § Motion requests: the feedback's `end`), as joints in servo order, URDF units (rad, m): the HUD's ghost of a plan",
+  type: 'object',
+  properties: {
+    timestamp: time,
+    id: { type: 'string', description: "the request's id" },
+    status: { type: 'string', description: '`planned`, or `replanned` during execution' },
+    mode: { type: 'string', enum: ['joint', 'cartesian'] },
+    durationMs: { type: 'number' },
+    joints: {
+      type: 'array',
+      items: {
+        type: 'object',
+        properties: { name: { type: 'string' }, position: { type: 'number' } },
+      },
+    },
+  },
+} as const;
+
+/** A plan's frames are the arm's own with this prefix (a second URDF layer's frame prefix). */
+export const PLAN_FRAME_PREFIX = 'plan/';
+
 /** Each kind's JSON schema (its `title` is the schema name advertised or written). */
 export const CHANNEL_SCHEMAS: Record<ChannelKind, { title: string }> = {
   joint_states: JointStates,
@@ -103,4 +133,6 @@ export const CHANNEL_SCHEMAS: Record<ChannelKind, { title: string }> = {
   robot_description: ROBOT_DESCRIPTION,
   health: HEALTH,
   log: Log,
+  plan: PLANNED_POSE,
+  plan_tf: FrameTransforms,
 };

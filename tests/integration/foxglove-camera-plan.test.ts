@@ -1,13 +1,23 @@
 /**
- * Cameras in Foxglove: `armtwin up --camera testsrc --foxglove PORT --users …` (a real ffmpeg
+ * Cameras and plans in Foxglove, the channels beyond the arm's own reports.
+ *
+ * Cameras: `armtwin up --camera testsrc --foxglove PORT --users …` (a real ffmpeg
  * test source on the camera server, log-ins on). Foxglove's npm client (`@foxglove/ws-protocol`)
  * logged in as a viewer finds the camera as `/{arm}/camera/{cam}`, `foxglove.CompressedImage`,
  * and receives JPEG frames that ffmpeg decodes to the source's 640×480, with advancing time
  * stamps. The stream is read with each client's own log-in: a device account of another arm,
  * which the camera server does not let watch this arm, gets the camera's refusal and no frame.
+ *
+ * Plans: an operator's plan-only motion request (`arm/{arm}/request`, `targets: ["ready"]`) is
+ * planned by the arm, which tells it on `arm/{arm}/feedback`; the viewer's `/{arm}/plan` gets its
+ * end pose, the profile's `ready` pose in joint units (within the feedback's 1 µs rounding), and
+ * `/{arm}/plan_tf` the arm drawn there as `plan/…` frames hung off the arm's root.
  */
 import { spawnSync } from 'node:child_process';
+import mqtt from 'mqtt';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+import { readRobotFolder } from '@armtwin/motion/robot-folder';
+import { jointFromServo } from '@armtwin/robot';
 import { freePorts } from '../helpers/services.ts';
 import { NpmFoxglove, type Received } from '../helpers/foxglove.ts';
 import { USERS_FILE } from './auth-cases.ts';
@@ -17,6 +27,7 @@ const TOPIC = '/arm1/camera/demo';
 const N = 8;
 let up: Child;
 let url = '';
+let mqttUrl = '';
 const clients: NpmFoxglove[] = [];
 
 beforeAll(async () => {
@@ -36,6 +47,7 @@ beforeAll(async () => {
     { httpPort, mqttPort },
   );
   url = `ws://127.0.0.1:${foxPort}`;
+  mqttUrl = `mqtt://127.0.0.1:${mqttPort}`;
 }, 60_000);
 
 afterAll(async () => {
@@ -120,5 +132,39 @@ describe('cameras as foxglove.CompressedImage', () => {
     );
     expect(status.message).toMatch(/403/);
     expect(frames).toEqual([]);
+  });
+});
+
+describe('plans: /{arm}/plan and /{arm}/plan_tf', () => {
+  test("a plan-only request's end pose, as the arm planned it, and the arm drawn there", async () => {
+    const { profile } = readRobotFolder('armtwin5');
+    const viewer = await connect('viewer');
+    const plan = await viewer.subscribe('/arm1/plan');
+    const planTf = await viewer.subscribe('/arm1/plan_tf');
+    const op = await mqtt.connectAsync(mqttUrl, {
+      username: 'operator',
+      password: 'operator-demo',
+      reconnectPeriod: 0,
+    });
+    const request = { id: 'fox-plan', mode: 'joint', targets: ['ready'] };
+    await op.publishAsync('arm/arm1/request', JSON.stringify(request), { qos: 1 });
+    await op.endAsync();
+    const [p] = await viewer.until(() => plan.length > 0 && plan, 'the plan');
+    expect(p!.body).toMatchObject({ id: 'fox-plan', status: 'planned', mode: 'joint' });
+    const joints = p!.body.joints as { name: string; position: number }[];
+    expect(joints.map((j) => j.name)).toEqual(profile.servos.map((s) => s.joint));
+    const ready = profile.poses.ready!; // servo degrees, servo order; NaN: left where it is
+    profile.servos.forEach((s, i) => {
+      if (Number.isNaN(ready[i])) return; // the gripper: not in the pose
+      const deg = Math.abs(jointFromServo(s, ready[i]!) - joints[i]!.position) * (180 / Math.PI);
+      expect(deg).toBeLessThan(0.15); // 1 µs of the feedback's rounding is 0.135° here
+    });
+    const [tf] = await viewer.until(() => planTf.length > 0 && planTf, 'the plan transforms');
+    type T = { parent_frame_id: string; child_frame_id: string };
+    const transforms = tf!.body.transforms as T[];
+    expect(transforms[0]).toMatchObject({
+      child_frame_id: `plan/${transforms[0]!.parent_frame_id}`,
+    });
+    expect(transforms.slice(1).every((t) => t.child_frame_id.startsWith('plan/'))).toBe(true);
   });
 });
