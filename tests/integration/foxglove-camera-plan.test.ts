@@ -12,6 +12,9 @@
  * planned by the arm, which tells it on `arm/{arm}/feedback`; the viewer's `/{arm}/plan` gets its
  * end pose, the profile's `ready` pose in joint units (within the feedback's 1 µs rounding), and
  * `/{arm}/plan_tf` the arm drawn there as `plan/…` frames hung off the arm's root.
+ *
+ * The layout: every topic it reads (3D, plan layer, plots, log, the camera's Image panel) is
+ * advertised by the live server.
  */
 import { spawnSync } from 'node:child_process';
 import mqtt from 'mqtt';
@@ -20,6 +23,7 @@ import { readRobotFolder } from '@armtwin/motion/robot-folder';
 import { jointFromServo } from '@armtwin/robot';
 import { freePorts } from '../helpers/services.ts';
 import { NpmFoxglove, type Received } from '../helpers/foxglove.ts';
+import { layoutPanels, layoutTopics, readLayout } from '../helpers/foxglove-layout.ts';
 import { USERS_FILE } from './auth-cases.ts';
 import { ARMTWIN, startUpProcess, type Child } from './sim-helpers.ts';
 
@@ -166,5 +170,23 @@ describe('plans: /{arm}/plan and /{arm}/plan_tf', () => {
       child_frame_id: `plan/${transforms[0]!.parent_frame_id}`,
     });
     expect(transforms.slice(1).every((t) => t.child_frame_id.startsWith('plan/'))).toBe(true);
+    // the layout's plan layer draws these frames: its prefix is theirs
+    const layers = Object.values(layoutPanels(readLayout()).threeD.layers);
+    expect(layers.find((l) => l.framePrefix === 'plan/')).toMatchObject({
+      layerId: 'foxglove.Urdf',
+      topic: '/arm1/robot_description',
+    });
+  });
+});
+
+describe('the layout deploy/foxglove/armtwin-arm.json, live', () => {
+  test('every topic it reads is advertised, the camera its Image panel shows included', async () => {
+    const viewer = await connect('viewer');
+    const read = layoutTopics(readLayout());
+    expect(read).toContain(TOPIC);
+    await viewer.until(
+      () => read.every((t) => viewer.channels.has(t)),
+      'every topic of the layout',
+    );
   });
 });
