@@ -8,15 +8,15 @@
  * its take goes to the broker under its own name, so the arm's controller grants it, its jog
  * moves the arm, and closing the client gives the arm back.
  */
-import { execFileSync } from 'node:child_process';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { readRobotFolder } from '@armtwin/motion/robot-folder';
-import { startService, type ServiceProcess } from '../helpers/process.ts';
-import { deployedMosquittoSpec, freePort, REPO_ROOT } from '../helpers/services.ts';
+import type { ServiceProcess } from '../helpers/process.ts';
+import { startDeployedMosquitto } from '../helpers/mosquitto.ts';
+import { freePort } from '../helpers/services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
 import { NpmFoxglove } from '../helpers/foxglove.ts';
 import { password, USERS_FILE } from './auth-cases.ts';
-import { ARMTWIN, armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
+import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
 
 const ARM = 'arm1';
 const { profile } = readRobotFolder('armtwin5');
@@ -29,31 +29,7 @@ const clients: NpmFoxglove[] = [];
 const mws = useMiddlewares('foxglove-mw', () => ({ mqttUrl }));
 
 beforeAll(async () => {
-  svc = await startService('mosquitto-foxglove', 1, (dir, p) => {
-    execFileSync(
-      process.execPath,
-      [
-        ARMTWIN,
-        'deploy-mosquitto',
-        '--users',
-        USERS_FILE,
-        '--out',
-        dir,
-        '--persistence-dir',
-        `${dir}/`,
-        '--port',
-        String(p[0]!),
-        '--mqtts-port',
-        '0',
-        '--wss-port',
-        '0',
-        '--bind',
-        '127.0.0.1',
-      ],
-      { cwd: REPO_ROOT, stdio: 'pipe' },
-    );
-    return deployedMosquittoSpec(dir, p);
-  });
+  svc = await startDeployedMosquitto('mosquitto-foxglove', USERS_FILE);
   mqttUrl = `mqtt://127.0.0.1:${svc.spec.ports[0]!}`;
   sim = armtwin([
     'sim',
