@@ -4,8 +4,10 @@
  * persistent sessions and queued QoS 1 messages), log in `<dir>/mosquitto.log`.
  * Never uses port 1883, so a system Mosquitto does not matter.
  */
+import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
+import { REPO_ROOT } from './files.ts';
 import { LOOPBACK } from './ports.ts';
 import {
   startService,
@@ -102,6 +104,47 @@ export function deployedMosquittoSpec(dir: string, ports: number[]): ServiceSpec
     ports,
     startTimeoutMs: 15_000,
   };
+}
+
+/** The certificate files of a deployed Mosquitto's TLS listeners. */
+export interface DeployTls {
+  certFile: string;
+  keyFile: string;
+  caFile: string;
+}
+
+/**
+ * Mosquitto running the configuration `armtwin deploy-mosquitto` generates from `users` (a users
+ * file, or one written into the service's dir: passwd, acl, the roles enforced): plain MQTT on loopback on `spec.ports[0]`; with `tls`, MQTTS
+ * on `ports[1]` and WSS on `ports[2]` too. The generated files are in `spec.dir`.
+ */
+export function startDeployedMosquitto(
+  name: string,
+  users: string | ((dir: string) => string),
+  tls?: DeployTls,
+): Promise<ServiceProcess> {
+  return startService(name, tls ? 3 : 1, (dir, p) => {
+    const usersFile = typeof users === 'string' ? users : users(dir);
+    const [local, mqtts = 0, wss = 0] = p.map(String);
+    const args = ['--persistence-dir', `${dir}/`, '--port', local!, '--bind', '127.0.0.1'];
+    args.push('--mqtts-port', String(mqtts), '--wss-port', String(wss));
+    if (tls)
+      args.push('--certfile', tls.certFile, '--keyfile', tls.keyFile, '--cafile', tls.caFile);
+    execFileSync(
+      process.execPath,
+      [
+        path.join(REPO_ROOT, 'apps/cli/bin/armtwin.mjs'),
+        'deploy-mosquitto',
+        '--users',
+        usersFile,
+        '--out',
+        dir,
+        ...args,
+      ],
+      { cwd: REPO_ROOT, stdio: 'pipe' },
+    );
+    return deployedMosquittoSpec(dir, p);
+  });
 }
 
 export async function startMosquitto(opts: MosquittoOptions = {}): Promise<MosquittoService> {

@@ -64,6 +64,12 @@ export const SUBSCRIBE_CASES: [User, string, string, boolean][] = [
   ['middleware', 'arm/+/profile', 'arm/arm1/profile', true],
   ['middleware', '$share/armtwin/arm/+/status', 'arm/arm1/status', true],
   ['middleware', '$share/armtwin/arm/+/control/+', 'arm/arm2/control/operator', true],
+  // its Foxglove server watches with the middleware's account (docs/foxglove.md)
+  ['middleware', 'arm/+/holder', 'arm/arm1/holder', true],
+  ['middleware', 'arm/+/alert', 'arm/arm1/alert', true],
+  ['middleware', 'arm/+/camera/+', 'arm/arm1/camera/front', true],
+  ['middleware', 'arm/+/feedback', 'arm/arm1/feedback', true],
+  ['middleware', 'arm/+/claim/+', 'arm/arm1/claim/operator', false],
   ['middleware', 'arm/+/online', 'arm/arm1/online', false],
   ['middleware', '#', 'arm/arm1/operator', false],
 ];

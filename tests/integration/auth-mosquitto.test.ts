@@ -10,8 +10,9 @@ import fs from 'node:fs';
 import path from 'node:path';
 import mqtt from 'mqtt';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { startService, type ServiceProcess } from '../helpers/process.ts';
-import { deployedMosquittoSpec, REPO_ROOT } from '../helpers/services.ts';
+import type { ServiceProcess } from '../helpers/process.ts';
+import { startDeployedMosquitto } from '../helpers/mosquitto.ts';
+import { REPO_ROOT } from '../helpers/services.ts';
 import { makeTestCa, type TestCa } from '../helpers/tls.ts';
 import { ARMTWIN } from './sim-helpers.ts';
 import {
@@ -31,39 +32,8 @@ let ports: number[] = [];
 
 beforeAll(async () => {
   ca = makeTestCa();
-  svc = await startService('mosquitto-deploy', 3, (dir, p) => {
-    ports = p;
-    const [local, mqtts, wss] = p.map(String) as [string, string, string];
-    execFileSync(
-      process.execPath,
-      [
-        ARMTWIN,
-        'deploy-mosquitto',
-        '--users',
-        USERS_FILE,
-        '--out',
-        dir,
-        '--persistence-dir',
-        `${dir}/`,
-        '--port',
-        local,
-        '--mqtts-port',
-        mqtts,
-        '--wss-port',
-        wss,
-        '--bind',
-        '127.0.0.1',
-        '--certfile',
-        ca.certFile,
-        '--keyfile',
-        ca.keyFile,
-        '--cafile',
-        ca.caFile,
-      ],
-      { cwd: REPO_ROOT, stdio: 'pipe' },
-    );
-    return deployedMosquittoSpec(dir, p);
-  });
+  svc = await startDeployedMosquitto('mosquitto-deploy', USERS_FILE, ca);
+  ports = svc.spec.ports;
 });
 
 afterAll(async () => {

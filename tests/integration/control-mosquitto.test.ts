@@ -4,13 +4,12 @@
  * (`topic write arm/+/control/alice`), so identity reaches the controller through the broker;
  * the same story as on the embedded broker (control-cases.ts).
  */
-import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { startService, type ServiceProcess } from '../helpers/process.ts';
-import { deployedMosquittoSpec, REPO_ROOT } from '../helpers/services.ts';
-import { ARMTWIN, type Child } from './sim-helpers.ts';
+import type { ServiceProcess } from '../helpers/process.ts';
+import { startDeployedMosquitto } from '../helpers/mosquitto.ts';
+import type { Child } from './sim-helpers.ts';
 import { checkOneOperator, startSim, writeControlUsers } from './control-cases.ts';
 
 let svc: ServiceProcess;
@@ -19,33 +18,9 @@ let acl = '';
 let sim: Child | undefined;
 
 beforeAll(async () => {
-  svc = await startService('mosquitto-control', 1, (dir, p) => {
-    port = p[0]!;
-    execFileSync(
-      process.execPath,
-      [
-        ARMTWIN,
-        'deploy-mosquitto',
-        '--users',
-        writeControlUsers(dir),
-        '--out',
-        dir,
-        '--persistence-dir',
-        `${dir}/`,
-        '--port',
-        String(port),
-        '--mqtts-port',
-        '0',
-        '--wss-port',
-        '0',
-        '--bind',
-        '127.0.0.1',
-      ],
-      { cwd: REPO_ROOT, stdio: 'pipe' },
-    );
-    acl = fs.readFileSync(path.join(dir, 'acl'), 'utf8');
-    return deployedMosquittoSpec(dir, p);
-  });
+  svc = await startDeployedMosquitto('mosquitto-control', (dir) => writeControlUsers(dir));
+  port = svc.spec.ports[0]!;
+  acl = fs.readFileSync(path.join(svc.spec.dir, 'acl'), 'utf8');
 });
 
 afterAll(async () => {

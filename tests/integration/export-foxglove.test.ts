@@ -9,7 +9,8 @@
  *   - the per-link transforms on /{arm}/tf put every link where the IK's own chain FK does (within
  *     0.1 mm) at sample times, for the joint values of the samples InfluxDB holds;
  *   - the joint states are the stored samples, in the profile's joint units;
- *   - every topic the Foxglove layout deploy/foxglove/armtwin-arm.json reads is in the file.
+ *   - every topic the Foxglove layout deploy/foxglove/armtwin-arm.json reads is in the file;
+ *   - every `/{arm}/…` topic has the live Foxglove server's name and schema (one home for both).
  */
 import fs from 'node:fs';
 import path from 'node:path';
@@ -29,10 +30,12 @@ import {
   type Profile,
 } from '@armtwin/robot';
 import { MODELS_DIR } from '@armtwin/motion/robot-folder';
+import { armChannels } from '@armtwin/foxglove';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
 import { select, waitForValue } from '../../apps/middleware/test/support/harness.ts';
 import { REPO_ROOT } from '../helpers/files.ts';
+import { layoutPanels, layoutTopics, liveOnly, readLayout } from '../helpers/foxglove-layout.ts';
 import { ARMTWIN, armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
 
 const run = promisify(execFile);
@@ -314,20 +317,10 @@ describe('armtwin export --arm ID --format mcap, typed without --profile, in Fox
   });
 
   test('every topic the Foxglove layout reads is in the file, every joint it plots too', () => {
-    const layout = JSON.parse(
-      fs.readFileSync(path.join(REPO_ROOT, 'deploy/foxglove/armtwin-arm.json'), 'utf8'),
-    ) as Layout;
-    const panels = Object.entries(layout.configById);
-    const threeD = panels.find(([id]) => id.startsWith('3D!'))?.[1] as ThreeD;
-    const plot = panels.find(([id]) => id.startsWith('Plot!'))?.[1] as Plot;
-    const log = panels.find(([id]) => id.startsWith('RosOut!'))?.[1] as { topicToRender: string };
-    const read = [
-      ...Object.keys(threeD.topics),
-      ...Object.values(threeD.layers).flatMap((l) => (l.topic ? [l.topic] : [])),
-      ...plot.paths.map((p) => p.value.slice(0, p.value.indexOf('.'))),
-      log.topicToRender,
-    ];
-    expect(read.filter((t) => !exported.channels.has(t))).toEqual([]);
+    const layout = readLayout();
+    const { threeD, plot, log } = layoutPanels(layout);
+    const read = layoutTopics(layout);
+    expect(read.filter((t) => !exported.channels.has(t) && !liveOnly(t))).toEqual([]);
 
     // each plotted index is a joint in every message of its topic
     for (const p of plot.paths) {
@@ -341,6 +334,13 @@ describe('armtwin export --arm ID --format mcap, typed without --profile, in Fox
     expect(urdf).toMatchObject({ sourceType: 'topic', topic: `/${ARM}/robot_description` });
     expect(exported.channels.get(urdf!.topic!)).toBe('std_msgs/String');
     expect(exported.channels.get(`/${ARM}/tf`)).toBe('foxglove.FrameTransforms');
+  });
+
+  test('every /{arm}/… topic in the file is one the live server advertises, with its schema', () => {
+    const live = new Map(armChannels(ARM).map(({ spec }) => [spec.topic, spec.schemaName]));
+    const shared = [...exported.channels].filter(([t]) => t.startsWith(`/${ARM}/`));
+    expect(shared.length).toBeGreaterThanOrEqual(5);
+    for (const [topic, schema] of shared) expect([topic, live.get(topic)]).toEqual([topic, schema]);
   });
 });
 
@@ -371,17 +371,6 @@ interface Transform {
   translation: { x: number; y: number; z: number };
   rotation: { x: number; y: number; z: number; w: number };
 }
-interface Layout {
-  configById: Record<string, unknown>;
-}
-interface ThreeD {
-  topics: Record<string, { visible?: boolean }>;
-  layers: Record<string, { layerId: string; sourceType?: string; topic?: string }>;
-}
-interface Plot {
-  paths: { value: string }[];
-}
-
 const servoById = (p: Profile, id: number) => p.servos.find((s) => s.id === id)!;
 
 /** A link's origin in `root`'s frame (m), composing the message's parent → child transforms. */

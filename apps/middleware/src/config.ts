@@ -93,6 +93,12 @@ export interface MiddlewareConfig {
   thermalWatch: boolean;
   /** THERMAL_REFIT_MS: how often each arm's thermal models are refitted from its history, ms. */
   thermalRefitMs: number;
+  /**
+   * FOXGLOVE_PORT: the live Foxglove WebSocket server's port (docs/foxglove.md), on HOST, as
+   * `armtwin up --foxglove` serves it; 'off' (unset) = none, 0 = any free port. Beyond loopback
+   * only with ARMTWIN_USERS; a user's commands go to the broker under their own log-in.
+   */
+  foxglovePort: number | 'off';
   /** LOG_LEVEL: pino level. */
   logLevel: 'fatal' | 'error' | 'warn' | 'info' | 'debug' | 'trace' | 'silent';
 }
@@ -129,6 +135,7 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   maxPayloadBytes: MAX_PAYLOAD_BYTES,
   thermalWatch: true,
   thermalRefitMs: 5 * 60_000,
+  foxglovePort: 'off',
   logLevel: 'info',
 };
 
@@ -165,6 +172,7 @@ export const CONFIG_ENV: Record<keyof MiddlewareConfig, string> = {
   maxPayloadBytes: 'MAX_PAYLOAD_BYTES',
   thermalWatch: 'THERMAL_WATCH',
   thermalRefitMs: 'THERMAL_REFIT_MS',
+  foxglovePort: 'FOXGLOVE_PORT',
   logLevel: 'LOG_LEVEL',
 };
 
@@ -221,6 +229,7 @@ const SCHEMA = z.object({
   maxPayloadBytes: int(64, 268_435_455),
   thermalWatch: z.enum(['true', 'false', '1', '0']).transform((b) => b === 'true' || b === '1'),
   thermalRefitMs: int(1000, 86_400_000),
+  foxglovePort: z.union([z.literal('off'), int(0, 65535)]),
   logLevel: z.enum(['fatal', 'error', 'warn', 'info', 'debug', 'trace', 'silent']),
 });
 

@@ -23,6 +23,8 @@ import { Storage } from './storage.ts';
 import { episodeStore } from './episodes/store.ts';
 import type { ApiService } from '@armtwin/http-api';
 import { startThermalAlerts } from './thermal-alerts-run.ts';
+import { startMiddlewareFoxglove } from './foxglove.ts';
+import type { ArmtwinFoxglove } from '@armtwin/foxglove';
 
 export {
   loadConfig,
@@ -68,6 +70,8 @@ export interface Middleware {
   readonly metrics: Metrics;
   /** Bound HTTP port, or null when not listening. */
   readonly httpPort: number | null;
+  /** The live Foxglove server (FOXGLOVE_PORT), or null. */
+  readonly foxglove: ArmtwinFoxglove | null;
   /** The HTTP API as the middleware serves it on its own port. */
   readonly handler: HttpHandler;
   /** What it lends the HTTP API (`armtwin up` mounts the API with it). */
@@ -300,9 +304,31 @@ export async function startMiddleware(
     );
   }
 
+  let foxglove: ArmtwinFoxglove | null = null;
+  if (config.foxglovePort !== 'off') {
+    try {
+      foxglove = await startMiddlewareFoxglove({
+        config,
+        port: config.foxglovePort,
+        logins,
+        modelDirs,
+        onFirst: (kind, message) => once.warn(`foxglove:${kind}`, { kind }, message),
+      });
+    } catch (err) {
+      if (pingTimer) clearInterval(pingTimer);
+      heat?.stop();
+      server?.close();
+      client.end(true, {}, () => {});
+      await storage?.stop(1000);
+      throw new ConfigError(`FOXGLOVE_PORT: ${(err as Error).message}`, { cause: err });
+    }
+    log.info({ url: foxglove.url }, 'Foxglove: live (docs/foxglove.md)');
+  }
+
   return {
     config,
     metrics,
+    foxglove,
     get httpPort() {
       return httpPort;
     },
@@ -315,6 +341,7 @@ export async function startMiddleware(
       stopped = true;
       if (pingTimer) clearInterval(pingTimer);
       heat?.stop();
+      await foxglove?.stop();
       // The samples the broker already sent (an arm stopped just before) go in the last batch.
       if (storage?.gate() == null) await client.settle(2000);
       await new Promise<void>((resolve) => {

@@ -48,9 +48,17 @@ describe('loadConfig', () => {
     ['MQTT_SHARE_GROUP', 'a/b'],
     ['PORT', '70000'],
     ['LOG_LEVEL', 'loud'],
+    ['FOXGLOVE_PORT', 'yes'],
+    ['FOXGLOVE_PORT', '65536'],
   ])('%s=%s stops start-up with a message naming the variable', (name, value) => {
     expect(() => loadConfig({ [name]: value })).toThrow(ConfigError);
     expect(() => loadConfig({ [name]: value })).toThrow(new RegExp(`${name}=`));
+  });
+
+  test('FOXGLOVE_PORT: unset is no Foxglove server; a port (0: any free one) starts one', () => {
+    expect(loadConfig({}).foxglovePort).toBe('off');
+    expect(loadConfig({ FOXGLOVE_PORT: '8765' }).foxglovePort).toBe(8765);
+    expect(loadConfig({ FOXGLOVE_PORT: '0' }).foxglovePort).toBe(0);
   });
 
   test('several bad variables are all named', () => {

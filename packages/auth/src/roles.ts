@@ -92,7 +92,20 @@ export const ROLE_RULES: Record<Role, RoleRules> = {
     ],
   },
   middleware: {
-    read: ['arm/+/status', 'arm/+/control', 'arm/+/control/+', 'arm/+/audit', 'arm/+/profile'],
+    read: [
+      'arm/+/status',
+      'arm/+/control',
+      'arm/+/control/+',
+      'arm/+/audit',
+      'arm/+/profile',
+      // Its Foxglove server (FOXGLOVE_PORT, docs/foxglove.md) watches with this account: who
+      // holds each arm (its users' claims), the thermal warnings, the cameras and the motion
+      // feedback (the plans' end poses), as a viewer.
+      'arm/+/holder',
+      'arm/+/alert',
+      'arm/+/camera/+',
+      'arm/+/feedback',
+    ],
     // Its thermal watch's early warnings (docs/protocol.md § A thermal model of each servo).
     write: ['arm/+/alert'],
   },

@@ -3,7 +3,8 @@
  * servo gives its joint states (the profile's joints, URDF names and units: ./ros2's
  * JointStateBuilder, the ROS 2 bridge's own) and every URDF link's transform at them
  * (`linkTransforms` of @armtwin/robot, the MCAP export's); each health report a servo's health;
- * each move on a control topic the joints it asked for; each control event (`arm/{id}/audit`),
+ * each move on a control topic the joints it asked for; each plan the arm tells of
+ * (`arm/{id}/feedback`, ./plan-feed.ts) its end pose; each control event (`arm/{id}/audit`),
  * thermal warning (`arm/{id}/alert`) and controller `$ERR` a log line. Messages carry the arm's
  * own `$TIM` stamp (arrival time when a payload has none). Pure: fed topics, payloads and times.
  */
@@ -27,7 +28,9 @@ import {
   type Frame,
 } from '@armtwin/protocol';
 import { parseThermalAlert, thermalAlertTopic } from '@armtwin/thermal';
-import { stampOf, type ChannelKind } from './channels.ts';
+import { stampOf } from './channels.ts';
+import { PLAN_FRAME_PREFIX, type ChannelKind } from './topics.ts';
+import { plannedPose } from './plan-feed.ts';
 
 export interface FoxgloveMessage {
   kind: ChannelKind;
@@ -40,7 +43,7 @@ const INFO = 2;
 const WARNING = 3;
 
 export interface ArmFeedCounts {
-  /** Payloads on the arm's topics that held nothing readable (bad audit, bad alert). */
+  /** Payloads on the arm's topics that held nothing readable (bad audit, alert, feedback). */
   unreadable: number;
 }
 
@@ -52,6 +55,7 @@ export class ArmFeed {
   private readonly control: string;
   private readonly audit: string;
   private readonly alert: string;
+  private readonly feedback: string;
   private out: FoxgloveMessage[] = [];
   private stampMs = 0;
   /** Each servo's last commanded joint value (profile order; NaN: none yet). */
@@ -77,6 +81,7 @@ export class ArmFeed {
     this.control = topic(armId, 'control');
     this.audit = auditTopic(armId);
     this.alert = thermalAlertTopic(armId);
+    this.feedback = topic(armId, 'feedback');
     const each = (on: (f: Frame) => void) =>
       createReader({ onFrame: on, onGroup: (g) => g.frames.forEach(on) });
     this.statusReader = each((f) => this.onStatusFrame(f));
@@ -85,7 +90,7 @@ export class ArmFeed {
 
   /** The MQTT topics this feed reads that any viewer may read (subscribe to them). */
   get topics(): string[] {
-    return [this.status, this.audit, this.alert];
+    return [this.status, this.audit, this.alert, this.feedback];
   }
 
   /** The control topics it reads for the targets (a device's or the middleware's right). */
@@ -106,6 +111,7 @@ export class ArmFeed {
     else if (t === this.control) this.onControl('', payload);
     else if (t === this.audit) this.onAudit(payload);
     else if (t === this.alert) this.onAlert(payload);
+    else if (t === this.feedback) this.onFeedback(payload);
     else {
       const u = parseUserTopic(t);
       if (u?.armId === this.armId && u.kind === 'control') this.onControl(u.user, payload);
@@ -128,14 +134,45 @@ export class ArmFeed {
     for (const j of joints) this.reported.set(j.name, j.position);
     this.push('joint_states', ms, (timestamp) => ({ timestamp, joints }));
     const values = new Map(joints.map((j) => [j.name, j.position]));
-    this.push('tf', ms, (timestamp) => ({
-      transforms: linkTransforms(this.urdfJoints, values).map((t) => ({
+    this.push('tf', ms, (timestamp) => ({ transforms: this.transforms(values, timestamp, '') }));
+  }
+
+  /** Every URDF joint's transform at `values`, frames prefixed (a prefixed tree hangs off the root). */
+  private transforms(values: Map<string, number>, timestamp: object, prefix: string): object[] {
+    const links = linkTransforms(this.urdfJoints, values);
+    const out = links.map((t) => ({
+      timestamp,
+      parent_frame_id: prefix + t.parent,
+      child_frame_id: prefix + t.child,
+      translation: { x: t.translation[0], y: t.translation[1], z: t.translation[2] },
+      rotation: { x: t.rotation[0], y: t.rotation[1], z: t.rotation[2], w: t.rotation[3] },
+    }));
+    const children = new Set(links.map((t) => t.child));
+    const root = links.find((t) => !children.has(t.parent))?.parent;
+    if (prefix && root)
+      out.unshift({
         timestamp,
-        parent_frame_id: t.parent,
-        child_frame_id: t.child,
-        translation: { x: t.translation[0], y: t.translation[1], z: t.translation[2] },
-        rotation: { x: t.rotation[0], y: t.rotation[1], z: t.rotation[2], w: t.rotation[3] },
-      })),
+        parent_frame_id: root,
+        child_frame_id: prefix + root,
+        translation: { x: 0, y: 0, z: 0 },
+        rotation: { x: 0, y: 0, z: 0, w: 1 },
+      });
+    return out;
+  }
+
+  /** A plan's end pose (./plan-feed.ts): the joints, and the arm drawn there as `plan/…` frames. */
+  private onFeedback(payload: Uint8Array): void {
+    const p = plannedPose(this.profile, payload, this.reported);
+    if (p === 'unreadable') return void this.counts.unreadable++;
+    if (!p) return;
+    const { joints, t, ...summary } = p;
+    const ms = t ?? this.stampMs;
+    this.push('plan', ms, (timestamp) => ({ timestamp, ...summary, joints }));
+    const values = new Map(
+      joints.filter((j) => !Number.isNaN(j.position)).map((j) => [j.name, j.position]),
+    );
+    this.push('plan_tf', ms, (timestamp) => ({
+      transforms: this.transforms(values, timestamp, PLAN_FRAME_PREFIX),
     }));
   }
 

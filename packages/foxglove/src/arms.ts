@@ -19,7 +19,8 @@ import {
   type HolderRecord,
 } from '@armtwin/protocol';
 import { parseAnnouncement, parseUrdfJoints } from '@armtwin/robot';
-import { armChannels, LATCHED, type ChannelKind } from './channels.ts';
+import { armChannels, LATCHED } from './channels.ts';
+import type { ChannelKind } from './topics.ts';
 import { ArmFeed } from './arm-feed.ts';
 import { urdfWithPackagePaths } from './robot-assets.ts';
 
@@ -75,7 +76,8 @@ export class ArmRegistry {
     o.fox.on('subscribe', (id) => this.subscribed.add(id));
     o.fox.on('unsubscribe', (id) => this.subscribed.delete(id));
     o.mqtt.on('message', (t, payload) => this.onMessage(t, payload));
-    o.control?.on('message', (t, payload) => this.onMessage(t, payload));
+    if (o.control && o.control !== o.mqtt)
+      o.control.on('message', (t, payload) => this.onMessage(t, payload));
     const subscribe = () =>
       o.mqtt.subscribe([allArmsTopic('profile'), 'arm/+/holder'], { qos: 1 }, (err) => {
         if (err) o.onFirst('subscribe', `arm profiles not followed: ${err.message}`);

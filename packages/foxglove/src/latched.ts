@@ -1,8 +1,8 @@
 /**
- * Latched channels (the robot description): `FoxgloveServer` tells of a channel's first
- * subscriber only, so each client's own `subscribe` is watched here, and the channel's last
- * message is sent to that subscription at once: a Foxglove that connects late still gets the URDF.
- * The message is the protocol's binary Message Data (opcode 1, subscription id, ns, payload).
+ * Latched channels (the robot description): each client's own `subscribe`
+ * (./client-subscriptions.ts) is sent the channel's last message at once, so a Foxglove that
+ * connects late still gets the URDF. The message is the protocol's binary Message Data
+ * (opcode 1, subscription id, ns, payload).
  */
 import type { WebSocket } from 'ws';
 import type { ArmRegistry } from './arms.ts';
@@ -20,24 +20,14 @@ export function messageData(subId: number, ns: bigint, payload: Uint8Array): Uin
   return out;
 }
 
-export function latchedOnSubscribe(
+/** Sends a latched channel's last message to a new subscription of `ws`. */
+export function sendLatched(
   ws: WebSocket,
   registry: ArmRegistry,
-  nowNs: () => bigint,
+  subId: number,
+  channelId: number,
+  ns: bigint,
 ): void {
-  ws.on('message', (data, isBinary) => {
-    if (isBinary) return;
-    let m: { op?: unknown; subscriptions?: unknown };
-    try {
-      m = JSON.parse(data.toString()) as typeof m;
-    } catch {
-      return; // FoxgloveServer reports it
-    }
-    if (m.op !== 'subscribe' || !Array.isArray(m.subscriptions)) return;
-    for (const s of m.subscriptions as { id?: unknown; channelId?: unknown }[]) {
-      if (typeof s.id !== 'number' || typeof s.channelId !== 'number') continue;
-      const payload = registry.latched(s.channelId);
-      if (payload) ws.send(messageData(s.id, nowNs(), payload));
-    }
-  });
+  const payload = registry.latched(channelId);
+  if (payload) ws.send(messageData(subId, ns, payload));
 }

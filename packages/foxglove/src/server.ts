@@ -9,7 +9,8 @@
  * Basic against the users file, the same throttle as the broker's); without a users file it is
  * the anonymous local demo and listens on loopback only. Every client sees every arm; a viewer
  * only watches (its publish and service calls are refused); an operator's commands travel
- * under its own MQTT identity (./session.ts).
+ * under its own MQTT identity (./session.ts), and a camera it watches is read with its own log-in
+ * (./cameras.ts).
  */
 import http from 'node:http';
 import https from 'node:https';
@@ -17,14 +18,16 @@ import { ServerCapability, StatusLevel } from '@foxglove/ws-protocol';
 import { FoxgloveServer } from './ws-protocol.ts';
 import type { MqttClient } from 'mqtt';
 import { WebSocketServer, type WebSocket } from 'ws';
-import type { LoginThrottle, Principal } from '@armtwin/auth';
+import { basicCredentials, type LoginThrottle, type Principal } from '@armtwin/auth';
 import { createAuthorize, isLoopback, refusal } from '@armtwin/http-api';
 import { SYSTEM_CLOCK, type Clock } from '@armtwin/protocol';
 import { ArmRegistry } from './arms.ts';
 import { commandFrames, commandTopic } from './commands.ts';
 import { serveAssets, serveServices, type ServerCounts } from './requests.ts';
 import { Session, type ConnectAs } from './session.ts';
-import { latchedOnSubscribe } from './latched.ts';
+import { sendLatched } from './latched.ts';
+import { watchSubscriptions } from './client-subscriptions.ts';
+import { CameraChannels } from './cameras.ts';
 import { stampOf } from './channels.ts';
 
 /** The subprotocols accepted, the SDK's first (a client offering both gets it). */
@@ -43,7 +46,7 @@ export interface FoxgloveServerOptions {
   modelDirs: readonly string[];
   /** Reads what a viewer may (profiles, holders, status, audit, alerts). */
   watch: MqttClient;
-  /** Reads the control topics, for the commanded targets; absent: none shown. */
+  /** Reads the control topics, for the commanded targets (may be `watch` itself); absent: none. */
   control?: MqttClient;
   /** Connects as a client's own identity, for its commands. */
   connectAs: ConnectAs;
@@ -57,6 +60,7 @@ export interface ArmtwinFoxglove {
   port: number;
   counts: ServerCounts;
   registry: ArmRegistry;
+  cameras: CameraChannels;
   stop(): Promise<void>;
 }
 
@@ -88,6 +92,7 @@ export async function startFoxgloveServer(o: FoxgloveServerOptions): Promise<Arm
     },
     onFirst: o.onFirst,
   });
+  const cameras = new CameraChannels(fox, o.watch);
   fox.on('error', (err) => o.onFirst(`client:${err.message}`, `Foxglove client: ${err.message}`));
   serveServices(fox, registry, (ws) => sessions.get(ws as WebSocket), counts);
   serveAssets(fox, o.modelDirs);
@@ -152,10 +157,26 @@ export async function startFoxgloveServer(o: FoxgloveServerOptions): Promise<Arm
           : { name: `foxglove-${++anonymous}`, role: 'operator' };
       wss.handleUpgrade(req, socket, head, (ws) => {
         counts.clients++;
-        sessions.set(ws, new Session(who, o.connectAs, clock));
+        const password =
+          caller.kind === 'user'
+            ? (basicCredentials(req.headers.authorization ?? '')?.password ?? null)
+            : null;
+        sessions.set(ws, new Session(who, password, o.connectAs, clock));
         fox.handleConnection(ws, `${who.name} (${ws.protocol})`);
-        latchedOnSubscribe(ws, registry, () => stampOf(clock.now()).ns);
+        // a camera is read with the client's own log-in (its Basic header; none in the demo)
+        const camera = cameras.client(
+          ws,
+          caller.kind === 'user' ? (req.headers.authorization ?? null) : null,
+        );
+        watchSubscriptions(ws, {
+          subscribe: (subId, channelId) => {
+            sendLatched(ws, registry, subId, channelId, stampOf(clock.now()).ns);
+            camera.subscribe(subId, channelId);
+          },
+          unsubscribe: camera.unsubscribe,
+        });
         ws.on('close', () => {
+          camera.close();
           void sessions.get(ws)?.close();
           sessions.delete(ws);
         });
@@ -174,6 +195,7 @@ export async function startFoxgloveServer(o: FoxgloveServerOptions): Promise<Arm
     port,
     counts,
     registry,
+    cameras,
     async stop() {
       for (const ws of wss.clients) ws.terminate();
       await Promise.all([...sessions.values()].map((s) => s.close()));

@@ -12,8 +12,12 @@ import { encodeStop, userTopic, type Clock, type HolderRecord } from '@armtwin/p
 import { ClaimKeeper, FrameStreamer } from '@armtwin/ros2';
 import type { TimedFrame } from '@armtwin/motion';
 
-/** Connects an MQTT client as `who` (in `armtwin up`: in-process, with that principal). */
-export type ConnectAs = (who: Principal) => MqttClient;
+/**
+ * Connects an MQTT client as `who`: in `armtwin up` in-process, with that principal; in the
+ * middleware to the broker with the user's own name and the password it logged in with (null:
+ * no log-in, the anonymous local demo).
+ */
+export type ConnectAs = (who: Principal, password: string | null) => MqttClient;
 
 export class Session {
   private mqtt: MqttClient | undefined;
@@ -22,6 +26,7 @@ export class Session {
 
   constructor(
     readonly who: Principal,
+    private readonly password: string | null,
     private readonly connectAs: ConnectAs,
     private readonly clock: Clock,
   ) {}
@@ -84,6 +89,6 @@ export class Session {
   }
 
   private client(): MqttClient {
-    return (this.mqtt ??= this.connectAs(this.who));
+    return (this.mqtt ??= this.connectAs(this.who, this.password));
   }
 }

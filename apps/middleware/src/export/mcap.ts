@@ -1,6 +1,7 @@
 /**
  * A recording as an MCAP file (the format Foxglove and Lichtblick open), written with the
- * maintained `@mcap/core` writer, messages JSON-encoded with JSON schemas (names: topics.ts):
+ * maintained `@mcap/core` writer, messages JSON-encoded with JSON schemas (names: topics.ts; the
+ * `/{arm}/…` topics' names and schemas are the live Foxglove server's, @armtwin/foxglove/topics):
  *   /arm/{arm}/servo/{id}     armtwin.ServoSample  one per stored `servo` point: pwm, angle, temp, volt
  *   /arm/{arm}/command/{id}   armtwin.Command      one per stored `command` point
  *   /arm/{arm}/ik             armtwin.IkResult     one per stored `ik` point
@@ -8,21 +9,24 @@
  *                                                  the channel is there when no event is
  *   /{arm}/robot_description  std_msgs/String      the URDF, meshes inline, once at the range's start
  *   /{arm}/joint_states       foxglove.JointStates the profile's joints at each reported instant
- *   /{arm}/targets            foxglove.JointStates the joints as commanded, at each command (all joints)
+ *   /{arm}/targets            armtwin.JointTargets the joints as commanded, at each command (all joints)
  *   /{arm}/tf                 foxglove.FrameTransforms every URDF joint's transform at each report
  * The last four need the arm's robot (profile and URDF); without it they are left out. Every
  * message's log and publish time is the point's own time. Messages go out in time order.
  */
 import type { Writable } from 'node:stream';
 import { McapWriter, type IWritable } from '@mcap/core';
-import { FrameTransforms, JointStates, Log } from '@foxglove/schemas/jsonschema';
+import { CHANNEL_SCHEMAS } from '@armtwin/foxglove/topics';
 import type { Profile, UrdfJoint } from '@armtwin/robot';
 import type { ProfileSource } from './arm-profile.ts';
 import type { Recording } from './recording.ts';
 import type { RobotDescription } from './robot-description.ts';
 import { jointSamples, linkTransforms, targetSamples, type JointSample } from './robot-motion.ts';
-import { ROBOT_DESCRIPTION_SCHEMA, SCHEMAS } from './schemas.ts';
+import { SCHEMAS } from './schemas.ts';
 import { FOXGLOVE_TOPICS as TOPICS } from './topics.ts';
+
+/** The live server's schemas for the topics both write (one home: @armtwin/foxglove/topics). */
+const LIVE = CHANNEL_SCHEMAS;
 
 /** The robot a recording's arm is: its profile, its URDF's joints and description. */
 export interface RecordingRobot {
@@ -133,7 +137,7 @@ export async function writeMcap(
 
   const arm = rec.arm;
   // The control log's channel even with no event in range: a Log panel finds its topic.
-  await channel(TOPICS.log(arm), Log);
+  await channel(TOPICS.log(arm), LIVE.log);
   const streams: Timed[][] = [
     rec.servo.map(({ ns, ...r }) => ({
       ns,
@@ -147,7 +151,7 @@ export async function writeMcap(
     rec.audit.map(({ ns, ...e }) => ({
       ns,
       write: () =>
-        add(TOPICS.log(arm), Log, ns, {
+        add(TOPICS.log(arm), LIVE.log, ns, {
           level: WARNING_KINDS.has(e.kind) ? LOG_WARNING : LOG_INFO,
           message: e.detail,
           name: `${e.kind} by ${e.by || 'the plain control topic'}`,
@@ -162,7 +166,7 @@ export async function writeMcap(
       const ns = BigInt(rec.startMs) * 1_000_000n;
       const data = { data: description.urdf };
       streams.push([
-        { ns, write: () => add(TOPICS.robotDescription(arm), ROBOT_DESCRIPTION_SCHEMA, ns, data) },
+        { ns, write: () => add(TOPICS.robotDescription(arm), LIVE.robot_description, ns, data) },
       ]);
     }
     const reported = jointSamples(robot.profile, rec.servo);
@@ -170,7 +174,7 @@ export async function writeMcap(
     streams.push(
       targetSamples(jointSamples(robot.profile, rec.command), reported).map((s) => ({
         ns: s.ns,
-        write: () => add(TOPICS.targets(arm), JointStates, s.ns, { joints: known(s) }),
+        write: () => add(TOPICS.targets(arm), LIVE.targets, s.ns, { joints: known(s) }),
       })),
     );
   }
@@ -196,7 +200,7 @@ function motion(
     ns: s.ns,
     write: async () => {
       const joints = known(s);
-      await add(TOPICS.jointStates(arm), JointStates, s.ns, { joints });
+      await add(TOPICS.jointStates(arm), LIVE.joint_states, s.ns, { joints });
       const values = new Map(joints.map((j) => [j.name, j.position]));
       const transforms = linkTransforms(robot.joints, values).map((t) => ({
         timestamp: stamp(s.ns),
@@ -205,7 +209,7 @@ function motion(
         translation: { x: t.translation[0], y: t.translation[1], z: t.translation[2] },
         rotation: { x: t.rotation[0], y: t.rotation[1], z: t.rotation[2], w: t.rotation[3] },
       }));
-      await add(TOPICS.transforms(arm), FrameTransforms, s.ns, { transforms });
+      await add(TOPICS.transforms(arm), LIVE.tf, s.ns, { transforms });
     },
   };
 }

@@ -1,6 +1,6 @@
 /**
- * The JSON schemas of the MCAP export's own messages (`armtwin.*`), and the shape of ROS's
- * std_msgs/String under which Foxglove's and Lichtblick's 3D panel reads a robot description.
+ * The JSON schemas of the MCAP export's own messages (`armtwin.*` stored points); the topics it
+ * shares with the live Foxglove server take that server's (@armtwin/foxglove/topics).
  */
 const number = { type: 'number' } as const;
 const timestamp = {
@@ -47,15 +47,4 @@ export const SCHEMAS = {
       a: number,
     },
   },
-} as const;
-
-/**
- * A robot description message: ROS's std_msgs/String (`data`), the schema name the 3D panel's
- * URDF layer accepts for a topic source (the layout's URDF layer names the arm's topic).
- */
-export const ROBOT_DESCRIPTION_SCHEMA = {
-  title: 'std_msgs/String',
-  description: "A robot's URDF, its meshes inline as data: URIs (docs/foxglove-mcap.md)",
-  type: 'object',
-  properties: { data: { type: 'string' } },
 } as const;

@@ -1,20 +1,13 @@
 /**
- * The topic names an arm's data has in Foxglove and Lichtblick: the MCAP export writes them, the
- * layout deploy/foxglove/armtwin-arm.json reads them, and the live Foxglove server (docs/foxglove.md)
- * uses the same `/{arm}/…` names, so one layout serves a recording and a live arm. The stored
- * points' own topics (servo, command, ik) are the export's alone.
+ * The topic names an MCAP export writes: an arm's data as Foxglove and Lichtblick read it has the
+ * live server's names and schemas, from their one home (@armtwin/foxglove/topics), so one
+ * layout (deploy/foxglove/armtwin-arm.json) serves a recording and a live arm. The stored points'
+ * own topics (servo, command, ik) are the export's alone.
  */
+import { FOXGLOVE_TOPICS as LIVE } from '@armtwin/foxglove/topics';
+
 export const FOXGLOVE_TOPICS = {
-  /** The URDF, meshes inline (std_msgs/String shape: `{"data": "<robot …>"}`). */
-  robotDescription: (arm: string) => `/${arm}/robot_description`,
-  /** foxglove.FrameTransforms: every URDF joint's parent → child transform. */
-  transforms: (arm: string) => `/${arm}/tf`,
-  /** foxglove.JointStates: the profile's joints as reported, servo order. */
-  jointStates: (arm: string) => `/${arm}/joint_states`,
-  /** The joints as last commanded (foxglove.JointStates shape: every joint, servo order). */
-  targets: (arm: string) => `/${arm}/targets`,
-  /** foxglove.Log: the control log (who took, gave, lost control; refusals). */
-  log: (arm: string) => `/${arm}/log`,
+  ...LIVE,
   /** armtwin.ServoSample, per servo. */
   servo: (arm: string, id: string) => `/arm/${arm}/servo/${id}`,
   /** armtwin.Command, per servo. */
