@@ -8,20 +8,12 @@
  * `task`, `by` (who marked it), `stop` (epoch ms), `discarded`. Pure: the store (./store.ts)
  * reads the marks and writes the lines this decides.
  */
+import type { EpisodeMark } from '@armtwin/api';
 import { episodeLine } from '../points.ts';
 
-export const MAX_TASK_LENGTH = 500;
+export type { EpisodeMark };
 
-export interface EpisodeMark {
-  /** Epoch ms; also the episode's id. */
-  startMs: number;
-  /** Epoch ms; null while it records. */
-  stopMs: number | null;
-  task: string;
-  /** Who marked it (a user's name, `token`, `anonymous`; '' when stored before it was kept). */
-  by: string;
-  discarded: boolean;
-}
+export const MAX_TASK_LENGTH = 500;
 
 export type EpisodeAction =
   | { action: 'start'; task: string }
