@@ -2,7 +2,8 @@
  * Replay of the recorded pose over the selected range: load it (`/history/pose`), then play,
  * pause, pick a speed (0.25×–8×) and scrub. The amber sibling arm beside the live one follows;
  * its pose is read by the 3D view's frame loop from the ReplayPlayer, and this panel only
- * samples the position ten times a second.
+ * samples the position ten times a second. A LeRobot dataset's episode plays the same way
+ * (./DatasetImport.tsx).
  */
 import { useState } from 'react';
 import { useSampled } from '../../hud/useSampled.ts';
@@ -14,6 +15,7 @@ import type { TimeRange } from './range.ts';
 import type { PoseAnswer } from '@armtwin/api';
 import { ViewError } from './ViewHeader.tsx';
 import { MakePlan } from './MakePlan.tsx';
+import { DatasetImport } from './DatasetImport.tsx';
 
 const SCRUB_SAMPLE_MS = 100;
 
@@ -132,6 +134,7 @@ export function ReplayControls(props: {
           {props.joints.map((j, i) => `${j.name} ${s.angles[i]}`).join(' · ')}
         </p>
       )}
+      <DatasetImport player={player} />
       <MakePlan player={player} loaded={s.loaded} />
     </div>
   );
