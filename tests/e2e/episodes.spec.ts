@@ -4,7 +4,7 @@
  * simulator, the real middleware writing to a real influxd, the built HUD in Chromium
  * (./history-fixtures.ts; the anonymous local demo, so the page may mark). An operator records
  * an episode while moving the arm, stops it and finds it listed with its task; the stored range
- * holds the move. Discard (the recording one, or a listed one) removes it; the loaded range can
+ * holds the move, and its Replay plays it on the sibling. Discard (the recording one, or a listed one) removes it; the loaded range can
  * be marked afterwards. The viewer's side (no buttons, the reason) is in roles-middleware.spec.
  */
 import type { Page } from '@playwright/test';
@@ -13,6 +13,16 @@ import { pwmFromAngle } from '@armtwin/protocol';
 import { shot } from './fixtures.ts';
 import { expect, historyGet, test, type StorageStack } from './history-fixtures.ts';
 import { until } from './support/sim.ts';
+
+interface ReplayHook {
+  __armtwin?: {
+    replay: {
+      angles: Float64Array;
+      record: { times: number[]; start: number; stop: number } | null;
+      seek(t: number): void;
+    };
+  };
+}
 
 async function episodesOf(stack: StorageStack, arm: string): Promise<EpisodeMark[]> {
   const res = await fetch(`${stack.apiUrl}/arms/${arm}/episodes`);
@@ -76,6 +86,23 @@ test('episodes: record while moving, stop, listed with its task; discard removes
   expect(kept!.startMs).toBe(open!.startMs);
   expect(await elbowMax(kept!.startMs, kept!.stopMs!)).toBeGreaterThan(44);
 
+  // Replay from the list: the History range becomes the episode's, the sibling replays the move.
+  await list.getByRole('button', { name: 'Replay episode lift the elbow to 45°' }).click();
+  await expect(page.getByRole('tab', { name: 'Replay' })).toHaveAttribute('aria-selected', 'true');
+  await page.waitForFunction(() => (window as unknown as ReplayHook).__armtwin!.replay.record);
+  const replayed = await page.evaluate(() => {
+    const replay = (window as unknown as ReplayHook).__armtwin!.replay;
+    const rec = replay.record!;
+    replay.seek(rec.times.at(-1)!);
+    return { start: rec.start, stop: rec.stop };
+  });
+  expect(replayed.start).toBeGreaterThanOrEqual(kept!.startMs);
+  expect(replayed.stop).toBeLessThanOrEqual(kept!.stopMs!);
+  await expect
+    .poll(() => page.evaluate(() => (window as unknown as ReplayHook).__armtwin!.replay.angles[2]))
+    .toBeGreaterThan(44);
+  await page.getByRole('tab', { name: 'Episodes' }).click();
+
   // A second one, discarded while it records: never listed.
   await task.fill('a false start');
   await page.getByRole('button', { name: 'Record' }).click();
@@ -85,7 +112,15 @@ test('episodes: record while moving, stop, listed with its task; discard removes
   await expect(list.getByTestId('episode')).toHaveCount(1);
 
   // Afterwards: the loaded range (History's 5 min) marked as an episode, then discarded again.
+  // The loaded range is the replayed episode's now: marking it again is refused, saying why.
   await task.fill('the whole morning');
+  await page.getByRole('button', { name: 'Mark loaded range' }).click();
+  await expect(page.getByTestId('episodes-note')).toContainText(
+    'Refused (HTTP 409): an episode already starts at',
+  );
+  const episodeRange = await page.getByTestId('history-range').textContent();
+  await page.getByRole('radio', { name: '5 min' }).check();
+  await expect(page.getByTestId('history-range')).not.toHaveText(episodeRange!);
   await page.getByRole('button', { name: 'Mark loaded range' }).click();
   await expect(list.getByTestId('episode')).toHaveCount(2);
   await expect(list).toContainText('the whole morning');

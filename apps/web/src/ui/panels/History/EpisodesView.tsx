@@ -2,7 +2,7 @@
  * The History panel's Episodes tab (docs/dataset.md): an operator records an episode of the
  * arm's history with a one-line task (Record, then Stop or Discard; the recording time runs
  * while it records), or marks the loaded range as one afterwards; everyone who may read the
- * history sees the list (time range, task, who). A viewer gets no buttons, and is told why.
+ * history sees the list (time range, task, who), and replays an episode on the sibling. A viewer gets no buttons, and is told why.
  * The middleware keeps the marks (`/arms/<arm>/episodes`); `armtwin export --format lerobot`
  * cuts them out as a dataset.
  */
@@ -19,7 +19,12 @@ type Note = { text: string; bad: boolean };
 
 export const MARK_NEEDS_OPERATOR = 'Recording episodes needs an operator account.';
 
-function EpisodeRow(props: { e: EpisodeMark; now: number; onDiscard: (() => void) | null }) {
+function EpisodeRow(props: {
+  e: EpisodeMark;
+  now: number;
+  onReplay: () => void;
+  onDiscard: (() => void) | null;
+}) {
   const { e, now } = props;
   return (
     <li data-testid="episode">
@@ -29,6 +34,16 @@ function EpisodeRow(props: { e: EpisodeMark; now: number; onDiscard: (() => void
       </span>{' '}
       <span className="episode-task">{e.task}</span>{' '}
       <span className="dim">by {e.by || 'unknown'}</span>
+      {e.stopMs !== null && (
+        <button
+          type="button"
+          className="small"
+          aria-label={`Replay episode ${e.task}`}
+          onClick={props.onReplay}
+        >
+          Replay
+        </button>
+      )}
       {props.onDiscard && e.stopMs !== null && (
         <button
           type="button"
@@ -49,6 +64,8 @@ export function EpisodesView(props: {
   /** The arm's robot profile (for the export command shown). */
   profile: string;
   range: TimeRange | null;
+  /** Shows a stopped episode in the replay. */
+  onReplay(range: TimeRange): void;
 }) {
   const { api, arm, range } = props;
   const session = useSession();
@@ -170,6 +187,9 @@ export function EpisodesView(props: {
                 key={e.startMs}
                 e={e}
                 now={now}
+                onReplay={() =>
+                  props.onReplay({ start: e.startMs, stop: e.stopMs ?? e.startMs + 1 })
+                }
                 onDiscard={
                   mayMark
                     ? () =>

@@ -23,6 +23,7 @@ import { resolveRange, toLocalInput, type RangeChoice, type TimeRange } from './
 import { EpisodesApi } from './episodesApi.ts';
 import { EpisodesView } from './EpisodesView.tsx';
 import { ExportButton } from './ExportButton.tsx';
+import { loadReplay } from './replayLoad.ts';
 import { RangePicker } from './RangePicker.tsx';
 import { ReplayControls } from './ReplayControls.tsx';
 import { TablesView } from './TablesView.tsx';
@@ -219,6 +220,17 @@ export function HistoryPanel() {
             arm={arm}
             profile={robots.active.spec.name}
             range={range}
+            onReplay={(r) => {
+              const next: RangeChoice = {
+                preset: 'custom',
+                customStart: toLocalInput(r.start, true),
+                customStop: toLocalInput(r.stop, true),
+              };
+              setChoice(next);
+              load(next);
+              setTab('replay');
+              void loadReplay(api, arm, r, replay).then((l) => !l.ok && setRangeError(l.error));
+            }}
           />
         )}
       </div>

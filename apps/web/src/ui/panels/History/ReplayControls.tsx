@@ -12,9 +12,9 @@ import { REPLAY_SPEEDS, type ReplaySpeed } from '../../../core/replay/ReplayCloc
 import { clockTime, fixed } from './format.ts';
 import type { HistoryApi } from './historyApi.ts';
 import type { TimeRange } from './range.ts';
-import type { PoseAnswer } from '@armtwin/api';
 import { ViewError } from './ViewHeader.tsx';
 import { MakePlan } from './MakePlan.tsx';
+import { loadReplay } from './replayLoad.ts';
 import { DatasetImport } from './DatasetImport.tsx';
 
 const SCRUB_SAMPLE_MS = 100;
@@ -62,14 +62,11 @@ export function ReplayControls(props: {
     if (!range) return;
     setBusy(true);
     setError(null);
-    props.api
-      .get<PoseAnswer>('pose', { arm: props.arm, start: range.start, stop: range.stop })
+    loadReplay(props.api, props.arm, range, player)
       .then((r) => {
         setBusy(false);
         if (!r.ok) return setError(r.error);
-        setFrames(r.data.times.length);
-        if (r.data.times.length === 0) return player.close();
-        player.load({ ...r.data, start: r.data.start, stop: r.data.stop });
+        setFrames(r.data);
       })
       .catch((err: unknown) => {
         setBusy(false);
