@@ -5,7 +5,7 @@
  * (./history-fixtures.ts; the anonymous local demo, so the page may mark). An operator records
  * an episode while moving the arm, stops it and finds it listed with its task; the stored range
  * holds the move, and its Replay plays it on the sibling. Discard (the recording one, or a listed one) removes it; the loaded range can
- * be marked afterwards. The viewer's side (no buttons, the reason) is in roles-middleware.spec.
+ * be marked afterwards; a mark made elsewhere shows in the open tab. The viewer's side (no buttons, the reason) is in roles-middleware.spec.
  */
 import type { Page } from '@playwright/test';
 import type { EpisodeMark, PoseAnswer } from '@armtwin/api';
@@ -127,10 +127,24 @@ test('episodes: record while moving, stop, listed with its task; discard removes
   await page.getByRole('button', { name: 'Discard episode the whole morning' }).click();
   await expect(list.getByTestId('episode')).toHaveCount(1);
   await expect(list).not.toContainText('the whole morning');
+  // Marked elsewhere (the CLI, another page): the open tab follows.
+  const post = (body: object) =>
+    fetch(`${stack.apiUrl}/arms/${arm.id}/episodes`, {
+      method: 'POST',
+      headers: { 'content-type': 'application/json' },
+      body: JSON.stringify(body),
+    });
+  expect((await post({ action: 'start', task: 'from the command line' })).status).toBe(201);
+  await expect(timer).toBeVisible({ timeout: 15_000 });
+  await expect(task).toHaveValue('from the command line');
+  expect((await post({ action: 'discard' })).status).toBe(200);
+  await expect(timer).toBeHidden({ timeout: 15_000 });
+
   const stored = await episodesOf(stack, arm.id);
   expect(stored.map((e) => [e.task, e.discarded])).toEqual([
     ['the whole morning', true],
     ['lift the elbow to 45°', false],
     ['a false start', true],
+    ['from the command line', true],
   ]);
 });

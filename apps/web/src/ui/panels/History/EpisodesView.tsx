@@ -17,6 +17,9 @@ import type { TimeRange } from './range.ts';
 
 type Note = { text: string; bad: boolean };
 
+/** How often the open tab re-reads the list. */
+const LIST_REFRESH_MS = 5000;
+
 export const MARK_NEEDS_OPERATOR = 'Recording episodes needs an operator account.';
 
 function EpisodeRow(props: {
@@ -81,11 +84,15 @@ export function EpisodesView(props: {
     else setNote({ text: r.error, bad: true });
   }, []);
   const refresh = async () => show(await api.list(arm));
+  // While the tab is open, the list follows marks made elsewhere (another page, the CLI).
   useEffect(() => {
     let live = true;
-    void api.list(arm).then((r) => live && show(r));
+    const poll = () => void api.list(arm).then((r) => live && show(r));
+    poll();
+    const id = setInterval(poll, LIST_REFRESH_MS);
     return () => {
       live = false;
+      clearInterval(id);
     };
   }, [api, arm, show]);
 
