@@ -22,6 +22,20 @@ const LIST_REFRESH_MS = 5000;
 
 export const MARK_NEEDS_OPERATOR = 'Recording episodes needs an operator account.';
 
+/** A row's button, named for its episode (`Replay episode pick the cube`). */
+function RowButton(props: { verb: string; task: string; onClick: () => void }) {
+  return (
+    <button
+      type="button"
+      className="small"
+      aria-label={`${props.verb} episode ${props.task}`}
+      onClick={props.onClick}
+    >
+      {props.verb}
+    </button>
+  );
+}
+
 function EpisodeRow(props: {
   e: EpisodeMark;
   now: number;
@@ -37,25 +51,9 @@ function EpisodeRow(props: {
       </span>{' '}
       <span className="episode-task">{e.task}</span>{' '}
       <span className="dim">by {e.by || 'unknown'}</span>
-      {e.stopMs !== null && (
-        <button
-          type="button"
-          className="small"
-          aria-label={`Replay episode ${e.task}`}
-          onClick={props.onReplay}
-        >
-          Replay
-        </button>
-      )}
+      {e.stopMs !== null && <RowButton verb="Replay" task={e.task} onClick={props.onReplay} />}
       {props.onDiscard && e.stopMs !== null && (
-        <button
-          type="button"
-          className="small"
-          aria-label={`Discard episode ${e.task}`}
-          onClick={props.onDiscard}
-        >
-          Discard
-        </button>
+        <RowButton verb="Discard" task={e.task} onClick={props.onDiscard} />
       )}
     </li>
   );
