@@ -3,7 +3,8 @@
  * A deployment without `armtwin up` (Mosquitto, the HUD's `dist` served with `/api/` proxied to
  * the middleware): the middleware has the users file (ARMTWIN_USERS), so its `/whoami` tells
  * the page its role. A viewer's page has every control off and says why; an operator's page
- * may jog — with no `?role=` hint in either URL.
+ * may jog — with no `?role=` hint in either URL. The same for the History panel's episodes: a
+ * viewer has no Record button and is told why.
  */
 import fs from 'node:fs';
 import os from 'node:os';
@@ -70,6 +71,20 @@ for (const user of ['viewer', 'operator'] as const) {
     } else {
       await expect(slider).toBeEnabled();
       await expect(page.getByRole('button', { name: 'Emergency stop' })).toBeEnabled();
+    }
+    // Episodes (History panel): a viewer sees no Record button, and is told why.
+    await page.locator('summary', { hasText: 'History' }).click();
+    await page.getByRole('tab', { name: 'Episodes' }).click();
+    const record = page.getByRole('button', { name: 'Record', exact: true });
+    if (user === 'viewer') {
+      await expect(page.getByTestId('episodes-reason')).toContainText(
+        'Recording episodes needs an operator account.',
+      );
+      await expect(record).toHaveCount(0);
+      await expect(page.getByRole('textbox', { name: 'Episode task' })).toHaveCount(0);
+    } else {
+      await expect(record).toBeVisible();
+      await expect(page.getByTestId('episodes-reason')).toHaveCount(0);
     }
   });
 }

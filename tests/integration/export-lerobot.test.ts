@@ -9,6 +9,7 @@
  * observation.state and action equal to the stored sample (resp. command) in force at its
  * timestamp, read back with InfluxQL. Bad requests and flags are refused with a clear error.
  */
+import type { EpisodeMark } from '@armtwin/api';
 import { execFile } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -115,7 +116,7 @@ async function mark(body: unknown): Promise<{ status: number; answer: Record<str
   });
   return { status: res.status, answer: (await res.json()) as Record<string, unknown> };
 }
-type Mark = { startMs: number; stopMs: number | null; task: string; discarded: boolean };
+type Mark = EpisodeMark;
 const episodeOf = (r: { answer: Record<string, unknown> }) => r.answer.episode as Mark;
 
 let listed: Mark[] = [];
@@ -165,6 +166,14 @@ beforeAll(async () => {
   expect((JSON.parse((await cli('discard')).stdout) as { episode: Mark }).episode.discarded).toBe(
     true,
   );
+  // cut afterwards from a range, then thrown away by its start
+  const iso = (ms: number) => new Date(ms).toISOString();
+  const cut = JSON.parse(
+    (await cli('cut', '--task', 'cut later', '--from', iso(startMs + 500), '--to', iso(stopMs)))
+      .stdout,
+  ) as { episode: Mark };
+  expect(cut.episode).toMatchObject({ startMs: startMs + 500, stopMs, by: 'anonymous' });
+  await cli('discard', '--start', iso(startMs + 500));
   cliRefusal = await cli('stop').then(
     () => '',
     (err: { stderr: string }) => err.stderr,
@@ -202,9 +211,10 @@ afterAll(async () => {
 });
 
 describe('episodes marked through the HTTP API and `armtwin episode`', () => {
-  test('start, stop and discard are stored and listed; the episode is at least 3 s', () => {
+  test('start, stop, discard and cut are stored and listed, with who; the episode is at least 3 s', () => {
     expect(listed).toEqual([
-      { startMs, stopMs, task: TASK, discarded: false },
+      { startMs, stopMs, task: TASK, by: 'anonymous', discarded: false },
+      { startMs: startMs + 500, stopMs, task: 'cut later', by: 'anonymous', discarded: true },
       expect.objectContaining({ task: 'thrown away', discarded: true }),
     ]);
     expect(stopMs - startMs).toBeGreaterThanOrEqual(EPISODE_MS);

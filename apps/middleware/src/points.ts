@@ -81,17 +81,19 @@ const stringField = (s: string): string =>
 export const episodeSeries = (arm: string): string => `episode,arm=${arm}`;
 
 /**
- * A field update of the episode that starts at `t` (its point's time): the task when it starts,
+ * A field update of the episode that starts at `t` (its point's time): the task (and who marked
+ * it) when it starts,
  * `stop` (epoch ms) when it stops, `discarded` when it is thrown away. InfluxDB merges the
  * fields of points of one series and time, so the episode is one point.
  */
 export function episodeLine(
   arm: string,
-  fields: { task?: string; stop?: number; discarded?: true },
+  fields: { task?: string; by?: string; stop?: number; discarded?: true },
   t: Micros,
 ): string {
   const out: string[] = [];
   if (fields.task !== undefined) out.push(`task=${stringField(fields.task)}`);
+  if (fields.by) out.push(`by=${stringField(fields.by.slice(0, 200))}`);
   if (fields.stop !== undefined) out.push(`stop=${Math.round(fields.stop)}i`);
   if (fields.discarded) out.push('discarded=true');
   return `${episodeSeries(arm)} ${out.join(',')} ${t}`;

@@ -9,7 +9,7 @@ import {
 } from '../src/episodes/marks.ts';
 
 const T = Date.UTC(2026, 10, 27, 8, 0, 0);
-const open: EpisodeMark = { startMs: T, stopMs: null, task: 'pick', discarded: false };
+const open: EpisodeMark = { startMs: T, stopMs: null, task: 'pick', by: 'ana', discarded: false };
 
 describe('episode actions', () => {
   test('a request body becomes an action, or says what is wrong', () => {
@@ -31,6 +31,9 @@ describe('episode actions', () => {
     const d = decide('arm1', [], { action: 'start', task: 'say "hi"' }, T + 0.7);
     expect(d.status).toBe(201);
     expect(d.lines).toEqual([`episode,arm=arm1 task="say \\"hi\\"" ${T * 1000}`]);
+    expect(decide('arm1', [], { action: 'start', task: 'p' }, T, 'ana').lines).toEqual([
+      `episode,arm=arm1 task="p",by="ana" ${T * 1000}`,
+    ]);
     const again = decide('arm1', [open], { action: 'start', task: 'x' }, T + 5);
     expect(again).toMatchObject({ status: 409, lines: [] });
   });
@@ -63,5 +66,53 @@ describe('episode actions', () => {
     ]);
     expect(keptEpisodes(marks).map((m) => m.task)).toEqual(['a']);
     expect(keptEpisodes(marks, T + 1000)).toEqual([]);
+  });
+
+  test('cut marks a past range of the history as a stopped episode, under who cut it', () => {
+    expect(
+      parseEpisodeAction({
+        action: 'cut',
+        task: 'wave',
+        from: new Date(T).toISOString(),
+        to: T + 4000,
+      }),
+    ).toEqual({ action: 'cut', task: 'wave', fromMs: T, toMs: T + 4000 });
+    expect(parseEpisodeAction({ action: 'cut', task: 'wave', from: 'now', to: T })).toEqual({
+      error: expect.stringMatching(/needs from and to/),
+    });
+    expect(parseEpisodeAction({ action: 'cut', task: 'wave', from: T, to: T })).toEqual({
+      error: 'a cut episode needs from before to',
+    });
+    expect(parseEpisodeAction({ action: 'cut', from: T, to: T + 1 })).toEqual({
+      error: expect.stringMatching(/needs a task/),
+    });
+    const cut = { action: 'cut', task: 'wave', fromMs: T, toMs: T + 4000 } as const;
+    expect(decide('arm1', [open], cut, T + 9000, 'bo')).toMatchObject({
+      status: 409,
+      body: { errors: [expect.stringMatching(/already starts at/)] },
+    });
+    const d = decide('arm1', [], cut, T + 9000, 'bo');
+    expect(d).toMatchObject({
+      status: 201,
+      body: { episode: { startMs: T, stopMs: T + 4000, task: 'wave', by: 'bo' } },
+      lines: [`episode,arm=arm1 task="wave",by="bo",stop=${T + 4000}i ${T * 1000}`],
+    });
+    expect(decide('arm1', [], cut, T + 3000)).toMatchObject({ status: 409, lines: [] });
+  });
+
+  test('discard with a start throws a stopped episode away; an unknown start is refused', () => {
+    const kept = { ...open, stopMs: T + 2000 };
+    expect(decide('arm1', [kept], { action: 'discard', startMs: T }, T + 9000)).toMatchObject({
+      status: 200,
+      body: { episode: { startMs: T, stopMs: T + 2000, discarded: true } },
+      lines: [`episode,arm=arm1 stop=${T + 2000}i,discarded=true ${T * 1000}`],
+    });
+    expect(decide('arm1', [kept], { action: 'discard', startMs: T + 1 }, T + 9000)).toMatchObject({
+      status: 409,
+      lines: [],
+    });
+    expect(parseEpisodeAction({ action: 'discard', start: 'x' })).toEqual({
+      error: expect.stringMatching(/start is the episode/),
+    });
   });
 });

@@ -17,6 +17,18 @@ const choice = (c: Partial<RangeChoice>): RangeChoice => ({
 });
 
 describe('History range → start/stop', () => {
+  it('an exact custom range (an episode replayed from the list) keeps its milliseconds', () => {
+    const start = NOW + 1234;
+    const stop = NOW + 61_007;
+    const exact = choice({
+      preset: 'custom',
+      customStart: toLocalInput(start, true),
+      customStop: toLocalInput(stop, true),
+    });
+    expect(resolveRange(exact, NOW)).toEqual({ ok: true, range: { start, stop } });
+    expect(toLocalInput(start)).toMatch(/T\d\d:\d\d$/); // to the minute by default
+  });
+
   it.each([
     ['5m', 5 * 60_000],
     ['1h', 3_600_000],

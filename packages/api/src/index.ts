@@ -1,2 +1,3 @@
 export * from './history.ts';
 export * from './whoami.ts';
+export * from './episodes.ts';

@@ -19,6 +19,7 @@ import type http from 'node:http';
 import Router from 'find-my-way';
 import {
   createAuthorize,
+  nameOf,
   refusal,
   type AuthOptions,
   type Authorize,
@@ -93,6 +94,7 @@ export function createApi(o: ApiOptions): Api {
     service: o.service,
     mayRead: may('data'),
     mayMark: may('change'),
+    callerName: async (req) => nameOf(await authorize(req)),
     onFirst: o.onFirst,
   });
 

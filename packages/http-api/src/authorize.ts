@@ -123,3 +123,9 @@ export function isLoopback(address: string | undefined): boolean {
   const v4 = address.startsWith('::ffff:') ? address.slice(7) : address;
   return v4 === '::1' || /^127\.\d+\.\d+\.\d+$/.test(v4);
 }
+
+/** The name a caller acts under: a user's, `token` or `anonymous` (refused callers: ''). */
+export function nameOf(caller: Caller): string {
+  if (caller.kind === 'user') return caller.principal.name;
+  return caller.kind === 'refused' ? '' : caller.kind;
+}

@@ -1,9 +1,10 @@
 /**
  * `/arms/{id}/episodes`: an arm's episodes, marked time ranges of its history with a task
  * (docs/dataset.md). `GET` (`?from=&to=`, ISO times; anyone who may read the history) lists
- * them; `POST {"action":"start","task":"…"}`, `{"action":"stop"}` or `{"action":"discard"}`
- * (an operator's right; anyone in the anonymous local demo) marks one. The middleware keeps
- * them (`ApiService.episodes`); without storage the route answers 503.
+ * them; `POST {"action":"start","task":"…"}`, `{"action":"stop"}`, `{"action":"discard"}`
+ * (`"start"`: a stopped one), or `{"action":"cut","task":"…","from":…,"to":…}` (an operator's
+ * right; anyone in the anonymous local demo) marks one, under the caller's name (`by`). The
+ * middleware keeps them (`ApiService.episodes`); without storage the route answers 503.
  */
 import type http from 'node:http';
 import { isValidArmId } from '@armtwin/protocol';
@@ -27,7 +28,8 @@ export interface EpisodeAnswer {
 /** What the middleware lends the route. */
 export interface EpisodeService {
   list(arm: string, fromMs?: number, toMs?: number): Promise<unknown[]>;
-  act(arm: string, body: unknown): Promise<EpisodeAnswer>;
+  /** `by`: who asks (a user's name, `token` or `anonymous`). */
+  act(arm: string, body: unknown, by?: string): Promise<EpisodeAnswer>;
 }
 
 const time = (v: string | null): number | undefined | null => {
@@ -40,6 +42,8 @@ export function episodesRoute(o: {
   service: () => ApiService | null;
   mayRead: May;
   mayMark: May;
+  /** The name an episode is marked under (after `mayMark` let the caller in). */
+  callerName(req: http.IncomingMessage): Promise<string>;
   onFirst(kind: string, message: string): void;
 }) {
   const counters: RouteCounters = {};
@@ -91,7 +95,7 @@ export function episodesRoute(o: {
       } catch {
         return answer(res, 400, { ok: false, errors: ['the body is not JSON'] }, 'refused:request');
       }
-      const r = await episodes.act(arm, json);
+      const r = await episodes.act(arm, json, await o.callerName(req));
       const kind =
         r.status < 300 ? 'marked' : r.status === 409 ? 'refused:state' : 'refused:request';
       return answer(res, r.status, r.body, kind);

@@ -158,7 +158,10 @@ test('episodes: GET lists and POST marks through the middleware; without storage
   const asked: unknown[] = [];
   service.episodes = {
     list: async (arm, from, to) => (asked.push([arm, from, to]), [{ startMs: 1 }]),
-    act: async (arm, body) => (asked.push([arm, body]), { status: 201, body: { ok: true } }),
+    act: async (arm, body, by) => (
+      asked.push([arm, body, by]),
+      { status: 201, body: { ok: true } }
+    ),
   };
   const listed = await call('GET', '/api/arms/arm1/episodes?from=2026-11-27T08:00:00Z');
   expect(JSON.parse(listed.text)).toEqual({ ok: true, episodes: [{ startMs: 1 }] });
@@ -167,7 +170,7 @@ test('episodes: GET lists and POST marks through the middleware; without storage
   });
   expect(asked).toEqual([
     ['arm1', Date.UTC(2026, 10, 27, 8), undefined],
-    ['arm1', { action: 'stop' }],
+    ['arm1', { action: 'stop' }, 'anonymous'],
   ]);
   const bad = [
     await call('POST', '/api/arms/arm1/episodes', 'not json'),

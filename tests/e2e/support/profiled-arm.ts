@@ -40,7 +40,11 @@ export async function startProfiledArm(
     await until(
       () =>
         observer.online === '1' &&
-        observer.pwm.filter(Number.isFinite).length === profile.servos.length,
+        // pulse servos report pulses, angle servos (the SO-101's bus) angles
+        Math.max(
+          observer.pwm.filter(Number.isFinite).length,
+          observer.angles.filter(Number.isFinite).length,
+        ) === profile.servos.length,
       30_000,
       `sim ${id} (${profile.name}) online and streaming`,
     );

@@ -23,10 +23,10 @@ export function episodeStore(o: {
   now(): number;
 }): EpisodeService {
   let queue: Promise<unknown> = Promise.resolve();
-  const act = async (arm: string, body: unknown): Promise<EpisodeAnswer> => {
+  const act = async (arm: string, body: unknown, by: string): Promise<EpisodeAnswer> => {
     const action = parseEpisodeAction(body);
     if ('error' in action) return { status: 400, body: { ok: false, errors: [action.error] } };
-    const d = decide(arm, await readMarks(o.reader, arm), action, o.now());
+    const d = decide(arm, await readMarks(o.reader, arm), action, o.now(), by);
     if (d.lines.length === 0) return d;
     o.storage.add(d.lines);
     if (!(await o.storage.flush(10_000)))
@@ -35,8 +35,8 @@ export function episodeStore(o: {
   };
   return {
     list: (arm, fromMs, toMs) => readMarks(o.reader, arm, fromMs, toMs),
-    act(arm, body) {
-      const next = queue.then(() => act(arm, body));
+    act(arm, body, by = '') {
+      const next = queue.then(() => act(arm, body, by));
       queue = next.catch(() => {});
       return next;
     },

@@ -12,3 +12,4 @@ export * from './servo-table.ts';
 export * from './calibration.ts';
 export * from './apply-calibration.ts';
 export * from './announcement.ts';
+export * from './lerobot-units.ts';

@@ -6,7 +6,7 @@
  * file (LeRobot starts a new file past 100 MB, about a million SO-101 frames). No camera is
  * recorded yet, so there is no image or video feature. Pure, no I/O.
  */
-import type { Profile } from '@armtwin/robot';
+import { lerobotMotorName, type Profile } from '@armtwin/robot';
 import type { EpisodeFrames } from './frames.ts';
 import { featureStats, STAT_NAMES, type FeatureStats } from './stats.ts';
 
@@ -101,7 +101,7 @@ export function buildDataset(
     rows.push(row);
   });
   if (rows.length === 0) throw new RangeError('no episode to export');
-  const names = profile.servos.map((s) => `${s.name}.pos`);
+  const names = profile.servos.map(lerobotMotorName);
   const vector = { dtype: 'float32', shape: [names.length], names };
   const scalar = (dtype: string) => ({ dtype, shape: [1], names: null });
   const info = {

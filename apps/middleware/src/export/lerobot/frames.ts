@@ -4,12 +4,11 @@
  * is every servo's last stored position at or before the tick (sample-and-hold, no
  * interpolation: a value LeRobot sees was reported by the arm), and its `action` the last
  * commanded target at or before the tick, held between commands (before the first command, the
- * state). Values are in LeRobot's units for the SO follower (its default `use_degrees`): joints
- * in degrees (the servo angle), the servo named `gripper` in 0–100 % of its limits
- * (MotorNormMode.RANGE_0_100). Pure, no I/O.
+ * state). Values are in LeRobot's units for the SO follower (`lerobotValue`, @armtwin/robot:
+ * joints in degrees, the gripper in 0–100 % of its limits). Pure, no I/O.
  */
 import { angleFromPwm } from '@armtwin/protocol';
-import type { Profile } from '@armtwin/robot';
+import { lerobotValue, type Profile } from '@armtwin/robot';
 import type { CommandRow, ServoRow } from '../recording.ts';
 
 export interface Episode {
@@ -31,13 +30,8 @@ export interface EpisodeFrames {
 }
 
 type Servo = Profile['servos'][number];
-const GRIPPER = 'gripper';
 
-/** armtwin's servo angle (degrees) → LeRobot's value for that motor. */
-export function lerobotValue(servo: Servo, degrees: number): number {
-  if (servo.name === GRIPPER) return ((degrees - servo.min) / (servo.max - servo.min)) * 100;
-  return degrees;
-}
+export { lerobotValue };
 
 /** Degrees a stored point holds, or undefined when it holds no position (health only). */
 function degreesOf(row: { angle?: number; pwm?: number }): number | undefined {

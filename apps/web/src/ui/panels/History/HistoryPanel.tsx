@@ -1,8 +1,8 @@
 /**
  * History: what the arm did, from the middleware's history API (InfluxDB). A collapsible panel
  * at the bottom of the view, between the columns (the emergency stop stays uncovered). Ranges
- * 5 min / 1 h / 24 h / custom; tabs for the charts, the tracking-error table and alarm log, and
- * the replay. Loads happen on user action (opening, a range, Refresh, a joint), never per frame.
+ * 5 min / 1 h / 24 h / custom; tabs for the charts, the tracking-error table and alarm log, the
+ * replay, and the episodes (record, stop, discard, mark the loaded range; ./EpisodesView.tsx). Loads happen on user action (opening, a range, Refresh, a joint), never per frame.
  * API failures are shown as text in place of the view. Only the servos of the arm's current
  * profile are shown; others stored under the same arm id are named, not drawn (profileServos.ts).
  */
@@ -20,19 +20,25 @@ import {
 } from './loadHistory.ts';
 import { onlyProfileServos } from './profileServos.ts';
 import { resolveRange, toLocalInput, type RangeChoice, type TimeRange } from './range.ts';
+import { EpisodesApi } from './episodesApi.ts';
+import { EpisodesView } from './EpisodesView.tsx';
 import { ExportButton } from './ExportButton.tsx';
+import { loadReplay } from './replayLoad.ts';
 import { RangePicker } from './RangePicker.tsx';
 import { ReplayControls } from './ReplayControls.tsx';
 import { TablesView } from './TablesView.tsx';
 import { clockTime, tableTime } from './format.ts';
 import './history.css';
 
-type Tab = 'charts' | 'tables' | 'replay';
+type Tab = 'charts' | 'tables' | 'replay' | 'episodes';
 const TABS: { id: Tab; label: string }[] = [
   { id: 'charts', label: 'Charts' },
   { id: 'tables', label: 'Tracking, alarms & control' },
   { id: 'replay', label: 'Replay' },
+  { id: 'episodes', label: 'Episodes' },
 ];
+/** Tabs that show without a loaded range. */
+const STANDALONE: readonly Tab[] = ['replay', 'episodes'];
 
 function initialChoice(): RangeChoice {
   const now = Date.now();
@@ -66,6 +72,10 @@ export function HistoryPanel() {
   // Under `armtwin up` with users, /api wants the log-in's password (HTTP Basic).
   const api = useMemo(
     () => new HistoryApi({ base: apiBase, headers: authHeaders({ username, password }) }),
+    [apiBase, username, password],
+  );
+  const episodesApi = useMemo(
+    () => new EpisodesApi({ base: apiBase, headers: authHeaders({ username, password }) }),
     [apiBase, username, password],
   );
   const [choice, setChoice] = useState(initialChoice);
@@ -175,13 +185,13 @@ export function HistoryPanel() {
         id="history-tabpanel"
         aria-labelledby={`history-tab-${tab}`}
       >
-        {overview && others.length > 0 && tab !== 'replay' && (
+        {overview && others.length > 0 && !STANDALONE.includes(tab) && (
           <p className="dim" data-testid="history-others">
             Not shown: {others.length === 1 ? 'servo' : 'servos'} {others.join(', ')}, recorded
             under {arm} but not in its current profile ({robots.active.spec.name}).
           </p>
         )}
-        {!overview && tab !== 'replay' && (
+        {!overview && !STANDALONE.includes(tab) && (
           <p className="dim">{loading ? 'Loading…' : 'Nothing loaded yet.'}</p>
         )}
         {overview && tab === 'charts' && (
@@ -203,6 +213,25 @@ export function HistoryPanel() {
         )}
         {tab === 'replay' && (
           <ReplayControls api={api} arm={arm} range={range} player={replay} joints={replayJoints} />
+        )}
+        {tab === 'episodes' && (
+          <EpisodesView
+            api={episodesApi}
+            arm={arm}
+            profile={robots.active.spec.name}
+            range={range}
+            onReplay={(r) => {
+              const next: RangeChoice = {
+                preset: 'custom',
+                customStart: toLocalInput(r.start, true),
+                customStop: toLocalInput(r.stop, true),
+              };
+              setChoice(next);
+              load(next);
+              setTab('replay');
+              void loadReplay(api, arm, r, replay).then((l) => !l.ok && setRangeError(l.error));
+            }}
+          />
         )}
       </div>
     </details>

@@ -2,7 +2,8 @@
  * Replay of the recorded pose over the selected range: load it (`/history/pose`), then play,
  * pause, pick a speed (0.25×–8×) and scrub. The amber sibling arm beside the live one follows;
  * its pose is read by the 3D view's frame loop from the ReplayPlayer, and this panel only
- * samples the position ten times a second.
+ * samples the position ten times a second. A LeRobot dataset's episode plays the same way
+ * (./DatasetImport.tsx).
  */
 import { useState } from 'react';
 import { useSampled } from '../../hud/useSampled.ts';
@@ -11,9 +12,10 @@ import { REPLAY_SPEEDS, type ReplaySpeed } from '../../../core/replay/ReplayCloc
 import { clockTime, fixed } from './format.ts';
 import type { HistoryApi } from './historyApi.ts';
 import type { TimeRange } from './range.ts';
-import type { PoseAnswer } from '@armtwin/api';
 import { ViewError } from './ViewHeader.tsx';
 import { MakePlan } from './MakePlan.tsx';
+import { loadReplay } from './replayLoad.ts';
+import { DatasetImport } from './DatasetImport.tsx';
 
 const SCRUB_SAMPLE_MS = 100;
 
@@ -60,14 +62,11 @@ export function ReplayControls(props: {
     if (!range) return;
     setBusy(true);
     setError(null);
-    props.api
-      .get<PoseAnswer>('pose', { arm: props.arm, start: range.start, stop: range.stop })
+    loadReplay(props.api, props.arm, range, player)
       .then((r) => {
         setBusy(false);
         if (!r.ok) return setError(r.error);
-        setFrames(r.data.times.length);
-        if (r.data.times.length === 0) return player.close();
-        player.load({ ...r.data, start: r.data.start, stop: r.data.stop });
+        setFrames(r.data);
       })
       .catch((err: unknown) => {
         setBusy(false);
@@ -132,6 +131,7 @@ export function ReplayControls(props: {
           {props.joints.map((j, i) => `${j.name} ${s.angles[i]}`).join(' · ')}
         </p>
       )}
+      <DatasetImport player={player} />
       <MakePlan player={player} loaded={s.loaded} />
     </div>
   );

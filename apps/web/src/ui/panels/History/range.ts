@@ -44,11 +44,14 @@ export function parseLocalInput(text: string): number | undefined {
   return Number.isFinite(ms) ? ms : undefined;
 }
 
-/** Epoch ms → a `datetime-local` value in local time, to the minute. */
-export function toLocalInput(ms: number): string {
+/** Epoch ms → a `datetime-local` value in local time, to the minute (`exact`: to the ms). */
+export function toLocalInput(ms: number, exact = false): string {
   const d = new Date(ms);
   const p = (n: number) => String(n).padStart(2, '0');
-  return `${d.getFullYear()}-${p(d.getMonth() + 1)}-${p(d.getDate())}T${p(d.getHours())}:${p(d.getMinutes())}`;
+  const minute = `${d.getFullYear()}-${p(d.getMonth() + 1)}-${p(d.getDate())}T${p(d.getHours())}:${p(d.getMinutes())}`;
+  return exact
+    ? `${minute}:${p(d.getSeconds())}.${String(d.getMilliseconds()).padStart(3, '0')}`
+    : minute;
 }
 
 export function resolveRange(choice: RangeChoice, now: number): RangeResult {

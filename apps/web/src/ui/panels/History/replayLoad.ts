@@ -1,0 +1,23 @@
+/**
+ * Loads the recorded pose of a range (`/history/pose`) into the replay: the replay tab's "Load
+ * replay", and an episode's "Replay" in the Episodes tab. An empty range closes the replay.
+ */
+import type { PoseAnswer } from '@armtwin/api';
+import type { ReplayPlayer } from '../../../core/replay/ReplayPlayer.ts';
+import type { HistoryApi } from './historyApi.ts';
+import type { Loaded } from './loaded.ts';
+import type { TimeRange } from './range.ts';
+
+/** The frame count loaded, or the error to show. */
+export async function loadReplay(
+  api: HistoryApi,
+  arm: string,
+  range: TimeRange,
+  player: ReplayPlayer,
+): Promise<Loaded<number>> {
+  const r = await api.get<PoseAnswer>('pose', { arm, start: range.start, stop: range.stop });
+  if (!r.ok) return r;
+  if (r.data.times.length === 0) player.close();
+  else player.load({ ...r.data, start: r.data.start, stop: r.data.stop });
+  return { ok: true, data: r.data.times.length };
+}

@@ -1,0 +1,141 @@
+/// <reference lib="dom" />
+/**
+ * A LeRobot dataset into the HUD, end to end: the dataset is written by LeRobot 0.6.1's own
+ * writer (`LeRobotDataset.create`, `add_frame`, `save_episode`; tests/helpers/lerobot/
+ * make_dataset.py in the pyenv-lerobot venv), picked as a folder in the History panel's replay
+ * (Chromium, real Mosquitto, a simulated SO-101), and played on the amber sibling. Its joints on
+ * the twin match the file, frame by frame, in armtwin's units (the gripper back from 0–100 %);
+ * "Make plan from this range" turns it into a plan.
+ */
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import type { Page } from '@playwright/test';
+import { degreesFromLerobot } from '@armtwin/robot';
+import { expect, shot, test } from './fixtures.ts';
+import { loadProfile, startProfiledArm } from './support/profiled-arm.ts';
+import { runLerobotScript } from '../helpers/lerobot-python.ts';
+
+const SO101 = loadProfile('so101');
+const FPS = 30;
+
+/** Episode e's frame k in LeRobot's units: every joint sweeps, the gripper opens 0 → 87 %. */
+function frame(e: number, k: number): number[] {
+  const s = Math.sin((k / FPS) * Math.PI) * (e + 1);
+  return [20 * s, -10 + 15 * s, 30 - 12 * s, 8 * s, 45 * s, (k * 87) / 59];
+}
+const EPISODES = [
+  { task: 'sweep the shoulder', n: 60 },
+  { task: 'wave twice as far', n: 45 },
+].map((ep, e) => {
+  const state = Array.from({ length: ep.n }, (_, k) => frame(e, k));
+  return { task: ep.task, state, action: state.map((row) => row.map((v) => v + 0.5)) };
+});
+
+let root = '';
+
+// eslint-disable-next-line no-empty-pattern
+test.beforeAll(async ({}) => {
+  test.setTimeout(180_000);
+  root = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-import-')), 'so101-sweep');
+  runLerobotScript('make_dataset.py', { root, fps: FPS, episodes: EPISODES }, 'lerobot, numpy');
+});
+
+test.afterAll(() => {
+  if (root) fs.rmSync(path.dirname(root), { recursive: true, force: true });
+});
+
+interface ImportHook {
+  __armtwin?: {
+    ready: boolean;
+    replay: {
+      angles: Float64Array;
+      version: number;
+      record: { times: number[]; start: number; stop: number } | null;
+      seek(t: number): void;
+    };
+    viewer: { drawnWorld: { getObjectByName(n: string): unknown } };
+  };
+}
+
+/** The sibling at frame k: the replay's servo angles and the three.js model's joints (deg). */
+async function atFrame(page: Page, k: number) {
+  // The version before the seek: the frame loop bumps it once it has drawn the new position.
+  const seen = await page.evaluate((i) => {
+    const replay = (window as unknown as ImportHook).__armtwin!.replay;
+    const v = replay.version;
+    replay.seek(replay.record!.times[i]!);
+    return v;
+  }, k);
+  await page.waitForFunction(
+    (v) => (window as unknown as ImportHook).__armtwin!.replay.version > v,
+    seen,
+  );
+  return page.evaluate(
+    (joints) => {
+      const hook = (window as unknown as ImportHook).__armtwin!;
+      const robot = hook.viewer.drawnWorld.getObjectByName('replay sibling') as
+        { visible: boolean; joints: Record<string, { angle: number }> } | undefined;
+      return {
+        angles: Array.from(hook.replay.angles),
+        urdf: robot?.visible ? joints.map((j) => (robot.joints[j]!.angle * 180) / Math.PI) : null,
+      };
+    },
+    SO101.servos.map((s) => s.joint),
+  );
+}
+
+test('a dataset written by LeRobot plays on the twin with the file’s joint values', async ({
+  page,
+  stack,
+}, testInfo) => {
+  test.setTimeout(120_000);
+  const arm = await startProfiledArm(
+    stack.broker.url,
+    `e2e-import-${process.pid}`,
+    SO101,
+    testInfo.outputPath('sim-so101.log'),
+  );
+  try {
+    await page.goto(
+      `${stack.web.url}?broker=${encodeURIComponent(stack.broker.wsUrl)}&arm=${arm.id}&role=operator&render=main`,
+    );
+    await page.waitForFunction(() => (window as unknown as ImportHook).__armtwin?.ready === true);
+    await page.locator('summary', { hasText: 'History' }).click();
+    await page.getByRole('tab', { name: 'Replay' }).click();
+    await page.getByLabel('LeRobot dataset folder').setInputFiles(root);
+    const note = page.getByTestId('import-note');
+    await expect(note).toHaveText(
+      'so101-sweep: LeRobot v3.0, 2 episode(s) at 30 fps, so101_follower.',
+    );
+    await expect(page.getByLabel('Dataset episode')).toContainText(
+      '1: wave twice as far (45 frames)',
+    );
+    await page.getByLabel('Dataset episode').selectOption('1');
+    await page.getByRole('button', { name: 'Play episode' }).click();
+    await expect(note).toContainText(
+      'Episode 1 ("wave twice as far") loaded on the replay: 45 frames',
+    );
+
+    // Frame by frame: the file's values (float32), in armtwin's servo degrees, on the sibling.
+    const file = EPISODES[1]!.state;
+    for (const k of [0, 7, 22, 44]) {
+      const want = SO101.servos.map((s, i) => degreesFromLerobot(s, Math.fround(file[k]![i]!)));
+      const seen = await atFrame(page, k);
+      seen.angles.forEach((a, i) => expect(a, `servo ${i}, frame ${k}`).toBeCloseTo(want[i]!, 3));
+      // The drawn model's joints (URDF degrees: the servo angle at polarity 1, offset 0).
+      seen.urdf!.forEach((a, i) => expect(a, `joint ${i}, frame ${k}`).toBeCloseTo(want[i]!, 2));
+    }
+    expect(await atFrame(page, 44).then((s) => s.angles[5])).toBeCloseTo(
+      degreesFromLerobot(SO101.servos[5]!, Math.fround((44 * 87) / 59)),
+      3,
+    );
+    await shot(page, testInfo, 'dataset-import');
+
+    // Played as a recording: a plan from it, to rehearse in Model mode and run.
+    await page.getByRole('button', { name: 'Make plan from this range' }).click();
+    await expect(page.getByTestId('teach-note')).toContainText('Plan made:');
+  } finally {
+    await arm.stop();
+  }
+});
