@@ -27,14 +27,16 @@ const profileText = (name: string) =>
 describe('reduceFleet', () => {
   const online = (id: string, text: string) => ({ kind: 'online' as const, id, text });
 
-  it('adds arms as they appear, follows online / offline; online first, then by id', () => {
+  it('adds arms as they appear, follows online / offline; online first, then by id (arm2 before arm10)', () => {
     let s: FleetState = EMPTY_FLEET;
     s = reduceFleet(s, online('arm2', '1'));
     s = reduceFleet(s, online('arm1', '0'));
     s = reduceFleet(s, { kind: 'profile', id: 'arm2', name: 'track6', title: 'Track arm' });
     s = reduceFleet(s, online('arm0', '0'));
+    s = reduceFleet(s, online('arm10', '1'));
     expect(fleetList(s).map((a) => [a.id, a.online, a.profileName, a.level])).toEqual([
       ['arm2', true, 'track6', 'unknown'],
+      ['arm10', true, null, 'unknown'],
       ['arm0', false, null, 'unknown'],
       ['arm1', false, null, 'unknown'],
     ]);

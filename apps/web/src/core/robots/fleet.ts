@@ -134,10 +134,13 @@ export const sameSummary = (a: FleetArm | undefined, b: FleetArm | undefined): b
   a.warnings === b.warnings &&
   sameJoints(a.joints, b.joints);
 
-/** The arms, online ones first, then by id (a broker remembers every arm it has seen). */
+const byId = new Intl.Collator('en', { numeric: true });
+
+/**
+ * The arms, online ones first, then by id, numbers in ids as numbers (arm2 before arm10; a broker
+ * remembers every arm it has seen).
+ */
 export const fleetList = (state: FleetState): FleetArm[] =>
   [...state.values()].sort(
-    (a, b) =>
-      Number(b.online === true) - Number(a.online === true) ||
-      (a.id < b.id ? -1 : a.id > b.id ? 1 : 0),
+    (a, b) => Number(b.online === true) - Number(a.online === true) || byId.compare(a.id, b.id),
   );
