@@ -14,7 +14,8 @@ export const voltageLevel = (volts: number): HealthLevel =>
   volts < VOLTAGE_MIN_V ? 'critical' : 'normal';
 
 const RANK: Record<HealthLevel, number> = { normal: 0, warning: 1, critical: 2 };
-export const worstLevel = (a: HealthLevel, b: HealthLevel): HealthLevel => (RANK[a] >= RANK[b] ? a : b);
+export const worstLevel = (a: HealthLevel, b: HealthLevel): HealthLevel =>
+  RANK[a] >= RANK[b] ? a : b;
 
 /** Latest temperature (°C) and supply (mV) per servo id. */
 export type ServoHealth = Readonly<Record<number, { temp: number; mv: number }>>;
