@@ -10,6 +10,8 @@
  * Baselines, same browser and same run: a blank page's rAF rate and busy share (before the
  * HUD opens); for latency, the status stream's one-way delay to a Node subscriber; for
  * fidelity, an ideal "draw the newest sample received" renderer at the same frame instants.
+ * Then a fleet on the page (./lib/fleet-page.ts): the HUD with 1, 10 and 50 arms in the fleet,
+ * the 1-arm run the baseline.
  */
 import fs from 'node:fs';
 import path from 'node:path';
@@ -28,6 +30,7 @@ import { startRecordedArm } from './lib/recorded-arm.ts';
 import type { StreamRecorder } from './lib/stream-recorder.ts';
 import { frameErrors } from './lib/fidelity.ts';
 import { cdpMetrics, webglRendererName } from './lib/browser-metrics.ts';
+import { fleetPageRows } from './lib/fleet-page.ts';
 
 const ARM = 'bench-hud';
 const SERVOS = 6;
@@ -44,7 +47,8 @@ function analyse(p: ProbeResult, rec: StreamRecorder) {
   };
 }
 
-export const browserSection: Section = {
+/** The HUD's own figures; `browserSection` (below) adds a fleet on the page. */
+const hudSection: Section = {
   id: 'browser',
   title: 'HUD in headless Chromium at 6 servos × 250 Hz',
   precheck() {
@@ -295,5 +299,21 @@ export const browserSection: Section = {
       await recorded.close();
       await web.close();
     }
+  },
+};
+
+export const browserSection: Section = {
+  ...hudSection,
+  title: 'HUD in headless Chromium at 6 servos × 250 Hz; a fleet of 1, 10, 50 arms on the page',
+  async run(ctx: BenchContext): Promise<SectionOutput> {
+    const hud = await hudSection.run(ctx);
+    // A fleet on the page (issue 34): 1, 10 and 50 arms, after the HUD's own figures.
+    const fleet = await fleetPageRows(ctx);
+    return {
+      ...hud,
+      rows: [...hud.rows, ...fleet.rows],
+      settings: { ...hud.settings, fleet: fleet.settings },
+      data: { ...hud.data, fleet: fleet.data },
+    };
   },
 };

@@ -13,6 +13,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { MODELS_DIR } from '@armtwin/sim';
+import { parseSummary } from '@armtwin/protocol';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
 import { serialLine } from './serial-line.ts';
@@ -119,6 +120,23 @@ describe.each(['dynamixel', 'feetech'] as const)('armtwin gateway --bus %s', (bu
     await w.send('#004A+350.00T0500!');
     await reaches(4, 350, from);
     expect(payloads.some((p) => p.includes('#004A+350.00!'))).toBe(true);
+  });
+
+  test('its summary on arm/{id}/summary: still, the pose in servo degrees, the last $ERR', async () => {
+    await w.client.subscribeAsync(`arm/${ARM}/summary`, { qos: 0 });
+    const s = await w.until(
+      () => {
+        const r = parseSummary(w.retained.get(`arm/${ARM}/summary`) ?? '');
+        return r.ok && r.summary.state === 'still' ? r.summary : undefined;
+      },
+      5000,
+      'a summary',
+    );
+    expect(s.joints.find((j) => j.id === 4)).toMatchObject({ min: -360, max: 360 });
+    expect(s.joints.find((j) => j.id === 4)!.deg).toBeCloseTo(350, 0);
+    expect(s.joints.find((j) => j.id === 1)!.deg).toBeCloseTo(30, 0);
+    expect(s.error?.text).toBe('limit 004 A361 outside -360..360');
+    expect([s.health, s.holder]).toEqual(['normal', null]);
   });
 
   test('#255PDST! holds the arm short of a slow move', async () => {

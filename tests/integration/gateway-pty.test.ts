@@ -7,7 +7,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { OPERATOR_BEAT_MS } from '@armtwin/protocol';
+import { OPERATOR_BEAT_MS, parseSummary, type ArmSummary } from '@armtwin/protocol';
 import { rawOperator } from '../helpers/raw-operator.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
@@ -191,6 +191,37 @@ describe('armtwin gateway over a pty pair', () => {
     await w.client.subscribeAsync([`arm/${ARM}/status`, `arm/${ARM}/online`], { qos: 1 });
     await w.until(online('1'), 15_000, 'online 1 after the restart');
     await ping(15_000);
+  });
+
+  test('its summary on arm/{id}/summary: who holds it, the pose the firmware reports', async () => {
+    const topic = `arm/${ARM}/summary`;
+    await w.client.subscribeAsync(topic, { qos: 0 });
+    const summary = (ok: (s: ArmSummary) => boolean) => () => {
+      const r = parseSummary(w.retained.get(topic) ?? '');
+      return r.ok && ok(r.summary) ? r.summary : undefined;
+    };
+    await w.client.publishAsync(`arm/${ARM}/claim/carol`, 'take', { qos: 1 });
+    try {
+      await w.until(
+        summary((x) => x.holder === 'carol'),
+        5000,
+        'carol holding',
+      );
+      // Servo 000 to 1200 µs, about 27° from the middle, as the firmware then reports.
+      await w.client.publishAsync(`arm/${ARM}/control/carol`, '#000P1200T0200!', { qos: 1 });
+      await w.until(
+        summary((x) => x.state === 'still' && Math.abs(x.joints[0]?.deg ?? 0) > 20),
+        5000,
+        'servo 000 away from the middle in the summary',
+      );
+    } finally {
+      await w.client.publishAsync(`arm/${ARM}/claim/carol`, 'release', { qos: 1 });
+    }
+    await w.until(
+      summary((x) => x.holder === null),
+      5000,
+      'nobody holding again',
+    );
   });
 
   test('on SIGTERM it publishes online 0 and exits 0', async () => {

@@ -7,7 +7,7 @@
  * a profile whose joints the arm lacks stops the gateway at start, naming them.
  */
 import { afterAll, beforeAll, expect, test } from 'vitest';
-import type { Frame } from '@armtwin/protocol';
+import { parseSummary, type Frame } from '@armtwin/protocol';
 import { startTestArm, testDomain } from '../helpers/ros2.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
@@ -61,6 +61,21 @@ test('the arm’s joint states reach MQTT as angle frames within 0.01°, an extr
   INITIAL.forEach((q, i) => expect(Math.abs(deg[i]! - q * DEG)).toBeLessThan(0.01));
   expect(w.retained.get(`arm/${ARM}/online`)).toBe('1');
   expect(gateway.output()).toMatch(/joints not in the profile, ignored: wheel/);
+});
+
+test('its summary on arm/{id}/summary: the joint states as servo angles, to 0.1°', async () => {
+  const topic = `arm/${ARM}/summary`;
+  await w.client.subscribeAsync(topic, { qos: 0 });
+  const s = await w.until(
+    () => {
+      const r = parseSummary(w.retained.get(topic) ?? '');
+      return r.ok ? r.summary : undefined;
+    },
+    5000,
+    'a summary',
+  );
+  expect(s.joints.map((j) => j.deg)).toEqual(INITIAL.map((q) => Math.round(q * DEG * 10) / 10));
+  expect([s.state, s.holder]).toEqual(['still', null]);
 });
 
 test('a jog (a timed pulse move) becomes a trajectory the arm executes', async () => {

@@ -5,6 +5,7 @@
 import { execFileSync } from 'node:child_process';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { solveIk } from '@armtwin/ik';
+import { parseSummary, type ArmSummary } from '@armtwin/protocol';
 import { useMosquitto } from '../helpers/use-services.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
 
@@ -249,7 +250,43 @@ describe('armtwin sim over Mosquitto', () => {
     );
   });
 
-  test('on SIGTERM it publishes online 0 (retained) and exits 0', async () => {
+  test('its summary on arm/{id}/summary (docs/protocol.md § Fleets): pose, state, an overheat', async () => {
+    await w.client.subscribeAsync(`arm/${ARM}/summary`, { qos: 0 });
+    const summary = (ok: (s: ArmSummary) => boolean) => () => {
+      const r = parseSummary(w.retained.get(`arm/${ARM}/summary`) ?? '');
+      return r.ok && ok(r.summary) ? r.summary : undefined;
+    };
+    const first = await w.until(
+      summary(() => true),
+      5000,
+      'a summary',
+    );
+    expect(first.joints.map((j) => j.id)).toEqual([0, 1, 2, 3, 4, 5]);
+    expect(first.holder).toBeNull();
+    await w.client.publishAsync(`arm/${ARM}/sim`, '{"fault":"overheat","id":1,"celsius":150}');
+    // (The stall above left servo 004's supply low: the arm may be critical already.)
+    const hot = await w.until(
+      summary((s) => Number(/servo 001: (\d+) °C/.exec(s.alarm)?.[1] ?? 0) > 75),
+      30_000,
+      'servo 001 hot in the summary',
+    );
+    expect(hot.health).toBe('critical');
+    await w.client.publishAsync(`arm/${ARM}/sim`, '{"fault":"clear"}');
+    await sendStamped('#000P1700T0600!');
+    await w.until(
+      summary((s) => s.state === 'moving'),
+      5000,
+      'moving',
+    );
+    const still = await w.until(
+      summary((s) => s.state === 'still'),
+      5000,
+      'still again',
+    );
+    expect(still.joints[0]!.deg).toBeGreaterThan(10);
+  });
+
+  test('on SIGTERM it publishes online 0 (retained), clears its summary and exits 0', async () => {
     const code = await sim.stop('SIGTERM');
     expect(code).toBe(0);
     await w.until(
@@ -257,5 +294,6 @@ describe('armtwin sim over Mosquitto', () => {
       5000,
       'online 0',
     );
+    expect(w.retained.get(`arm/${ARM}/summary`)).toBe('');
   });
 });

@@ -1,19 +1,30 @@
 /**
  * The fleet link's MQTT edge with a stand-in client: the same connect options as the arm link
- * (one factory, the protocol's defaults), and every piece of input it rejects counted — the
- * reader's drops by kind, bad announcements, bad feedback — while the good input still counts.
+ * (one factory, the protocol's defaults), what it subscribes (every arm's summary, never another
+ * arm's status), and every piece of input it rejects counted by kind — bad summaries, alerts,
+ * announcements, feedback — while the good input still counts.
  */
 import { describe, expect, it } from 'vitest';
 import {
-  encodeGroup,
-  encodeHealth,
   MQTT_CONNECT_TIMEOUT_MS,
   MQTT_KEEPALIVE_S,
   MQTT_RECONNECT_MS,
+  type ArmSummary,
 } from '@armtwin/protocol';
 import { FleetLink, type FleetMqtt } from '../src/core/robots/FleetLink.ts';
 import type { ConnectOptions } from '../src/core/link/connectOptions.ts';
 import { defaultSettings } from '../src/core/config/settings.ts';
+
+const SUMMARY: ArmSummary = {
+  t: 1,
+  state: 'moving',
+  why: '',
+  health: 'normal',
+  alarm: '',
+  holder: 'alice',
+  joints: [{ id: 0, deg: 10, min: -90, max: 90 }],
+  error: null,
+};
 
 class FakeClient implements FleetMqtt {
   handlers = new Map<string, ((...args: never[]) => void)[]>();
@@ -27,10 +38,13 @@ class FakeClient implements FleetMqtt {
   message(topic: string, text: string) {
     this.emit('message', topic, new TextEncoder().encode(text));
   }
-  subscribe() {
+  subscribed: string[] = [];
+  subscribe(topics: string[]) {
+    this.subscribed.push(...topics);
     return this;
   }
-  unsubscribe() {
+  unsubscribe(topics: string[]) {
+    this.subscribed = this.subscribed.filter((t) => !topics.includes(t));
     return this;
   }
   publish() {
@@ -67,19 +81,51 @@ describe('FleetLink', () => {
     expect(opts()?.clientId).toMatch(/^armtwin-fleet-[0-9a-f]+$/);
   });
 
-  it("counts what its reader drops, by kind, and still takes another arm's good health frames", () => {
+  it("follows every arm's summary and alerts, never another arm's status, whatever the fleet", () => {
     const { client, fleet } = setup();
-    client.message('arm/arm2/online', '1');
-    client.message(
-      'arm/arm2/status',
-      `${encodeGroup([encodeHealth(0, 41, 7400), encodeHealth(1, 42, 7400)])}V junk!#001PX!`,
+    expect(client.subscribed).toEqual(
+      expect.arrayContaining(['arm/+/online', 'arm/+/profile', 'arm/+/summary', 'arm/+/alert']),
     );
-    expect(fleet.counters.dropped).toBe(2);
-    expect(fleet.counters.droppedByKind.junk).toBe(1);
-    expect(fleet.counters.droppedByKind.malformed).toBe(1);
-    expect(fleet.firstError.junk).toContain('V junk!');
-    expect(fleet.state.get('arm2')?.online).toBe(true);
-    expect(fleet.state.get('arm2')?.level).toBe('normal');
+    for (let i = 1; i <= 50; i++) client.message(`arm/arm${i}/online`, '1');
+    fleet.select('arm37');
+    expect(client.subscribed.filter((t) => t.endsWith('/status'))).toEqual([]);
+    client.message(
+      'arm/arm37/summary',
+      JSON.stringify({ ...SUMMARY, health: 'critical', alarm: 'servo 002: 90 °C' }),
+    );
+    expect(fleet.state.get('arm37')).toMatchObject({
+      level: 'critical',
+      alarm: 'servo 002: 90 °C',
+      holder: 'alice',
+      state: 'moving',
+    });
+    client.message('arm/arm37/summary', '');
+    expect(fleet.state.get('arm37')).toMatchObject({ level: 'unknown', state: null });
+  });
+
+  it('counts a bad summary and a bad alert by kind, keeps the first reason, and still takes good ones', () => {
+    const { client, fleet } = setup();
+    client.message('arm/arm2/summary', JSON.stringify(SUMMARY));
+    client.message('arm/arm2/summary', '{"t":1}');
+    client.message('arm/arm2/alert', 'not json');
+    expect(fleet.counters.badSummaries).toBe(1);
+    expect(fleet.counters.badAlerts).toBe(1);
+    expect(fleet.firstError.summary).toBe('arm/arm2/summary: state: unknown');
+    expect(fleet.state.get('arm2')).toMatchObject({ level: 'normal', holder: 'alice' });
+    client.message(
+      'arm/arm2/alert',
+      JSON.stringify({
+        at: 1,
+        kind: 'thermal-warning',
+        id: '002',
+        tempC: 50,
+        predictedC: 40,
+        excessCPerS: 0.5,
+        secondsToLimit: 20,
+        detail: 'servo 002 heats',
+      }),
+    );
+    expect(fleet.state.get('arm2')?.warnings).toEqual({ '002': 'servo 002 heats' });
   });
 
   it('counts a bad announcement and bad feedback', () => {

@@ -7,11 +7,11 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
 import { parseProfile } from '@armtwin/robot';
+import type { ArmSummary } from '@armtwin/protocol';
 import { createMotionRobot, planRequest, DEFAULT_EXECUTE_OPTIONS } from '@armtwin/motion';
 import {
   EMPTY_FLEET,
   fleetList,
-  healthSummary,
   reduceFleet,
   sameSummary,
   type FleetState,
@@ -27,14 +27,16 @@ const profileText = (name: string) =>
 describe('reduceFleet', () => {
   const online = (id: string, text: string) => ({ kind: 'online' as const, id, text });
 
-  it('adds arms as they appear, follows online / offline; online first, then by id', () => {
+  it('adds arms as they appear, follows online / offline; online first, then by id (arm2 before arm10)', () => {
     let s: FleetState = EMPTY_FLEET;
     s = reduceFleet(s, online('arm2', '1'));
     s = reduceFleet(s, online('arm1', '0'));
     s = reduceFleet(s, { kind: 'profile', id: 'arm2', name: 'track6', title: 'Track arm' });
     s = reduceFleet(s, online('arm0', '0'));
+    s = reduceFleet(s, online('arm10', '1'));
     expect(fleetList(s).map((a) => [a.id, a.online, a.profileName, a.level])).toEqual([
       ['arm2', true, 'track6', 'unknown'],
+      ['arm10', true, null, 'unknown'],
       ['arm0', false, null, 'unknown'],
       ['arm1', false, null, 'unknown'],
     ]);
@@ -50,36 +52,74 @@ describe('reduceFleet', () => {
     expect(reduceFleet(s, online('x'.repeat(33), '1'))).toBe(s);
   });
 
-  it("health: the worst level over the servos' latest reports, in words", () => {
+  it('the summary: the worst health in words, state, holder and pose; a cleared one forgets them', () => {
     let s = reduceFleet(EMPTY_FLEET, online('arm1', '1'));
-    const health = (servos: { id: number; temp: number; mv: number }[]) =>
-      (s = reduceFleet(s, { kind: 'health', id: 'arm1', servos }));
-    health([
-      { id: 0, temp: 30, mv: 7200 },
-      { id: 1, temp: 31, mv: 7100 },
-    ]);
+    const summary = (o: Partial<ArmSummary>) =>
+      (s = reduceFleet(s, {
+        kind: 'summary',
+        id: 'arm1',
+        summary: {
+          t: 1,
+          state: 'still',
+          why: '',
+          health: 'normal',
+          alarm: '',
+          holder: null,
+          joints: [{ id: 0, deg: 0, min: -90, max: 90 }],
+          error: null,
+          ...o,
+        },
+      }));
+    summary({});
     expect([s.get('arm1')!.level, s.get('arm1')!.alarm]).toEqual(['normal', '']);
     const before = s.get('arm1');
-    health([{ id: 1, temp: 65, mv: 7100 }]);
+    summary({ health: 'warning', alarm: 'servo 001: 65 °C' });
     expect(s.get('arm1')!.level).toBe('warning');
     expect(s.get('arm1')!.alarm).toBe('servo 001: 65 °C');
     expect(sameSummary(before, s.get('arm1'))).toBe(false);
-    health([{ id: 0, temp: 30, mv: 6200 }]); // servo 000's supply below 6.5 V
-    expect(s.get('arm1')!.level).toBe('critical');
-    expect(s.get('arm1')!.alarm).toBe('servo 000: 6.20 V; servo 001: 65 °C');
-    health([
-      { id: 0, temp: 30, mv: 7200 },
-      { id: 1, temp: 40, mv: 7200 },
-    ]);
-    expect(s.get('arm1')!.level).toBe('normal');
+    summary({ health: 'warning', alarm: 'servo 001: 65 °C', holder: 'bob', state: 'moving' });
+    expect(s.get('arm1')).toMatchObject({ holder: 'bob', state: 'moving' });
     const again = s.get('arm1');
-    health([{ id: 0, temp: 31, mv: 7190 }]);
-    expect(sameSummary(again, s.get('arm1'))).toBe(true); // numbers changed, the row did not
+    summary({ health: 'warning', alarm: 'servo 001: 65 °C', holder: 'bob', state: 'moving', t: 2 });
+    expect(sameSummary(again, s.get('arm1'))).toBe(true); // a newer summary, the row the same
+    summary({
+      health: 'warning',
+      alarm: 'servo 001: 65 °C',
+      holder: 'bob',
+      state: 'moving',
+      joints: [{ id: 0, deg: 5, min: -90, max: 90 }],
+    });
+    expect(sameSummary(again, s.get('arm1'))).toBe(false); // the pose moved
+    s = reduceFleet(s, { kind: 'summary', id: 'arm1', summary: null });
+    expect(s.get('arm1')).toMatchObject({
+      level: 'unknown',
+      state: null,
+      holder: null,
+      joints: [],
+    });
   });
 
-  it('healthSummary: nothing reported is unknown', () => {
-    expect(healthSummary({})).toEqual({ level: 'unknown', alarm: '' });
-    expect(healthSummary({ 3: { temp: NaN, mv: NaN } })).toEqual({ level: 'unknown', alarm: '' });
+  it('early warnings: raised per servo, cleared per servo', () => {
+    const alert = (kind: 'thermal-warning' | 'thermal-cleared', id: string) => ({
+      kind: 'alert' as const,
+      id: 'arm1',
+      alert: {
+        at: 1,
+        kind,
+        id,
+        tempC: 50,
+        predictedC: 40,
+        excessCPerS: 1,
+        secondsToLimit: 10,
+        detail: `servo ${id} heats`,
+      },
+    });
+    let s = reduceFleet(EMPTY_FLEET, alert('thermal-warning', '002'));
+    s = reduceFleet(s, alert('thermal-warning', '003'));
+    expect(s.get('arm1')!.warnings).toEqual({ '002': 'servo 002 heats', '003': 'servo 003 heats' });
+    s = reduceFleet(s, alert('thermal-cleared', '002'));
+    expect(s.get('arm1')!.warnings).toEqual({ '003': 'servo 003 heats' });
+    expect(reduceFleet(s, alert('thermal-cleared', '002'))).toBe(s);
   });
 });
 

@@ -33,6 +33,9 @@ const VIEWER_READ = [
   // The thermal model's early warnings, raised by the middleware (docs/protocol.md § A thermal
   // model of each servo).
   'arm/+/alert',
+  // Each arm's summary (state, health, holder, pose) at 2 Hz: what a fleet view follows
+  // (docs/protocol.md § Fleets).
+  'arm/+/summary',
   // A leader arm driving the arm (`armtwin gateway --leader-of`, docs/so101.md): its pose (the
   // HUD's ghost), whether it follows, and its user's enable.
   'arm/+/leader/+',
@@ -89,6 +92,7 @@ export const ROLE_RULES: Record<Role, RoleRules> = {
       'arm/{arm}/camera/+',
       'arm/{arm}/holder',
       'arm/{arm}/audit',
+      'arm/{arm}/summary',
     ],
   },
   middleware: {

@@ -14,3 +14,4 @@ export * from './motion.ts';
 export * from './rate-limit.ts';
 export * from './refusal.ts';
 export * from './rules.ts';
+export * from './summary.ts';

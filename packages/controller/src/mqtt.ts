@@ -15,6 +15,9 @@
  * the feedback on `arm/{id}/feedback` (QoS 1, stamped `t`), and steps a running execution every
  * `stepMs` on the injected clock. With `announcement`, the arm's profile is published, retained,
  * on `arm/{id}/profile` at every (re)connect.
+ *
+ * `armSummary` (./summary-mqtt.ts): the arm's summary, retained on `arm/{id}/summary` at 2 Hz and
+ * at once on an alarm, from the status payloads the driver publishes and the core.
  */
 import type { MqttClient } from 'mqtt';
 
@@ -35,6 +38,7 @@ import type { MotionRequests } from './motion.ts';
 
 export { operatorDeadman } from './deadman.ts';
 export * from './driver-control.ts';
+export * from './summary-mqtt.ts';
 
 /**
  * A `ControlArbiter` for arm `armId` on this client: `forward` hands a payload that may reach

@@ -6,6 +6,7 @@
  */
 import type { MqttClient } from 'mqtt';
 import { numericKms, zonesKeepOut } from '@armtwin/controller';
+import { armSummary } from '@armtwin/controller/mqtt';
 import type { Profile } from '@armtwin/robot';
 import type { MotionRobot } from '@armtwin/motion';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
@@ -100,14 +101,19 @@ export function startBusGateway(
     keepOut: zonesKeepOut(robot),
     robot,
   };
+  const summary = armSummary(client, o.armId, SYSTEM_CLOCK);
   const core = new BusGatewayCore(coreOptions, {
     ...SYSTEM_CLOCK,
-    publish: gatewayPublish(client),
+    publish: gatewayPublish(client, summary),
     write: (data) => link.write(Buffer.from(data.buffer, data.byteOffset, data.byteLength)),
     onFirst: o.onFirst,
   });
   const control = wireGatewayMqtt(client, o, core, { [torque]: (p) => core.fromTorque(p) });
   const services = startArmServices({ ...o, client, raw, robot, core, control });
+  summary.start(
+    () => core.controller,
+    () => control.holder,
+  );
   link.start();
   log?.info(
     { arm: o.armId, bus: o.bus, profile: o.profile, ids: core.joints.map((j) => j.id) },
@@ -122,6 +128,7 @@ export function startBusGateway(
       core.operator.reset();
       control.reset();
       core.serialClosed();
+      await summary.stop();
       if (client.connected)
         await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
       await client.endAsync().catch(() => {});

@@ -15,7 +15,7 @@ import {
   type ControllerCore,
 } from '@armtwin/controller';
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
-import { mqttArbiter } from '@armtwin/controller/mqtt';
+import { armSummary, mqttArbiter, type ArmSummaryOut } from '@armtwin/controller/mqtt';
 import {
   armTopics,
   holderTopic,
@@ -117,12 +117,16 @@ export function connectGatewayMqtt(o: GatewayOptions): GatewayClient {
  * How a gateway publishes: while connected, as asked; with several brokers the status stream
  * goes at QoS 1 and waits in the client's queue while a move is under way (nothing published
  * during a move is lost); anything else is dropped while offline (presence is re-sent on connect).
+ * With `summary`, each status payload is also read by the arm's summary.
  */
 export function gatewayPublish(
   client: GatewayClient,
+  summary?: Pick<ArmSummaryOut, 'note'>,
 ): (topic: string, payload: Buffer | string, opts: { qos: 0 | 1; retain: boolean }) => void {
   const several = (client.brokers?.urls.length ?? 1) > 1;
   return (t, payload, opts) => {
+    // The arm's summary reads every status payload (docs/protocol.md § Fleets).
+    if (summary && t.endsWith('/status')) summary.note(payload);
     if (several && !opts.retain && t.endsWith('/status'))
       client.publish(t, payload, { ...opts, qos: 1 });
     else if (client.connected) client.publish(t, payload, opts);
@@ -223,6 +227,7 @@ export function startGateway(
       onData: (chunk) => core.fromSerial(chunk),
     },
   );
+  const summary = armSummary(client, o.armId, SYSTEM_CLOCK);
   const core = new GatewayCore(
     {
       armId: o.armId,
@@ -234,13 +239,17 @@ export function startGateway(
     },
     {
       ...SYSTEM_CLOCK,
-      publish: gatewayPublish(client),
+      publish: gatewayPublish(client, summary),
       write: (data) => link.write(data),
       onFirst: o.onFirst,
     },
   );
   const control = wireGatewayMqtt(client, o, core);
   const services = startArmServices({ ...o, client, raw, robot, core, control });
+  summary.start(
+    () => core.controller,
+    () => control.holder,
+  );
   link.start();
   log?.info({ arm: o.armId, profile: o.profile }, 'gateway running');
   return {
@@ -252,6 +261,7 @@ export function startGateway(
       services.stop();
       core.operator.reset();
       control.reset();
+      await summary.stop();
       await leaveGatewayMqtt(client, o.armId);
       await link.stop();
       log?.info({ counters: core.counters, serial: link.counters }, 'gateway stopped');

@@ -7,6 +7,7 @@ export * from './reader.ts';
 export * from './pulse.ts';
 export * from './topics.ts';
 export * from './health.ts';
+export * from './summary.ts';
 export * from './operator.ts';
 export * from './link.ts';
 export * from './backoff.ts';

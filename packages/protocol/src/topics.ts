@@ -13,6 +13,8 @@ export const TOPIC_KINDS = [
   'feedback',
   'sim',
   'torque',
+  'summary',
+  'alert',
 ] as const;
 export type TopicKind = (typeof TOPIC_KINDS)[number];
 

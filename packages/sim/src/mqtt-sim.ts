@@ -12,6 +12,8 @@
  * keeps who holds the arm (retained on `arm/{id}/holder`), takes claims on `arm/{id}/claim/+`
  * and `arm/{id}/override/+`, lets only the holder's moves through and reports on
  * `arm/{id}/audit` (docs/protocol.md, "Control: one operator at a time").
+ * The arm's summary (state, health, holder, pose) goes retained to `arm/{id}/summary` at 2 Hz and
+ * at once on an alarm (`armSummary` of @armtwin/controller).
  * The MQTT client is injected.
  */
 import type { IClientOptions, MqttClient } from 'mqtt';
@@ -24,7 +26,13 @@ import {
   type Clock,
 } from '@armtwin/protocol';
 import { MotionRequests, type ControlArbiter } from '@armtwin/controller';
-import { mqttArbiter, operatorDeadman, startMotionService } from '@armtwin/controller/mqtt';
+import {
+  armSummary,
+  type ArmSummaryOut,
+  mqttArbiter,
+  operatorDeadman,
+  startMotionService,
+} from '@armtwin/controller/mqtt';
 import { parseFaults } from './faults.ts';
 import type { SimProfile } from './profile.ts';
 import { SimRunner, type PayloadKind, type SimRunnerOptions } from './runner.ts';
@@ -52,6 +60,8 @@ export interface MqttSim {
   control: ControlArbiter;
   /** Status payloads handed to the client, by kind (queued ones included; not dropped ones). */
   published: Record<PayloadKind, number>;
+  /** The arm's summary on `arm/{id}/summary` (docs/protocol.md § Fleets). */
+  summary: ArmSummaryOut;
   /** Publishes online `0` (retained), stops the loops, ends the client. */
   stop(): Promise<void>;
 }
@@ -75,9 +85,11 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
   const clock = options.clock ?? SYSTEM_CLOCK;
   let offlineDrops = 0;
   const published: Record<PayloadKind, number> = { state: 0, health: 0, reply: 0 };
+  const summary = armSummary(client, options.armId, clock);
   const runner = new SimRunner(
     {
       send(payload, kind) {
+        summary.note(payload);
         if (options.statusQos === 1) {
           client.publish(topics.status, payload, { qos: 1 }); // queued while offline
           published[kind]++;
@@ -152,6 +164,10 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
   client.on('message', onMessage);
   if (client.connected) onConnect();
   runner.start();
+  summary.start(
+    () => runner.model.core,
+    () => control.holder,
+  );
   const sim = options.profile;
   const motion = sim
     ? startMotionService(
@@ -173,6 +189,7 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
     operator,
     control,
     published,
+    summary,
     async stop() {
       operator.reset();
       control.reset();
@@ -180,6 +197,7 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
       motion?.stop();
       client.removeListener('message', onMessage);
       client.removeListener('connect', onConnect);
+      await summary.stop();
       if (client.connected) {
         await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
         await client.publishAsync(topics.simFaults, '', { qos: 1, retain: true }).catch(() => {});

@@ -10,7 +10,7 @@
  */
 import type { MqttClient } from 'mqtt';
 import { MotionRequests, numericKms, zonesKeepOut } from '@armtwin/controller';
-import { startMotionService } from '@armtwin/controller/mqtt';
+import { armSummary, startMotionService } from '@armtwin/controller/mqtt';
 import {
   connectGatewayMqtt,
   DEFAULT_GATEWAY_OPTIONS,
@@ -104,6 +104,7 @@ export async function startRos2Gateway(
   await bridge.advertise(o.trajectory, 'joint_trajectory', { waitMs: 5000 });
   const topics = armTopics(o.armId);
   const client = connectGatewayMqtt({ ...o, serialPath: '', serial: {} });
+  const summary = armSummary(client, o.armId, SYSTEM_CLOCK);
   const core = new Ros2GatewayCore(
     {
       armId: o.armId,
@@ -117,7 +118,7 @@ export async function startRos2Gateway(
     },
     {
       ...SYSTEM_CLOCK,
-      publish: gatewayPublish(client),
+      publish: gatewayPublish(client, summary),
       trajectory: (msg) => bridge.publish(o.trajectory, 'joint_trajectory', msg),
       onFirst: o.onFirst,
     },
@@ -146,6 +147,10 @@ export async function startRos2Gateway(
     o.onFirst,
   );
   core.start();
+  summary.start(
+    () => core.controller,
+    () => control.holder,
+  );
   await bridge.subscribe(o.jointStates, 'joint_state', (msg) => core.fromJointState(msg));
   log?.info(
     {
@@ -171,6 +176,7 @@ export async function startRos2Gateway(
       follow.stop();
       core.stop();
       control.reset();
+      await summary.stop();
       await leaveGatewayMqtt(client, o.armId);
       await bridge.close();
       log?.info({ counters: core.counters, bridge: bridge.errors }, 'gateway stopped');

@@ -1,28 +1,25 @@
 /**
  * The fleet's MQTT edge: one mqtt.js client (injected, like ArmLink's) beside the arm link. It
- * follows every arm on the broker (retained `arm/+/online`, `arm/+/profile`), the health reports
- * of the arms not selected (`arm/{id}/status`, health frames only: the selected arm's come
- * through the store), and the selected arm's motion feedback; it publishes motion requests on
- * `arm/{id}/request`. Plain state, no React: panels sample `state` and `version`.
+ * follows every arm on the broker at a low rate, whatever the fleet's size: the retained
+ * `arm/+/online`, `arm/+/profile` and `arm/+/summary` (docs/protocol.md § Fleets: state, worst
+ * health, holder, pose at 2 Hz, at once on an alarm) and the thermal model's early warnings on
+ * `arm/+/alert`; never another arm's full-rate status (the shown arm's comes through the store).
+ * Also the selected arm's motion feedback; it publishes motion requests on `arm/{id}/request`.
+ * Bad input is counted by kind. Plain state, no React: panels sample `state` and `version`.
  */
 import {
   allArmsTopic,
   armTopics,
-  createReader,
   isValidArmId,
+  parseSummary,
   parseTopic,
   unhandled,
 } from '@armtwin/protocol';
 import { parseAnnouncement, type Profile } from '@armtwin/robot';
 import type { MotionRequest } from '@armtwin/motion';
+import { parseThermalAlert } from '@armtwin/thermal';
 import { connectOptions, type ConnectOptions } from '../link/connectOptions.ts';
 import type { MqttLike } from '../link/MqttLike.ts';
-import {
-  countDrop,
-  emptyDropCounters,
-  type DropCounters,
-  type FirstErrors,
-} from '../store/readerErrors.ts';
 import type { HudSettings } from '../config/settings.ts';
 import {
   EMPTY_FLEET,
@@ -38,15 +35,21 @@ export interface FleetMqtt extends MqttLike {
 }
 export type FleetConnect = (url: string, opts: ConnectOptions) => FleetMqtt;
 
-/** `dropped`, `droppedByKind`: what the reader of the other arms' health reports dropped. */
-export interface FleetCounters extends DropCounters {
+export interface FleetCounters {
   messages: number;
   /** Announcements that failed `parseProfile` (the arm keeps its previous profile). */
   badProfiles: number;
   /** Feedback that was not a feedback object. */
   badFeedback: number;
+  /** Summaries `parseSummary` refused (the arm keeps its previous row). */
+  badSummaries: number;
+  /** Early warnings that were not one. */
+  badAlerts: number;
   requests: number;
 }
+
+/** The first refusal of each kind of fleet input, as text (Status panel). */
+export type FleetFirstErrors = Partial<Record<'profile' | 'summary' | 'alert', string>>;
 
 const decoder = new TextDecoder();
 
@@ -58,31 +61,20 @@ export class FleetLink {
   readonly profiles = new Map<string, Profile>();
   readonly counters: FleetCounters = {
     messages: 0,
-    ...emptyDropCounters(),
     badProfiles: 0,
     badFeedback: 0,
+    badSummaries: 0,
+    badAlerts: 0,
     requests: 0,
   };
-  /** First message per reader error kind (Status panel). */
-  readonly firstError: FirstErrors = {};
+  /** First refusal per kind of input (Status panel). */
+  readonly firstError: FleetFirstErrors = {};
   connected = false;
   lastError = '';
   private client: FleetMqtt | null = null;
   private selected: string;
-  private readonly statusSubs = new Set<string>();
   private readonly profileListeners = new Set<(armId: string, profile: Profile) => void>();
   private readonly feedbackListeners = new Set<(f: Feedback) => void>();
-  private readonly health: { id: number; temp: number; mv: number }[] = [];
-  private readonly reader = createReader({
-    onFrame: (f) => {
-      if (f.type === 'health') this.health.push({ id: f.id, temp: f.temp, mv: f.mv });
-    },
-    onGroup: (g) => {
-      for (const f of g.frames)
-        if (f.type === 'health') this.health.push({ id: f.id, temp: f.temp, mv: f.mv });
-    },
-    onError: (e) => countDrop(this.counters, this.firstError, e),
-  });
 
   constructor(
     private settings: HudSettings,
@@ -101,16 +93,17 @@ export class FleetLink {
     this.client = client;
     client.on('connect', () => {
       this.connected = true;
-      this.statusSubs.clear();
       const topics = [
         allArmsTopic('online'),
         allArmsTopic('profile'),
+        allArmsTopic('alert'),
         armTopics(this.selected).feedback,
       ];
-      client.subscribe(topics, { qos: 1 }, (err) => {
+      const failed = (err: Error | null) => {
         if (err) this.lastError = `fleet subscribe failed: ${err.message}`;
-      });
-      for (const id of this.state.keys()) this.watchStatus(id);
+      };
+      client.subscribe(topics, { qos: 1 }, failed);
+      client.subscribe([allArmsTopic('summary')], { qos: 0 }, failed);
     });
     client.on('close', () => (this.connected = false));
     client.on('error', (err) => (this.lastError = err.message));
@@ -123,7 +116,7 @@ export class FleetLink {
     this.connected = false;
   }
 
-  /** Follows another arm: its feedback, and the health of the one left goes through the fleet. */
+  /** Follows another arm's motion feedback. */
   select(armId: string): void {
     if (!isValidArmId(armId) || armId === this.selected) return;
     const old = this.selected;
@@ -132,8 +125,6 @@ export class FleetLink {
     if (!c) return;
     c.unsubscribe([armTopics(old).feedback]);
     c.subscribe([armTopics(armId).feedback], { qos: 1 });
-    if (this.statusSubs.delete(armId)) c.unsubscribe([armTopics(armId).status]);
-    if (this.state.has(old)) this.watchStatus(old);
   }
 
   /**
@@ -160,18 +151,15 @@ export class FleetLink {
     return () => this.feedbackListeners.delete(fn);
   }
 
-  private watchStatus(id: string): void {
-    if (id === this.selected || this.statusSubs.has(id) || !this.client) return;
-    this.statusSubs.add(id);
-    this.client.subscribe([armTopics(id).status], { qos: 0 });
-  }
-
   private dispatch(ev: FleetEvent): void {
     const before = this.state.get(ev.id);
     this.state = reduceFleet(this.state, ev);
-    const after = this.state.get(ev.id);
-    if (!sameSummary(before, after)) this.version++;
-    if (!before && after) this.watchStatus(ev.id);
+    if (!sameSummary(before, this.state.get(ev.id))) this.version++;
+  }
+
+  private refuse(kind: keyof FleetFirstErrors, armId: string, error: string): void {
+    this.lastError = `arm/${armId}/${kind}: ${error}`;
+    this.firstError[kind] ??= this.lastError;
   }
 
   private onMessage(topic: string, payload: Uint8Array): void {
@@ -180,15 +168,23 @@ export class FleetLink {
     if (!p) return;
     const t = { id: p.armId };
     switch (p.kind) {
-      case 'status': {
-        // Health frames carry a `V`; state reports (the bulk) are skipped unparsed.
-        if (t.id === this.selected || !payload.includes(0x56)) return;
-        this.health.length = 0;
-        this.reader.reset();
-        this.reader.feed(payload);
-        if (this.health.length > 0)
-          this.dispatch({ kind: 'health', id: t.id, servos: [...this.health] });
-        return;
+      case 'summary': {
+        if (payload.length === 0)
+          return this.dispatch({ kind: 'summary', id: t.id, summary: null });
+        const r = parseSummary(payload);
+        if (!r.ok) {
+          this.counters.badSummaries++;
+          return this.refuse('summary', t.id, r.error);
+        }
+        return this.dispatch({ kind: 'summary', id: t.id, summary: r.summary });
+      }
+      case 'alert': {
+        const alert = parseThermalAlert(payload);
+        if (!alert) {
+          this.counters.badAlerts++;
+          return this.refuse('alert', t.id, 'not an early warning');
+        }
+        return this.dispatch({ kind: 'alert', id: t.id, alert });
       }
       case 'online':
         this.dispatch({ kind: 'online', id: t.id, text: decoder.decode(payload) });
@@ -198,8 +194,7 @@ export class FleetLink {
         const r = parseAnnouncement(decoder.decode(payload));
         if (!r.ok) {
           this.counters.badProfiles++;
-          this.lastError = `arm/${t.id}/profile: ${r.error}`;
-          return;
+          return this.refuse('profile', t.id, r.error);
         }
         this.profiles.set(t.id, r.profile);
         this.dispatch({ kind: 'profile', id: t.id, name: r.profile.name, title: r.profile.title });
@@ -217,6 +212,7 @@ export class FleetLink {
         return;
       }
       // Not subscribed to: nothing of these comes.
+      case 'status':
       case 'control':
       case 'operator':
       case 'request':

@@ -1,15 +1,18 @@
 /**
- * The fleet: every arm seen on the broker, from the retained `arm/+/online` and `arm/+/profile`
- * and the health reports on `arm/{id}/status`. A pure reducer: each event → a new state (the
- * same object when nothing changed); `sameSummary` tells whether an arm's row looks different.
+ * The fleet: every arm seen on the broker, from the retained `arm/+/online`, `arm/+/profile` and
+ * `arm/+/summary` (state, worst health, holder, pose at 2 Hz and at once on an alarm,
+ * docs/protocol.md § Fleets), and the thermal model's early warnings on `arm/+/alert`. The
+ * fleet never reads another arm's full-rate status. A pure reducer: each event → a new state
+ * (the same object when nothing changed); `sameSummary` tells whether an arm's row looks different.
  */
 import {
   isValidArmId,
-  temperatureLevel,
-  voltageLevel,
-  worstLevel,
+  type ArmState,
+  type ArmSummary,
   type HealthLevel,
+  type SummaryJoint,
 } from '@armtwin/protocol';
+import type { ThermalAlert } from '@armtwin/thermal';
 
 export interface FleetArm {
   readonly id: string;
@@ -18,12 +21,21 @@ export interface FleetArm {
   /** From the retained profile: its name and title (null until one is announced). */
   readonly profileName: string | null;
   readonly title: string | null;
-  /** Worst health level over the servos' latest reports ('unknown' before any). */
+  /** From the arm's summary: the worst health level ('unknown' before any) and its words. */
   readonly level: HealthLevel | 'unknown';
-  /** One line for the badge's title: which servo, what. Empty when normal. */
   readonly alarm: string;
-  /** Latest temperature (°C) and supply (mV) per servo id. */
-  readonly health: Readonly<Record<number, { temp: number; mv: number }>>;
+  /** From the summary: moving, still or not ready (null before a summary). */
+  readonly state: ArmState | null;
+  /** Why it is not ready ('' otherwise). */
+  readonly why: string;
+  /** Who holds it (null: nobody, or no summary yet). */
+  readonly holder: string | null;
+  /** Servo angles and their limits, degrees (the row's small pose). */
+  readonly joints: readonly SummaryJoint[];
+  /** The arm's last `$ERR` (null before any). */
+  readonly error: ArmSummary['error'];
+  /** The thermal model's early warnings in force, by servo (`002` → the sentence). */
+  readonly warnings: Readonly<Record<string, string>>;
 }
 
 export type FleetState = ReadonlyMap<string, FleetArm>;
@@ -31,46 +43,30 @@ export type FleetState = ReadonlyMap<string, FleetArm>;
 export type FleetEvent =
   | { kind: 'online'; id: string; text: string }
   | { kind: 'profile'; id: string; name: string | null; title: string | null }
-  | { kind: 'health'; id: string; servos: readonly { id: number; temp: number; mv: number }[] };
+  /** A summary, or null when the retained one was cleared. */
+  | { kind: 'summary'; id: string; summary: ArmSummary | null }
+  | { kind: 'alert'; id: string; alert: ThermalAlert };
 
 export const EMPTY_FLEET: FleetState = new Map();
+
+const NO_SUMMARY = {
+  level: 'unknown',
+  alarm: '',
+  state: null,
+  why: '',
+  holder: null,
+  joints: [],
+  error: null,
+} as const satisfies Partial<FleetArm>;
 
 const blank = (id: string): FleetArm => ({
   id,
   online: null,
   profileName: null,
   title: null,
-  level: 'unknown',
-  alarm: '',
-  health: {},
+  ...NO_SUMMARY,
+  warnings: {},
 });
-
-/** The worst level over servos and the words for it ("servo 002: 78 °C"). */
-export function healthSummary(health: FleetArm['health']): {
-  level: FleetArm['level'];
-  alarm: string;
-} {
-  let level: FleetArm['level'] = 'unknown';
-  const words: string[] = [];
-  for (const [key, h] of Object.entries(health)) {
-    const parts: string[] = [];
-    let servo: FleetArm['level'] = 'unknown';
-    if (Number.isFinite(h.temp)) {
-      const t = temperatureLevel(h.temp);
-      servo = t;
-      if (t !== 'normal') parts.push(`${Math.round(h.temp)} °C`);
-    }
-    if (Number.isFinite(h.mv)) {
-      const v = voltageLevel(h.mv / 1000);
-      servo = servo === 'unknown' ? v : worstLevel(servo, v);
-      if (v !== 'normal') parts.push(`${(h.mv / 1000).toFixed(2)} V`);
-    }
-    if (servo === 'unknown') continue;
-    level = level === 'unknown' ? servo : worstLevel(level, servo);
-    if (parts.length > 0) words.push(`servo ${key.padStart(3, '0')}: ${parts.join(', ')}`);
-  }
-  return { level, alarm: words.join('; ') };
-}
 
 export function reduceFleet(state: FleetState, ev: FleetEvent): FleetState {
   if (!isValidArmId(ev.id)) return state;
@@ -89,11 +85,28 @@ export function reduceFleet(state: FleetState, ev: FleetEvent): FleetState {
       if (prev && prev.profileName === ev.name && prev.title === ev.title) return state;
       next = { ...arm, profileName: ev.name, title: ev.title };
       break;
-    case 'health': {
-      if (ev.servos.length === 0) return state;
-      const health = { ...arm.health };
-      for (const s of ev.servos) health[s.id] = { temp: s.temp, mv: s.mv };
-      next = { ...arm, health, ...healthSummary(health) };
+    case 'summary': {
+      const s = ev.summary;
+      next = s
+        ? {
+            ...arm,
+            level: s.health,
+            alarm: s.alarm,
+            state: s.state,
+            why: s.why,
+            holder: s.holder,
+            joints: s.joints,
+            error: s.error,
+          }
+        : { ...arm, ...NO_SUMMARY };
+      break;
+    }
+    case 'alert': {
+      const warnings = { ...arm.warnings };
+      if (ev.alert.kind === 'thermal-warning') warnings[ev.alert.id] = ev.alert.detail;
+      else if (ev.alert.id in warnings) delete warnings[ev.alert.id];
+      else return state;
+      next = { ...arm, warnings };
       break;
     }
   }
@@ -102,7 +115,10 @@ export function reduceFleet(state: FleetState, ev: FleetEvent): FleetState {
   return out;
 }
 
-/** Whether two arms look the same in the fleet list (health numbers aside). */
+const sameJoints = (a: readonly SummaryJoint[], b: readonly SummaryJoint[]) =>
+  a.length === b.length && a.every((j, i) => j.deg === b[i]!.deg && j.id === b[i]!.id);
+
+/** Whether two arms look the same in the fleet list (their pose included). */
 export const sameSummary = (a: FleetArm | undefined, b: FleetArm | undefined): boolean =>
   a !== undefined &&
   b !== undefined &&
@@ -110,12 +126,21 @@ export const sameSummary = (a: FleetArm | undefined, b: FleetArm | undefined): b
   a.profileName === b.profileName &&
   a.title === b.title &&
   a.level === b.level &&
-  a.alarm === b.alarm;
+  a.alarm === b.alarm &&
+  a.state === b.state &&
+  a.why === b.why &&
+  a.holder === b.holder &&
+  a.error?.t === b.error?.t &&
+  a.warnings === b.warnings &&
+  sameJoints(a.joints, b.joints);
 
-/** The arms, online ones first, then by id (a broker remembers every arm it has seen). */
+const byId = new Intl.Collator('en', { numeric: true });
+
+/**
+ * The arms, online ones first, then by id, numbers in ids as numbers (arm2 before arm10; a broker
+ * remembers every arm it has seen).
+ */
 export const fleetList = (state: FleetState): FleetArm[] =>
   [...state.values()].sort(
-    (a, b) =>
-      Number(b.online === true) - Number(a.online === true) ||
-      (a.id < b.id ? -1 : a.id > b.id ? 1 : 0),
+    (a, b) => Number(b.online === true) - Number(a.online === true) || byId.compare(a.id, b.id),
   );

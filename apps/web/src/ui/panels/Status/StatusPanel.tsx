@@ -59,9 +59,8 @@ export function StatusPanel() {
       rtt: pingFresh && !Number.isNaN(rtt) ? `${rtt.toFixed(rtt < 10 ? 1 : 0)} ms` : '—',
       dropped: store.counters.dropped,
       droppedKinds: droppedWords(store.counters.droppedByKind),
-      fleetDropped: robots.fleet.counters.dropped,
-      fleetDroppedKinds: droppedWords(robots.fleet.counters.droppedByKind),
       fleetRejected: fleetRejects(robots.fleet.counters),
+      fleetFirstErrors: Object.values(robots.fleet.firstError).join('\n'),
       cameras: cameras.list.length,
       cameraRejected: cameraRejects(cameras.rejectedTotal, cameras.rejected),
       cameraLastRejection: cameras.lastRejection,
@@ -116,10 +115,8 @@ export function StatusPanel() {
           {s.droppedKinds && <span className="dim"> ({s.droppedKinds})</span>}
         </dd>
         <dt>Fleet</dt>
-        <dd data-testid="fleet-dropped" title={s.fleetDroppedKinds}>
-          {s.fleetDropped} frame{s.fleetDropped === 1 ? '' : 's'} dropped
-          {s.fleetDroppedKinds && <span className="dim"> ({s.fleetDroppedKinds})</span>}
-          {s.fleetRejected && <span className="dim"> · {s.fleetRejected}</span>}
+        <dd data-testid="fleet-rejects" title={s.fleetFirstErrors}>
+          {s.fleetRejected || 'nothing refused'}
         </dd>
         <dt>Cameras</dt>
         <dd data-testid="camera-rejects" title={s.cameraLastRejection}>

@@ -15,11 +15,19 @@ export const armWords = (online: boolean | null): string =>
 export const formatRate = (perS: number): string =>
   perS >= 100 ? perS.toFixed(0) : perS.toFixed(1);
 
-/** `1 bad profile, 2 bad feedback` ('' when none). */
-export function fleetRejects(c: { badProfiles: number; badFeedback: number }): string {
+/** `1 bad profile, 2 bad summaries, 2 bad feedback` ('' when none). */
+export function fleetRejects(c: {
+  badProfiles: number;
+  badSummaries: number;
+  badAlerts: number;
+  badFeedback: number;
+}): string {
   const parts: string[] = [];
   if (c.badProfiles > 0)
     parts.push(`${c.badProfiles} bad profile${c.badProfiles === 1 ? '' : 's'}`);
+  if (c.badSummaries > 0)
+    parts.push(`${c.badSummaries} bad summar${c.badSummaries === 1 ? 'y' : 'ies'}`);
+  if (c.badAlerts > 0) parts.push(`${c.badAlerts} bad alert${c.badAlerts === 1 ? '' : 's'}`);
   if (c.badFeedback > 0) parts.push(`${c.badFeedback} bad feedback`);
   return parts.join(', ');
 }
