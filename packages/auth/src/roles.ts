@@ -92,7 +92,11 @@ export const ROLE_RULES: Record<Role, RoleRules> = {
     ],
   },
   middleware: {
-    read: ['arm/+/status', 'arm/+/control', 'arm/+/control/+', 'arm/+/audit', 'arm/+/profile'],
+    read: [
+      ...['arm/+/status', 'arm/+/control', 'arm/+/control/+', 'arm/+/audit', 'arm/+/profile'],
+      // The camera announcements, to record each camera (docs/cameras-recording.md).
+      'arm/+/camera/+',
+    ],
     // Its thermal watch's early warnings (docs/protocol.md § A thermal model of each servo).
     write: ['arm/+/alert'],
   },

@@ -108,7 +108,7 @@ describe('roles', () => {
     expect(canSubscribe(device, 'arm/arm1/status')).toBe(false);
   });
 
-  test("viewers and operators read the cameras; a device announces only its own arm's", () => {
+  test("viewers, operators and the middleware (to record) read the cameras; a device announces only its own arm's", () => {
     for (const p of [viewer, operator]) {
       expect(canSubscribe(p, 'arm/+/camera/+')).toBe(true);
       expect(canSubscribe(p, 'arm/arm1/camera/front')).toBe(true);
@@ -117,7 +117,8 @@ describe('roles', () => {
     expect(canPublish(device, 'arm/arm1/camera/front')).toBe(true);
     expect(canPublish(device, 'arm/arm2/camera/front')).toBe(false);
     expect(canPublish(device, 'arm/arm1/camera/front/x')).toBe(false);
-    expect(canSubscribe(mw, 'arm/+/camera/+')).toBe(false);
+    expect(canSubscribe(mw, 'arm/+/camera/+')).toBe(true);
+    expect(canPublish(mw, 'arm/arm1/camera/front')).toBe(false);
   });
 
   test('an operator writes a camera calibration; a viewer reads it, a device does neither', () => {
