@@ -145,7 +145,7 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   thermalWatch: true,
   thermalRefitMs: 5 * 60_000,
   cameraRecord: true,
-  cameraDir: '.data/camera-recordings',
+  cameraDir: '.data/cameras',
   cameraSegmentS: 10,
   cameraRetentionHours: 24,
   cameraRetentionBytes: 4 * 1024 ** 3,

@@ -16,6 +16,7 @@ export {
   type Segment,
 } from './segment-files.ts';
 export { Takes } from './takes.ts';
+export { readCameraFolder, readCameraFolders, type CameraFolder } from './segment-folder.ts';
 export { segmenterArgs } from './segmenter.ts';
 
 /** The camera announcements the recording follows (PROTOCOL.md §7). */

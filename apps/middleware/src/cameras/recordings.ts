@@ -11,9 +11,8 @@ import path from 'node:path';
 import { cameraStreams, parseCameraMessage } from '@armtwin/camera/announcement';
 import { CameraRecorder } from './camera-recorder.ts';
 import { RecordingCounters } from './recording-counters.ts';
+import { readCameraFolders } from './segment-folder.ts';
 import {
-  parseSegmentName,
-  PART_EXT,
   retentionPlan,
   segmentsBetween,
   type RetentionOptions,
@@ -165,27 +164,13 @@ export class Recordings {
 
   /** Reads what is on disk; deletes the `.part` files a crash left behind. */
   private scan(): void {
-    const dirs = (d: string) =>
-      fs.existsSync(d)
-        ? fs.readdirSync(d, { withFileTypes: true }).filter((e) => e.isDirectory())
-        : [];
-    for (const arm of dirs(this.o.dir))
-      for (const cam of dirs(path.join(this.o.dir, arm.name))) {
-        const dir = path.join(this.o.dir, arm.name, cam.name);
-        const list: Segment[] = [];
-        for (const name of fs.readdirSync(dir)) {
-          if (name.endsWith(PART_EXT)) {
-            fs.rmSync(path.join(dir, name), { force: true });
-            this.counters.event('parts-discarded');
-            continue;
-          }
-          const t = parseSegmentName(name);
-          if (!t) continue;
-          const { size } = fs.statSync(path.join(dir, name));
-          list.push({ armId: arm.name, camId: cam.name, name, ...t, bytes: size });
-        }
-        this.index.set(key(arm.name, cam.name), list);
+    for (const c of readCameraFolders(this.o.dir)) {
+      for (const part of c.parts) {
+        fs.rmSync(path.join(c.dir, part), { force: true });
+        this.counters.event('parts-discarded');
       }
+      this.index.set(key(c.armId, c.camId), c.segments);
+    }
     this.gauges();
   }
 }
