@@ -45,6 +45,7 @@ import { twinSection } from './twin.ts';
 import { ros2Section } from './ros2.ts';
 import { foxgloveSection } from './foxglove.ts';
 import { lerobotSection } from './lerobot.ts';
+import { datasetSection } from './dataset.ts';
 import { CHROMIUM_ARGS, GPU_CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
 
 const SECTIONS: Section[] = [
@@ -63,6 +64,7 @@ const SECTIONS: Section[] = [
   ros2Section,
   foxgloveSection,
   lerobotSection,
+  datasetSection,
   soakSection,
 ];
 /** Sections left out of a run without `--only` (the soak alone takes `--soak-minutes`, 30 min). */
