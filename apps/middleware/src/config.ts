@@ -251,7 +251,10 @@ const SCHEMA = z.object({
   cameraRecord: z.enum(['true', 'false', '1', '0']).transform((b) => b === 'true' || b === '1'),
   cameraDir: z.string().min(1),
   cameraSegmentS: int(1, 3600),
-  cameraRetentionHours: z.coerce.number().min(0).max(24 * 3650),
+  cameraRetentionHours: z.coerce
+    .number()
+    .min(0)
+    .max(24 * 3650),
   cameraRetentionBytes: int(0, Number.MAX_SAFE_INTEGER),
   ffmpeg: z.string().min(1),
   logLevel: z.enum(['fatal', 'error', 'warn', 'info', 'debug', 'trace', 'silent']),

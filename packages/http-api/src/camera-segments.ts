@@ -6,6 +6,7 @@
  * history may read them; without the middleware's recording the route answers 503.
  */
 import type http from 'node:http';
+import { isValidCamId } from '@armtwin/camera/announcement';
 import { isValidArmId } from '@armtwin/protocol';
 import {
   callerMay,
@@ -16,6 +17,7 @@ import {
 } from './counted-answer.ts';
 import { sendFile } from './send-file.ts';
 import type { ApiService } from './service-routes.ts';
+import { TIME_RANGE_ERROR, timeRange } from './time-range.ts';
 
 /** A finished segment: its file name and the epoch ms of its first frame and its end. */
 export interface CameraSegment {
@@ -31,13 +33,6 @@ export interface CameraSegmentService {
   /** The path of a finished segment, or null when there is none of that name. */
   file(armId: string, camId: string, name: string): string | null;
 }
-
-const CAM_ID = /^[a-z0-9-]{1,32}$/;
-const time = (v: string | null): number | undefined | null => {
-  if (v === null) return undefined;
-  const ms = Date.parse(v);
-  return /^\d{4}-\d\d-\d\d/.test(v) && Number.isFinite(ms) ? ms : null;
-};
 
 export function cameraSegmentsRoute(o: {
   service: () => ApiService | null;
@@ -55,7 +50,7 @@ export function cameraSegmentsRoute(o: {
     ) {
       if (!methodIn(req, res, ['GET', 'HEAD'])) return;
       if (!(await callerMay(o.mayRead, req, res, answer))) return;
-      if (!isValidArmId(p.id) || !CAM_ID.test(p.cam))
+      if (!isValidArmId(p.id) || !isValidCamId(p.cam))
         return answer(res, 400, { ok: false, errors: ['not an arm or camera id'] }, 'refused:id');
       const cameras = o.service()?.cameras;
       if (!cameras)
@@ -71,17 +66,11 @@ export function cameraSegmentsRoute(o: {
         counters.sent = (counters.sent ?? 0) + 1;
         return sendFile(req, res, file, 'video/mp4', 'public, max-age=31536000, immutable');
       }
-      const q = new URL(req.url ?? '/', 'http://x').searchParams;
-      const [from, to] = [time(q.get('from')), time(q.get('to'))];
-      if (from === null || to === null)
-        return answer(
-          res,
-          400,
-          { ok: false, errors: ['from and to are ISO 8601 times'] },
-          'refused:request',
-        );
+      const range = timeRange(req);
+      if (!range)
+        return answer(res, 400, { ok: false, errors: [TIME_RANGE_ERROR] }, 'refused:request');
       const base = (req.url ?? '').split('?')[0]!.replace(/\/$/, '');
-      const segments = cameras.segments(p.id, p.cam, from, to).map((s) => ({
+      const segments = cameras.segments(p.id, p.cam, range.from, range.to).map((s) => ({
         name: s.name,
         start: new Date(s.startMs).toISOString(),
         end: new Date(s.endMs).toISOString(),

@@ -16,6 +16,7 @@ import {
 } from './counted-answer.ts';
 import { readBody } from './read-body.ts';
 import type { ApiService } from './service-routes.ts';
+import { TIME_RANGE_ERROR, timeRange } from './time-range.ts';
 
 export const MAX_EPISODE_REQUEST_BYTES = 4096;
 
@@ -29,12 +30,6 @@ export interface EpisodeService {
   list(arm: string, fromMs?: number, toMs?: number): Promise<unknown[]>;
   act(arm: string, body: unknown): Promise<EpisodeAnswer>;
 }
-
-const time = (v: string | null): number | undefined | null => {
-  if (v === null) return undefined;
-  const ms = Date.parse(v);
-  return /^\d{4}-\d\d-\d\d/.test(v) && Number.isFinite(ms) ? ms : null;
-};
 
 export function episodesRoute(o: {
   service: () => ApiService | null;
@@ -61,19 +56,13 @@ export function episodesRoute(o: {
           'failed:storage',
         );
       if (reading) {
-        const q = new URL(req.url ?? '/', 'http://x').searchParams;
-        const [from, to] = [time(q.get('from')), time(q.get('to'))];
-        if (from === null || to === null)
-          return answer(
-            res,
-            400,
-            { ok: false, errors: ['from and to are ISO 8601 times'] },
-            'refused:request',
-          );
+        const range = timeRange(req);
+        if (!range)
+          return answer(res, 400, { ok: false, errors: [TIME_RANGE_ERROR] }, 'refused:request');
         return answer(
           res,
           200,
-          { ok: true, episodes: await episodes.list(arm, from, to) },
+          { ok: true, episodes: await episodes.list(arm, range.from, range.to) },
           'listed',
         );
       }
