@@ -46,6 +46,7 @@ import { ros2Section } from './ros2.ts';
 import { foxgloveSection } from './foxglove.ts';
 import { lerobotSection } from './lerobot.ts';
 import { fleetSection } from './fleet.ts';
+import { datasetSection } from './dataset.ts';
 import { CHROMIUM_ARGS, GPU_CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
 
 const SECTIONS: Section[] = [
@@ -65,6 +66,7 @@ const SECTIONS: Section[] = [
   foxgloveSection,
   lerobotSection,
   fleetSection,
+  datasetSection,
   soakSection,
 ];
 /**

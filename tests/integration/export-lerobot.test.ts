@@ -7,15 +7,20 @@
  * at 30 fps, and LeRobot 0.6.1's own `LeRobotDataset` (tests/helpers/lerobot/dataset_check.py) loads the folder: one episode of
  * duration × fps frames with its task, the SO follower's features and units, and every frame's
  * observation.state and action equal to the stored sample (resp. command) in force at its
- * timestamp, read back with InfluxQL. Bad requests and flags are refused with a clear error.
+ * timestamp, read back with InfluxQL. A camera server's test source (its frames carry the
+ * wall clock in the time stripe) is announced for the arm and recorded by the middleware
+ * (docs/cameras-recording.md); the export cuts its video, and each frame LeRobot decodes shows
+ * the clock of its row's timestamp within one frame. Bad requests and flags are refused with a
+ * clear error.
  */
 import type { EpisodeMark } from '@armtwin/api';
-import { execFile } from 'node:child_process';
+import { execFile, execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { promisify } from 'node:util';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+import { readTimeStripe, serveCamera, timeStripeLayout, type ServedCameras } from '@armtwin/camera';
 import { loadRecordingRobot } from '@armtwin/middleware/export';
 import { select, waitForValue } from '../../apps/middleware/test/support/harness.ts';
 import { REPO_ROOT } from '../helpers/files.ts';
@@ -53,6 +58,8 @@ interface Checked {
   features: Record<string, { dtype: string; shape: number[]; names: string[] | null }>;
   robot_type: string;
   camera_keys: string[];
+  video_info: Record<string, Record<string, unknown>>;
+  stats_camera_mean: Record<string, number[][][]>;
   episode_lengths: number[];
   frames: {
     index: number;
@@ -62,7 +69,55 @@ interface Checked {
     task: string;
     state: number[];
     action: number[];
+    images: Record<string, { shape: number[]; band: string }>;
   }[];
+}
+
+const CAMERA = 'observation.images.front';
+const [W, H] = [640, 480];
+const BAND = timeStripeLayout(W, H).blockH;
+/** The epoch ms of the time stripe in a decoded frame's bottom rows. */
+function stripeOf(band: Uint8Array | string): number | null {
+  const luma = new Uint8Array(W * H);
+  luma.set(typeof band === 'string' ? Buffer.from(band, 'base64') : band, (H - BAND) * W);
+  return readTimeStripe(luma, W, H);
+}
+
+/**
+ * Every frame the middleware recorded around the episode: its time (the segment's name + the
+ * packet's) and its clock (the time stripe, decoded by ffmpeg from the segment itself).
+ */
+function recordedFrames(): { atMs: number; clock: number }[] {
+  const folder = path.join(cameraDir, ARM, 'front');
+  const out: { atMs: number; clock: number }[] = [];
+  for (const name of fs.readdirSync(folder).sort()) {
+    const [from, to] = name.replace('.mp4', '').split('-').map(Number) as [number, number];
+    if (to < startMs - 1000 || from > stopMs + 1000) continue;
+    const file = path.join(folder, name);
+    const pts = execFileSync('ffprobe', [
+      ...['-v', 'error', '-select_streams', 'v', '-show_entries', 'packet=pts_time'],
+      ...['-of', 'csv=p=0', file],
+    ])
+      .toString()
+      .trim()
+      .split('\n')
+      .map(Number);
+    const bands = execFileSync(
+      'ffmpeg',
+      [
+        ...['-v', 'error', '-i', file, '-fps_mode', 'passthrough'],
+        ...['-vf', `crop=${W}:${BAND}:0:${H - BAND}`, '-f', 'rawvideo', '-pix_fmt', 'gray', '-'],
+      ],
+      { maxBuffer: 256 * 1024 * 1024 },
+    );
+    expect(bands.length).toBe(pts.length * W * BAND);
+    pts.forEach((t, k) => {
+      const clock = stripeOf(bands.subarray(k * W * BAND, (k + 1) * W * BAND));
+      expect(clock, `${name} frame ${k}`).not.toBeNull();
+      out.push({ atMs: from + t * 1000, clock: clock! });
+    });
+  }
+  return out;
 }
 
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-export-lerobot-'));
@@ -79,6 +134,7 @@ const exportTo = (out: string, ...extra: string[]) =>
   );
 
 let sim: Child;
+let camera: ServedCameras;
 let w: StatusWatcher;
 let startMs = 0;
 let stopMs = 0;
@@ -123,9 +179,26 @@ let listed: Mark[] = [];
 const refusals: { status: number; answer: Record<string, unknown> }[] = [];
 let cliRefusal = '';
 
+const cameraDir = path.join(dir, 'cameras');
+
 beforeAll(async () => {
-  const mw = await mws.spawn({ env: { FLUSH_INTERVAL_MS: '200' } });
+  const mw = await mws.spawn({
+    env: { FLUSH_INTERVAL_MS: '200', CAMERA_DIR: cameraDir, CAMERA_SEGMENT_S: '2' },
+  });
   api = `http://127.0.0.1:${mw.port}/api/arms/${ARM}`;
+  camera = await serveCamera({
+    cameras: [
+      { armId: ARM, camId: 'front', label: 'Front', source: 'testsrc', kinds: ['h264-ws'] },
+    ],
+    port: 0,
+    mqttUrl: broker().url,
+  });
+  await camera.announced;
+  await waitForValue(
+    async () => ((await mw.metrics())['camera_frames_recorded_total'] ?? 0) > 0,
+    true,
+    30_000,
+  );
   sim = armtwin([
     'sim',
     ...['--mqtt', broker().url, '--arm', ARM, '--profile', 'so101', '--report', 'angle'],
@@ -187,6 +260,15 @@ beforeAll(async () => {
     true,
     20_000,
   );
+  // the whole episode recorded: a finished segment reaches past its end
+  const segments = async () =>
+    (
+      (await (await fetch(`${api}/cameras/front/segments`)).json()) as {
+        segments: { endMs: number }[];
+      }
+    ).segments;
+  await waitForValue(async () => (await segments()).some((s) => s.endMs >= stopMs), true, 30_000);
+  await camera.stop();
   const out = path.join(dir, 'ds');
   ({ stderr } = await exportTo(
     out,
@@ -196,17 +278,21 @@ beforeAll(async () => {
     'all',
     '--fps',
     String(FPS),
+    '--cameras',
+    cameraDir,
   ));
   checked = runLerobotScript<Checked>('dataset_check.py', {
     root: out,
     repo_id: 'armtwin/so101ds',
     frames: Array.from({ length: frames }, (_, k) => k),
+    band: BAND,
   });
 }, 180_000);
 
 afterAll(async () => {
   await w?.close();
   await sim?.stop();
+  await camera?.stop();
   fs.rmSync(dir, { recursive: true, force: true });
 });
 
@@ -233,15 +319,38 @@ describe('episodes marked through the HTTP API and `armtwin episode`', () => {
 });
 
 describe("armtwin export --format lerobot, loaded by LeRobot's own LeRobotDataset", () => {
-  test('one episode of duration × fps frames, its task, the SO follower and no camera', () => {
-    expect(stderr).toContain(`1 episode(s), ${frames} frames at ${FPS} fps, 1 task(s), no camera`);
+  test('one episode of duration × fps frames, its task, the SO follower and its camera', () => {
+    expect(stderr).toContain(
+      `1 episode(s), ${frames} frames at ${FPS} fps, 1 task(s), video: ${CAMERA}`,
+    );
     expect(checked.num_episodes).toBe(1); // the discarded one is left out
     expect(checked.num_frames).toBe(frames);
     expect(frames).toBeGreaterThanOrEqual((EPISODE_MS * FPS) / 1000);
     expect(checked.episode_lengths).toEqual([frames]);
     expect(checked.fps).toBe(FPS);
     expect(checked.robot_type).toBe('so101_follower');
-    expect(checked.camera_keys).toEqual([]);
+    expect(checked.camera_keys).toEqual([CAMERA]);
+    expect(checked.features[CAMERA]).toEqual({
+      dtype: 'video',
+      shape: [H, W, 3],
+      names: ['height', 'width', 'channels'],
+    });
+    // the pixel statistics lerobot-train normalises with: per channel, in 0–1
+    const mean = checked.stats_camera_mean[CAMERA]!;
+    expect(mean.map((c) => [c.length, c[0]!.length])).toEqual([
+      [1, 1],
+      [1, 1],
+      [1, 1],
+    ]);
+    for (const c of mean) {
+      expect(c[0]![0]).toBeGreaterThan(0);
+      expect(c[0]![0]).toBeLessThan(1);
+    }
+    expect(checked.video_info[CAMERA]).toMatchObject({
+      'video.codec': 'h264',
+      'video.pix_fmt': 'yuv420p',
+      'video.fps': FPS,
+    });
     const names = profile.servos.map((s) => `${s.name}.pos`);
     expect(names).toEqual([
       ...['shoulder_pan.pos', 'shoulder_lift.pos', 'elbow_flex.pos'],
@@ -272,6 +381,28 @@ describe("armtwin export --format lerobot, loaded by LeRobot's own LeRobotDatase
       .at(-1)!
       .state.forEach((v, i) => expect(v).toBeCloseTo(lerobotUnits(GOALS[1]!)[i]!, 1));
     expect(checked.frames[0]!.state).not.toEqual(checked.frames.at(-1)!.state);
+  });
+
+  test("each decoded video frame is the recorded one at its row's time: the test source's clock says so", () => {
+    const recorded = recordedFrames();
+    // ffmpeg's fps filter (round=near): a slot shows the last frame before its midpoint with the
+    // next slot, which is the nearest frame when they come at the camera's rate
+    const shown = (slot: number) => recorded.filter((f) => f.atMs < slot + 500 / FPS).at(-1)!;
+    const lags: number[] = [];
+    for (const f of checked.frames) {
+      expect(f.images[CAMERA]!.shape).toEqual([3, H, W]);
+      const clock = stripeOf(f.images[CAMERA]!.band);
+      expect(clock, `frame ${f.frame_index}: no time stripe`).not.toBeNull();
+      const slot = startMs + (f.frame_index * 1000) / FPS;
+      const want = shown(slot);
+      // the very frame the recording holds at the row's time (within half a frame of it, unless
+      // the camera sent nothing then): the export's alignment, exact
+      expect(clock, `frame ${f.frame_index} at ${slot}`).toBe(want.clock);
+      lags.push(want.atMs - want.clock);
+    }
+    // Its clock is the camera's: the recording stamps a frame when the camera server has it, a
+    // few ms later (more on a loaded machine), never before.
+    expect(Math.min(...lags)).toBeGreaterThanOrEqual(0);
   });
 
   test('action is the commanded target held between commands (the state before the first)', async () => {

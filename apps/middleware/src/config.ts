@@ -99,6 +99,21 @@ export interface MiddlewareConfig {
    * only with ARMTWIN_USERS; a user's commands go to the broker under their own log-in.
    */
   foxglovePort: number | 'off';
+  /**
+   * CAMERA_RECORD: record every announced camera's H.264 stream (docs/cameras-recording.md).
+   * Off with a share group (each instance would record every camera).
+   */
+  cameraRecord: boolean;
+  /** CAMERA_DIR: the recordings' folder (`<dir>/<arm>/<camera>/<startMs>-<endMs>.mp4`). */
+  cameraDir: string;
+  /** CAMERA_SEGMENT_S: target length of one segment, s (cut at the next key frame). */
+  cameraSegmentS: number;
+  /** CAMERA_RETENTION_HOURS: segments that ended longer ago are deleted (0 = kept). */
+  cameraRetentionHours: number;
+  /** CAMERA_RETENTION_BYTES: the folder's bound; the oldest segments go first (0 = none). */
+  cameraRetentionBytes: number;
+  /** FFMPEG: the ffmpeg program the recording runs. */
+  ffmpeg: string;
   /** LOG_LEVEL: pino level. */
   logLevel: 'fatal' | 'error' | 'warn' | 'info' | 'debug' | 'trace' | 'silent';
 }
@@ -136,6 +151,12 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   thermalWatch: true,
   thermalRefitMs: 5 * 60_000,
   foxglovePort: 'off',
+  cameraRecord: true,
+  cameraDir: '.data/cameras',
+  cameraSegmentS: 10,
+  cameraRetentionHours: 24,
+  cameraRetentionBytes: 4 * 1024 ** 3,
+  ffmpeg: 'ffmpeg',
   logLevel: 'info',
 };
 
@@ -173,6 +194,12 @@ export const CONFIG_ENV: Record<keyof MiddlewareConfig, string> = {
   thermalWatch: 'THERMAL_WATCH',
   thermalRefitMs: 'THERMAL_REFIT_MS',
   foxglovePort: 'FOXGLOVE_PORT',
+  cameraRecord: 'CAMERA_RECORD',
+  cameraDir: 'CAMERA_DIR',
+  cameraSegmentS: 'CAMERA_SEGMENT_S',
+  cameraRetentionHours: 'CAMERA_RETENTION_HOURS',
+  cameraRetentionBytes: 'CAMERA_RETENTION_BYTES',
+  ffmpeg: 'FFMPEG',
   logLevel: 'LOG_LEVEL',
 };
 
@@ -230,6 +257,15 @@ const SCHEMA = z.object({
   thermalWatch: z.enum(['true', 'false', '1', '0']).transform((b) => b === 'true' || b === '1'),
   thermalRefitMs: int(1000, 86_400_000),
   foxglovePort: z.union([z.literal('off'), int(0, 65535)]),
+  cameraRecord: z.enum(['true', 'false', '1', '0']).transform((b) => b === 'true' || b === '1'),
+  cameraDir: z.string().min(1),
+  cameraSegmentS: int(1, 3600),
+  cameraRetentionHours: z.coerce
+    .number()
+    .min(0)
+    .max(24 * 3650),
+  cameraRetentionBytes: int(0, Number.MAX_SAFE_INTEGER),
+  ffmpeg: z.string().min(1),
   logLevel: z.enum(['fatal', 'error', 'warn', 'info', 'debug', 'trace', 'silent']),
 });
 

@@ -8,7 +8,12 @@
  */
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { LoginThrottle } from '@armtwin/auth';
-import { createApi, type ApiService, type EpisodeService } from '@armtwin/http-api';
+import {
+  createApi,
+  type ApiService,
+  type CameraSegmentService,
+  type EpisodeService,
+} from '@armtwin/http-api';
 import type { HistoryHandler } from './history/index.ts';
 import { renderMetrics, type Metrics } from './metrics.ts';
 
@@ -32,6 +37,8 @@ export interface HttpSource {
   history?: HistoryHandler | null;
   /** An arm's episode marks, or null when there is no storage. */
   episodes?: EpisodeService | null;
+  /** The cameras' recorded segments, or null when not recording. */
+  cameras?: CameraSegmentService | null;
   /** '' = open; else the bearer token /metrics and /history require. */
   apiToken?: string;
   /** The users file behind the failed-log-in throttle, or null. */
@@ -49,6 +56,7 @@ export function apiService(mw: HttpSource): ApiService {
     metrics: () => renderMetrics(mw.metrics),
     history: mw.history ?? null,
     episodes: mw.episodes ?? null,
+    cameras: mw.cameras ?? null,
   };
 }
 

@@ -8,7 +8,7 @@ import path from 'node:path';
 import { MODELS_DIR } from '@armtwin/motion/robot-folder';
 import { SYSTEM_CLOCK, type Clock } from '@armtwin/protocol';
 import { describeBroker, redactBrokerUrl } from '@armtwin/link';
-import { LoginThrottle, loadUsers } from '@armtwin/auth';
+import { LoginThrottle, loadUsers, topicMatches } from '@armtwin/auth';
 import { ConfigError, influxSource, type MiddlewareConfig } from './config.ts';
 import { createHistoryHandler, type HistoryHandlerDeps } from './history/index.ts';
 import { historyReader } from './history/reader.ts';
@@ -25,6 +25,7 @@ import type { ApiService } from '@armtwin/http-api';
 import { startThermalAlerts } from './thermal-alerts-run.ts';
 import { startMiddlewareFoxglove } from './foxglove.ts';
 import type { ArmtwinFoxglove } from '@armtwin/foxglove';
+import { CAMERA_FILTER, startRecordings } from './cameras/index.ts';
 
 export {
   loadConfig,
@@ -147,6 +148,11 @@ export async function startMiddleware(
       : null;
   if (heat) ingest.onStatusFrames = (arm, frames) => heat.frames(arm, frames);
 
+  // Every announced camera recorded beside the history (docs/cameras-recording.md).
+  const recordings =
+    config.cameraRecord && !config.mqttShareGroup ? startRecordings(config, log, now) : null;
+  metrics.cameras = recordings?.counters ?? null;
+
   const client = startMqtt(
     {
       url: config.mqttUrl,
@@ -157,9 +163,12 @@ export async function startMiddleware(
       keepaliveS: config.mqttKeepaliveS,
       reconnectMs: config.mqttReconnectMs,
       shareGroup: config.mqttShareGroup,
+      extraTopics: recordings ? [CAMERA_FILTER] : [],
     },
     {
       onMessage: (topic, payload) => {
+        if (recordings && topicMatches(CAMERA_FILTER, topic))
+          return recordings.handle(topic, payload);
         const lines = ingest.handle(topic, payload, now());
         storage?.add(lines);
       },
@@ -266,7 +275,7 @@ export async function startMiddleware(
           now: () => clock.now(),
         })
       : null;
-  const source = { metrics, health, history, episodes };
+  const source = { metrics, health, history, episodes, cameras: recordings };
   /** The kinds of refused or failed API requests told so far. */
   const apiKinds = new Set<string>();
   const handler = createHttpHandler({
@@ -342,6 +351,7 @@ export async function startMiddleware(
       if (pingTimer) clearInterval(pingTimer);
       heat?.stop();
       await foxglove?.stop();
+      await recordings?.stop();
       // The samples the broker already sent (an arm stopped just before) go in the last batch.
       if (storage?.gate() == null) await client.settle(2000);
       await new Promise<void>((resolve) => {

@@ -20,6 +20,8 @@ export class Histogram {
   }
 }
 
+import type { RecordingCounters } from './cameras/recording-counters.ts';
+
 export class Metrics {
   /** MQTT messages by topic kind (status, control, other). */
   readonly messages: Record<string, number> = {};
@@ -58,6 +60,8 @@ export class Metrics {
   mqttBrokerMoves = 0;
   influxReachable = false;
   storageEnabled = false;
+  /** The camera recording's counters, or null when it is off. */
+  cameras: RecordingCounters | null = null;
 
   count(map: Record<string, number>, key: string, n = 1): void {
     map[key] = (map[key] ?? 0) + n;
@@ -167,6 +171,28 @@ const METRIC_FAMILIES: readonly Family[] = [
     'storage_enabled',
     '1 when INFLUX_URL is set (or a local influxd runs).',
     (m) => m.storageEnabled,
+  ),
+  labelled(
+    'camera_recording_events_total',
+    'Camera recording: connections, takes and why they ended, segments written and deleted (age, size), frames dropped and why, problems.',
+    'event',
+    (m) => m.cameras?.events ?? {},
+  ),
+  counter(
+    'camera_frames_recorded_total',
+    'Camera frames handed to the segmenter.',
+    (m) => m.cameras?.frames ?? 0,
+  ),
+  counter(
+    'camera_bytes_recorded_total',
+    'H.264 bytes of those frames.',
+    (m) => m.cameras?.bytesIn ?? 0,
+  ),
+  gauge('camera_segments', 'Finished camera segments on disk.', (m) => m.cameras?.segments ?? 0),
+  gauge(
+    'camera_segment_bytes',
+    'Bytes of the finished camera segments on disk.',
+    (m) => m.cameras?.bytesStored ?? 0,
   ),
 ];
 

@@ -38,6 +38,8 @@ export interface MqttOptions {
   reconnectMs: number;
   /** '' = plain subscriptions; else `$share/<group>/…`. */
   shareGroup: string;
+  /** Filters subscribed to as they are, never shared (the camera announcements, to record them). */
+  extraTopics?: readonly string[];
 }
 
 /** The topic filters subscribed to. */
@@ -96,7 +98,7 @@ export function startMqtt(
   connectFn: ConnectFn = connect,
 ): MqttEdge {
   const urls = parseBrokerList(o.url);
-  const topics = subscriptionTopics(o.shareGroup);
+  const topics = [...subscriptionTopics(o.shareGroup), ...(o.extraTopics ?? [])];
   const options: IClientOptions = {
     clientId: o.clientId,
     clean: false,

@@ -11,11 +11,11 @@ describe('renderMetrics', () => {
   it('shows every family once, each with HELP and TYPE, in Prometheus 0.0.4 text', () => {
     const text = renderMetrics(new Metrics());
     const types = [...text.matchAll(/^# TYPE (\S+) (\S+)$/gm)].map((m) => `${m[1]} ${m[2]}`);
-    expect(types).toHaveLength(24);
-    expect(new Set(types).size).toBe(24);
+    expect(types).toHaveLength(29);
+    expect(new Set(types).size).toBe(29);
     expect(types).toContain(`${P}write_latency_seconds histogram`);
     expect(types).toContain(`${P}spool_full gauge`);
-    expect(text.match(/^# HELP /gm)).toHaveLength(24);
+    expect(text.match(/^# HELP /gm)).toHaveLength(29);
     expect(text).toContain(`\n${P}points_dropped_total 0\n`);
     expect(text).toContain(`${P}write_batches_total{result="rejected"} 0\n`);
     expect(text.endsWith('\n')).toBe(true);

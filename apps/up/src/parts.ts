@@ -25,6 +25,7 @@ export const WEB_DIR = path.join(REPO_ROOT, 'apps', 'web');
 export const WEB_DIST = path.join(WEB_DIR, 'dist');
 export const LOCAL_INFLUX_DATA = path.join(REPO_ROOT, '.armtwin', 'influx');
 export const MIDDLEWARE_SPOOL = path.join(REPO_ROOT, '.armtwin', 'middleware-spool');
+export const CAMERA_RECORDINGS = path.join(REPO_ROOT, '.armtwin', 'camera-recordings');
 
 type Say = (msg: string) => void;
 
@@ -91,6 +92,7 @@ export async function startMiddlewarePart(
   const overrides: Partial<MiddlewareConfig> = {
     mqttUrl: link.mqttUrl,
     spoolDir: env.SPOOL_DIR || MIDDLEWARE_SPOOL,
+    cameraDir: env.CAMERA_DIR || CAMERA_RECORDINGS,
     // `armtwin up` serves the HTTP API itself (with the broker's throttle: one lockout for MQTT
     // and /api) and lends it the middleware's `service`: a second users file would go unused.
     usersFile: '',

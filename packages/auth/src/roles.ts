@@ -102,12 +102,13 @@ export const ROLE_RULES: Record<Role, RoleRules> = {
       'arm/+/control/+',
       'arm/+/audit',
       'arm/+/profile',
-      // Its Foxglove server (FOXGLOVE_PORT, docs/foxglove.md) watches with this account: who
-      // holds each arm (its users' claims), the thermal warnings, the cameras and the motion
+      // The camera announcements, to record each camera (docs/cameras-recording.md); its
+      // Foxglove server (FOXGLOVE_PORT, docs/foxglove.md) also shows them and watches with this
+      // account who holds each arm (its users' claims), the thermal warnings and the motion
       // feedback (the plans' end poses), as a viewer.
+      'arm/+/camera/+',
       'arm/+/holder',
       'arm/+/alert',
-      'arm/+/camera/+',
       'arm/+/feedback',
     ],
     // Its thermal watch's early warnings (docs/protocol.md § A thermal model of each servo).

@@ -108,7 +108,7 @@ describe('roles', () => {
     expect(canSubscribe(device, 'arm/arm1/status')).toBe(false);
   });
 
-  test("viewers, operators, the middleware read the cameras; a device announces only its own arm's", () => {
+  test("viewers, operators and the middleware (to record and show) read the cameras; a device announces only its own arm's", () => {
     for (const p of [viewer, operator]) {
       expect(canSubscribe(p, 'arm/+/camera/+')).toBe(true);
       expect(canSubscribe(p, 'arm/arm1/camera/front')).toBe(true);
@@ -117,7 +117,7 @@ describe('roles', () => {
     expect(canPublish(device, 'arm/arm1/camera/front')).toBe(true);
     expect(canPublish(device, 'arm/arm2/camera/front')).toBe(false);
     expect(canPublish(device, 'arm/arm1/camera/front/x')).toBe(false);
-    // the middleware's Foxglove server shows the cameras (docs/foxglove.md); it never announces
+    // the middleware records the cameras and its Foxglove server shows them; it never announces
     expect(canSubscribe(mw, 'arm/+/camera/+')).toBe(true);
     expect(canPublish(mw, 'arm/arm1/camera/front')).toBe(false);
   });

@@ -1,7 +1,7 @@
 /**
  * Who may watch a camera. With neither a users file nor a token, anyone (the local demo). With
- * either, a request needs a log-in whose role may read the arm — viewer and operator any arm, a
- * device only its own, the middleware none — or the token (any arm).
+ * either, a request needs a log-in whose role may read the arm — viewer, operator and the middleware
+ * (which records them) any arm, a device only its own — or the token (any arm).
  *
  * Credentials, first found wins:
  * - `Authorization: Basic <base64 name:password>` or `Authorization: Bearer <token>` (any client);
@@ -53,10 +53,10 @@ export function mayWatch(p: Principal, armId: string | null): boolean {
     case 'operator':
     case 'admin':
       return true;
+    case 'middleware': // it records every camera (docs/cameras-recording.md)
+      return true;
     case 'device':
       return armId !== null && p.arm === armId;
-    case 'middleware':
-      return false;
     default:
       return assertNever(p.role);
   }

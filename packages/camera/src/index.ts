@@ -3,6 +3,7 @@ export * from './byte-buffer.ts';
 export * from './jpeg-splitter.ts';
 export * from './flv-parser.ts';
 export * from './flv-h264.ts';
+export * from './flv-writer.ts';
 export * from './frame-queue.ts';
 export * from './fanout.ts';
 export * from './camera-feed.ts';

@@ -5,13 +5,13 @@ import { authorize, mayWatch, requestCredentials } from '../src/access.ts';
 const b64 = (s: string) => Buffer.from(s).toString('base64');
 
 describe('who may watch a camera', () => {
-  it('viewers and operators any arm, a device its own, the middleware none', () => {
+  it('viewers and operators any arm, a device its own, the middleware (recording) any arm', () => {
     expect(mayWatch({ name: 'v', role: 'viewer' }, 'arm1')).toBe(true);
     expect(mayWatch({ name: 'o', role: 'operator' }, 'arm2')).toBe(true);
     expect(mayWatch({ name: 'arm1', role: 'device', arm: 'arm1' }, 'arm1')).toBe(true);
     expect(mayWatch({ name: 'arm1', role: 'device', arm: 'arm1' }, 'arm2')).toBe(false);
     expect(mayWatch({ name: 'arm1', role: 'device', arm: 'arm1' }, null)).toBe(false);
-    expect(mayWatch({ name: 'mw', role: 'middleware' }, 'arm1')).toBe(false);
+    expect(mayWatch({ name: 'mw', role: 'middleware' }, 'arm1')).toBe(true);
   });
 
   it('takes credentials from the header first, else from the query', () => {

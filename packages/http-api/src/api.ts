@@ -11,6 +11,8 @@
  *   /robots/{name}/keep-out             PUT (./robots/keep-out.ts)
  *   /arms/{id}/episodes                 GET, POST an arm's episode marks (./episodes.ts; 503
  *                                       without the middleware's storage)
+ *   /arms/{id}/cameras/{cam}/segments[/{name}]  GET a camera's recorded segments
+ *                                       (./camera-segments.ts; 503 without the recording)
  *   /arms/{id}/model                    GET, POST, DELETE a model copy (./model-copies.ts; 501
  *                                       where no `modelCopies` host runs them)
  *   /models/{name}/…                    GET the robot folders' files (./model-files.ts)
@@ -26,6 +28,7 @@ import {
   type Right,
 } from './authorize.ts';
 import type { May, RouteCounters } from './counted-answer.ts';
+import { cameraSegmentsRoute } from './camera-segments.ts';
 import { episodesRoute } from './episodes.ts';
 import { modelCopyRoute, type ModelCopyHost } from './model-copies.ts';
 import { modelFiles } from './model-files.ts';
@@ -60,7 +63,10 @@ export interface Api {
   /** The one log-in step. */
   authorize: Authorize;
   /** Answers counted by route and outcome (`written`, `refused:<why>`, …). */
-  counters: Record<'calibration' | 'keepOut' | 'import' | 'model' | 'episodes', RouteCounters>;
+  counters: Record<
+    'calibration' | 'keepOut' | 'import' | 'model' | 'episodes' | 'cameraSegments',
+    RouteCounters
+  >;
 }
 
 type Route = (
@@ -97,6 +103,11 @@ export function createApi(o: ApiOptions): Api {
     callerName: async (req) => nameOf(await authorize(req)),
     onFirst: o.onFirst,
   });
+  const segments = cameraSegmentsRoute({
+    service: o.service,
+    mayRead: may('data'),
+    onFirst: o.onFirst,
+  });
 
   const router = Router();
   const route = (path: string, r: Route) =>
@@ -113,6 +124,12 @@ export function createApi(o: ApiOptions): Api {
     route('/robots/:name/keep-out', (req, res, p) => keepOut.handle(req, res, p.name!));
   }
   route('/arms/:id/episodes', (req, res, p) => episodes.handle(req, res, p.id!));
+  route('/arms/:id/cameras/:cam/segments', (req, res, p) =>
+    segments.handle(req, res, { id: p.id!, cam: p.cam! }),
+  );
+  route('/arms/:id/cameras/:cam/segments/:name', (req, res, p) =>
+    segments.handle(req, res, { id: p.id!, cam: p.cam!, name: p.name! }),
+  );
   route('/arms/:id/model', (req, res, p) => model.handle(req, res, p.id!));
 
   return {
@@ -123,6 +140,7 @@ export function createApi(o: ApiOptions): Api {
       import: robotImport.counters,
       model: model.counters,
       episodes: episodes.counters,
+      cameraSegments: segments.counters,
     },
     handle(req, res) {
       const path = (req.url ?? '/').replace(/^\/api(?=[/?]|$)/, '') || '/';

@@ -17,6 +17,7 @@ import {
 } from './counted-answer.ts';
 import { readBody } from './read-body.ts';
 import type { ApiService } from './service-routes.ts';
+import { TIME_RANGE_ERROR, timeRange } from './time-range.ts';
 
 export const MAX_EPISODE_REQUEST_BYTES = 4096;
 
@@ -31,12 +32,6 @@ export interface EpisodeService {
   /** `by`: who asks (a user's name, `token` or `anonymous`). */
   act(arm: string, body: unknown, by?: string): Promise<EpisodeAnswer>;
 }
-
-const time = (v: string | null): number | undefined | null => {
-  if (v === null) return undefined;
-  const ms = Date.parse(v);
-  return /^\d{4}-\d\d-\d\d/.test(v) && Number.isFinite(ms) ? ms : null;
-};
 
 export function episodesRoute(o: {
   service: () => ApiService | null;
@@ -65,19 +60,13 @@ export function episodesRoute(o: {
           'failed:storage',
         );
       if (reading) {
-        const q = new URL(req.url ?? '/', 'http://x').searchParams;
-        const [from, to] = [time(q.get('from')), time(q.get('to'))];
-        if (from === null || to === null)
-          return answer(
-            res,
-            400,
-            { ok: false, errors: ['from and to are ISO 8601 times'] },
-            'refused:request',
-          );
+        const range = timeRange(req);
+        if (!range)
+          return answer(res, 400, { ok: false, errors: [TIME_RANGE_ERROR] }, 'refused:request');
         return answer(
           res,
           200,
-          { ok: true, episodes: await episodes.list(arm, from, to) },
+          { ok: true, episodes: await episodes.list(arm, range.from, range.to) },
           'listed',
         );
       }

@@ -16,6 +16,11 @@ export {
 } from './authorize.ts';
 export type { RouteCounters } from './counted-answer.ts';
 export {
+  cameraSegmentsRoute,
+  type CameraSegment,
+  type CameraSegmentService,
+} from './camera-segments.ts';
+export {
   episodesRoute,
   MAX_EPISODE_REQUEST_BYTES,
   type EpisodeAnswer,

@@ -7,6 +7,7 @@
 import type http from 'node:http';
 import { whoamiAnswer } from '@armtwin/auth';
 import { refusal, type AuthOptions, type Authorize } from './authorize.ts';
+import type { CameraSegmentService } from './camera-segments.ts';
 import type { EpisodeService } from './episodes.ts';
 import { sendJson } from './send-json.ts';
 
@@ -23,6 +24,8 @@ export interface ApiService {
   history: ((req: http.IncomingMessage, res: http.ServerResponse) => Promise<boolean>) | null;
   /** An arm's episode marks (./episodes.ts), or null/absent when there is no storage. */
   episodes?: EpisodeService | null;
+  /** The cameras' recorded segments (./camera-segments.ts), or null/absent when not recording. */
+  cameras?: CameraSegmentService | null;
 }
 
 const MIDDLEWARE_MISSING = { ok: false, storage: false, error: 'the middleware is not running' };

@@ -15,6 +15,10 @@ export interface LerobotFlags {
   models?: string;
   task?: string;
   episodes?: string;
+  /** The camera recordings' folder. */
+  cameras?: string;
+  /** Only these cameras, comma-separated. */
+  camera?: string;
 }
 
 /** `all`, or 0-based positions among the kept episodes in range, `0,2,3`. */
@@ -65,6 +69,17 @@ export async function runLerobotExport(
   if (!f.profile) throw new Error('--format lerobot needs --profile (motors and units)');
   const { profile } = loadRecordingRobot(f.profile, f.models);
   const episodes = await chosen(reader, f, range);
-  const s = await exportLerobot({ reader, arm: f.arm, profile, episodes, fps: f.fps, out: f.out });
-  return `${f.out}: LeRobot v3.0 dataset, ${s.episodes} episode(s), ${s.frames} frames at ${f.fps} fps, ${s.tasks} task(s), no camera`;
+  const s = await exportLerobot({
+    reader,
+    arm: f.arm,
+    profile,
+    episodes,
+    fps: f.fps,
+    out: f.out,
+    ...(f.cameras ? { camerasDir: f.cameras } : {}),
+    ...(f.camera ? { cameras: f.camera.split(',').map((c) => c.trim()) } : {}),
+  });
+  const cameras = s.cameras.length > 0 ? `video: ${s.cameras.join(', ')}` : 'no camera';
+  const skipped = s.skipped.length > 0 ? `; left out: ${s.skipped.join(', ')}` : '';
+  return `${f.out}: LeRobot v3.0 dataset, ${s.episodes} episode(s), ${s.frames} frames at ${f.fps} fps, ${s.tasks} task(s), ${cameras}${skipped}`;
 }

@@ -108,6 +108,14 @@ export function registerExport(program: Command): void {
       "lerobot: the task, LeRobot's single_task (with --from/--to; overrides the marks' tasks)",
     )
     .option('--models <dir>', 'the folder of robot profiles (default public/models)')
+    .option(
+      '--cameras <dir>',
+      "lerobot: the camera recordings' folder (the middleware's CAMERA_DIR; armtwin up: .armtwin/camera-recordings)",
+    )
+    .option(
+      '--camera <names>',
+      'lerobot: only these cameras, comma-separated (default: every one recorded over every episode)',
+    )
     .addHelpText(
       'after',
       `
@@ -119,7 +127,9 @@ or Lichtblick with deploy/foxglove/armtwin-arm.json (docs/foxglove-mcap.md).
 
 lerobot: the episodes marked through the HTTP API (POST /api/arms/<id>/episodes), or one
 episode [--from, --to) with --task, resampled at --fps (the last stored sample at or before
-each frame; docs/dataset.md). No video yet: the dataset has no camera feature.
+each frame; docs/dataset.md). Every camera recorded over every episode (--cameras, default
+CAMERA_DIR) becomes a video feature observation.images.<camera>: H.264 at --fps, cut from the
+recorded segments (docs/cameras-recording.md).
 
 Examples:
   INFLUX_URL=http://127.0.0.1:8086 armtwin export --format lerobot --arm so101 --profile so101 \\
@@ -142,7 +152,10 @@ Examples:
       const reader = historyReader(influxSource(config, 120_000), config.influxQueryLanguage);
       if (flags.format === 'lerobot') {
         try {
-          process.stderr.write(`${await runLerobotExport(reader, flags, { startMs, stopMs })}\n`);
+          const cameras = flags.cameras ?? config.cameraDir;
+          process.stderr.write(
+            `${await runLerobotExport(reader, { ...flags, cameras }, { startMs, stopMs })}\n`,
+          );
         } catch (err) {
           return cmd.error(`armtwin export: ${(err as Error).message}`);
         }

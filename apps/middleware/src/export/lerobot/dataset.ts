@@ -3,12 +3,15 @@
  * resampled episodes: the frames' columns (data/chunk-000/file-000.parquet), one row per
  * episode (meta/episodes/chunk-000/file-000.parquet, with its per-episode statistics), the tasks
  * (meta/tasks.parquet), meta/stats.json and meta/info.json. Everything fits one chunk and one
- * file (LeRobot starts a new file past 100 MB, about a million SO-101 frames). No camera is
- * recorded yet, so there is no image or video feature. Pure, no I/O.
+ * file (LeRobot starts a new file past 100 MB, about a million SO-101 frames). Each camera's
+ * video (./video.ts, written before) is a `video` feature `observation.images.<cam>` with its
+ * place in the video file per episode (`videos/<key>/from_timestamp`, `to_timestamp`); its pixel
+ * statistics go to meta/stats.json only (./video-stats.ts), not per episode. Pure, no I/O.
  */
 import { lerobotMotorName, type Profile } from '@armtwin/robot';
 import type { EpisodeFrames } from './frames.ts';
 import { featureStats, STAT_NAMES, type FeatureStats } from './stats.ts';
+import { VIDEO_PATH, type CameraVideo } from './video.ts';
 
 export const CODEBASE_VERSION = 'v3.0';
 export const DATA_PATH = 'data/chunk-{chunk_index:03d}/file-{file_index:03d}.parquet';
@@ -56,6 +59,7 @@ export function buildDataset(
   profile: Profile,
   episodes: readonly EpisodeFrames[],
   fps: number,
+  videos: readonly CameraVideo[] = [],
 ): DatasetTables {
   const tasks: string[] = [];
   const data: DatasetTables['data'] = {
@@ -94,6 +98,12 @@ export function buildDataset(
       dataset_from_index: from,
       dataset_to_index: to,
     };
+    for (const v of videos) {
+      row[`videos/${v.key}/chunk_index`] = 0;
+      row[`videos/${v.key}/file_index`] = 0;
+      row[`videos/${v.key}/from_timestamp`] = v.ranges[e]!.from;
+      row[`videos/${v.key}/to_timestamp`] = v.ranges[e]!.to;
+    }
     const stats = statsOf(data, from, to);
     for (const f of FEATURE_ORDER) for (const s of STAT_NAMES) row[`stats/${f}/${s}`] = stats[f][s];
     row['meta/episodes/chunk_index'] = 0;
@@ -112,6 +122,17 @@ export function buildDataset(
       action: vector,
       timestamp: scalar('float32'),
       ...Object.fromEntries(INDEX_COLUMNS.map((c) => [c, scalar('int64')])),
+      ...Object.fromEntries(
+        videos.map((v) => [
+          v.key,
+          {
+            dtype: 'video',
+            shape: [v.info['video.height'], v.info['video.width'], v.info['video.channels']],
+            names: ['height', 'width', 'channels'],
+            info: v.info,
+          },
+        ]),
+      ),
     },
     total_episodes: rows.length,
     total_frames: data.index.length,
@@ -120,7 +141,7 @@ export function buildDataset(
     data_files_size_in_mb: 100,
     video_files_size_in_mb: 200,
     data_path: DATA_PATH,
-    video_path: null,
+    video_path: videos.length > 0 ? VIDEO_PATH : null,
     robot_type: robotType(profile),
     splits: { train: `0:${rows.length}` },
   };

@@ -56,9 +56,10 @@ function write(file: string, columns: Column[], kv: Record<string, string> = {})
   fs.writeFileSync(file, new Uint8Array(buffer));
 }
 
-/** Column kind of an episodes-table value: numbers by name (counts and indices are int64). */
+/** Column kind of an episodes-table value: by name (counts and indices are int64, times float64). */
 function episodeKind(name: string, value: unknown): Kind {
   if (name === 'tasks') return { list: 'STRING' };
+  if (name.endsWith('_timestamp')) return 'DOUBLE'; // a video's from/to, s
   if (Array.isArray(value)) return { list: name.endsWith('/count') ? 'INT64' : 'DOUBLE' };
   return 'INT64';
 }
