@@ -1,0 +1,246 @@
+/**
+ * Past one machine (docs/cluster.md): a 3-node NATS cluster on 127.0.0.1 (JetStream, MQTT and MQTT
+ * over WebSockets on every node, MQTT's streams with 3 replicas), six simulated arms spread over
+ * its nodes (each given the three nodes as its broker list), a page-like client (mqtt.js over
+ * WebSockets through @armtwin/link, as the HUD connects), and two middlewares sharing the stream
+ * through one JetStream consumer (NATS_URL), into InfluxDB 1.8. The node that leads MQTT's message
+ * stream, which two arms, one middleware, the page and the holder's client are on, is SIGKILLed
+ * mid-stream: the arms and the page move to other nodes, the holder's retained record is still
+ * read there, and once the node is back and has rejoined, every state report each arm made is one
+ * point in InfluxDB (counted per arm against the sim's own counter: nothing lost, nothing twice),
+ * and both middlewares stored part of it. Only generous wait-for-condition timeouts, no timing
+ * assertion (the times are printed).
+ */
+import mqtt, { type MqttClient } from 'mqtt';
+import pino from 'pino';
+import { afterAll, expect, test } from 'vitest';
+import { connectBrokers, parseBrokerList, type BrokerClient } from '@armtwin/link';
+import { linkOptions } from '@armtwin/protocol';
+import { startSim, type Sim } from '@armtwin/sim';
+import { useInflux, useNatsCluster } from '../helpers/use-services.ts';
+import { useMiddlewares } from '../helpers/use-middlewares.ts';
+import { select } from '../../apps/middleware/test/support/harness.ts';
+import type { MiddlewareProcess } from '../../apps/middleware/test/support/harness.ts';
+
+const cluster = useNatsCluster();
+const influx = useInflux();
+const mws = useMiddlewares('mw-cluster', () => ({
+  mqttUrl: cluster().mqttUrls(),
+  influx: influx(),
+}));
+const ARMS = ['cl1', 'cl2', 'cl3', 'cl4', 'cl5', 'cl6'];
+const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
+const sims = new Map<string, Sim>();
+const clients: MqttClient[] = [];
+
+afterAll(async () => {
+  await Promise.all([...sims.values()].map((s) => s.stop().catch(() => {})));
+  await Promise.all(clients.map((c) => c.endAsync(true).catch(() => {})));
+});
+
+async function until(fn: () => boolean | Promise<boolean>, ms: number, what: string) {
+  const deadline = Date.now() + ms;
+  while (!(await fn())) {
+    if (Date.now() > deadline) throw new Error(`timed out waiting for ${what}`);
+    await sleep(200);
+  }
+}
+
+/** Retained messages a fresh client is sent on subscribing through `url`. */
+async function retainedOn(url: string, filter: string): Promise<Map<string, string>> {
+  const c = await mqtt.connectAsync(url, { clientId: `reader-${Date.now()}`, reconnectPeriod: 0 });
+  const seen = new Map<string, string>();
+  c.on('message', (t, p, packet) => packet.retain && seen.set(t, p.toString()));
+  await c.subscribeAsync(filter, { qos: 1 });
+  await sleep(1000);
+  await c.endAsync();
+  return seen;
+}
+
+const holderOf = (seen: Map<string, string>, arm: string) =>
+  (JSON.parse(seen.get(`arm/${arm}/holder`) ?? '{}') as { user?: string | null }).user;
+
+test(
+  'a node killed mid-stream: arms and the page move, the holder stays, every report is stored once, the node rejoins',
+  { timeout: 300_000 },
+  async () => {
+    const c = cluster();
+    const inf = { url: influx().url, db: influx().db };
+    const stored = async (arm: string) =>
+      Number(
+        (
+          await select(
+            inf,
+            `SELECT count("pwm") FROM "servo" WHERE "arm" = '${arm}' AND "id" = '000'`,
+          ).catch(() => [])
+        )[0]?.[1] ?? 0,
+      );
+
+    // The first MQTT client makes MQTT's streams; the node leading its message stream is the one
+    // to kill (the worst case: every QoS 1 message goes through it).
+    const first = await mqtt.connectAsync(c.nodes[0]!.mqttUrl, { clientId: 'first' });
+    await until(async () => (await c.stream('$MQTT_msgs')) !== null, 30_000, 'a stream leader');
+    await first.endAsync();
+    const leader = (await c.stream('$MQTT_msgs'))?.leader;
+    const victim = c.nodes.findIndex((n) => n.name === leader);
+    expect(victim).toBeGreaterThanOrEqual(0);
+    const victimNode = c.nodes[victim]!;
+
+    // Two middlewares, one on the victim and one on the next node; one consumer between them.
+    const env = { NATS_ACK_WAIT_MS: '5000', FLUSH_INTERVAL_MS: '500' };
+    const mw: MiddlewareProcess[] = [];
+    for (const k of [0, 1])
+      mw.push(
+        await mws.spawn({
+          clientId: `mw-cluster-${k + 1}`,
+          env: { ...env, NATS_URL: c.natsUrls((victim + k) % 3) },
+        }),
+      );
+    // The consumer is there before the arms start: a report sent on a stand-in arm is taken.
+    const probe = await mqtt.connectAsync(c.nodes[(victim + 2) % 3]!.mqttUrl, {
+      clientId: 'probe',
+    });
+    clients.push(probe);
+    const statusTaken = async () => {
+      const m = await Promise.all(mw.map((x) => x.metrics().catch(() => ({}))));
+      return m.map((x: Record<string, number>) => x['messages_total{topic="status"}'] ?? 0);
+    };
+    await until(
+      async () => {
+        await probe.publishAsync('arm/probe/status', `$TIM:${Date.now()}!#000P1500!`, { qos: 1 });
+        return (await statusTaken()).some((n) => n > 0);
+      },
+      60_000,
+      'the shared consumer taking messages',
+    );
+
+    // Six arms, two preferring each node.
+    const log = pino({ level: 'silent' });
+    for (const [i, arm] of ARMS.entries())
+      sims.set(
+        arm,
+        await startSim({ mqttUrl: c.mqttUrls((victim + i) % 3), armId: arm, rate: 50, log }),
+      );
+
+    // The page, on the victim over WebSockets, following cl1 (whose arm is on the victim too).
+    let pageReports = 0;
+    const page: BrokerClient = connectBrokers(parseBrokerList(c.wsUrls(victim)), {
+      clientId: 'page-cluster',
+      ...linkOptions(),
+    });
+    clients.push(page);
+    page.on('connect', () => void page.subscribe(['arm/cl1/status', 'arm/cl1/holder'], { qos: 1 }));
+    page.on('message', (t) => t === 'arm/cl1/status' && pageReports++);
+    await until(() => page.connected && pageReports > 10, 30_000, 'the page following cl1');
+
+    // alice takes cl1 and cl2 (arms on the victim and on the next node) from the victim; she
+    // never beats, so the arms keep her as holder (docs/protocol.md § Control).
+    const alice = await mqtt.connectAsync(victimNode.mqttUrl, {
+      clientId: 'alice',
+      reconnectPeriod: 0,
+    });
+    clients.push(alice);
+    for (const arm of ['cl1', 'cl2'])
+      await alice.publishAsync(`arm/${arm}/claim/alice`, 'take', { qos: 1 });
+    await until(
+      async () => {
+        const seen = await retainedOn(victimNode.mqttUrl, 'arm/+/holder');
+        return holderOf(seen, 'cl1') === 'alice' && holderOf(seen, 'cl2') === 'alice';
+      },
+      30_000,
+      'alice holding cl1 and cl2',
+    );
+    await until(
+      async () => (await Promise.all(ARMS.map(stored))).every((n) => n > 50),
+      60_000,
+      'every arm stored',
+    );
+
+    // The node goes down mid-stream (a crash: nothing saved, no will published by it).
+    const before = await Promise.all(ARMS.map(stored));
+    const killedAt = Date.now();
+    await victimNode.process.kill();
+    await until(
+      () => page.connected && page.brokers.choice.index !== 0,
+      30_000,
+      'the page on another node',
+    );
+    const pageBackMs = Date.now() - killedAt;
+    const reportsThen = pageReports;
+    await until(() => pageReports > reportsThen + 10, 30_000, "cl1's reports on the page again");
+    await until(
+      async () => ((await c.stream('$MQTT_msgs'))?.leader ?? victimNode.name) !== victimNode.name,
+      30_000,
+      'a new leader of the message stream',
+    );
+    const newLeaderMs = Date.now() - killedAt;
+    // The holder survived on the other nodes (cl2's arm never left its node: nobody republished it).
+    const other = c.nodes[(victim + 1) % 3]!;
+    const seen = await retainedOn(other.wsUrl, 'arm/+/holder');
+    expect(holderOf(seen, 'cl2')).toBe('alice');
+    expect(holderOf(seen, 'cl1')).toBe('alice');
+    await until(
+      async () => (await Promise.all(ARMS.map(stored))).every((n, i) => n > before[i]! + 50),
+      60_000,
+      'every arm stored after the kill',
+    );
+
+    // The node comes back, rejoins (routes to both others, its copy of the stream current) and
+    // the page goes back to it (it is first in its list).
+    await victimNode.process.start();
+    await until(
+      async () => (await c.routes(victim)) === 2,
+      60_000,
+      'the node routed to both others',
+    );
+    await until(
+      async () => (await c.stream('$MQTT_msgs'))?.current.includes(victimNode.name) ?? false,
+      60_000,
+      'its copy of the message stream current',
+    );
+    await until(
+      () => page.connected && page.brokers.choice.index === 0,
+      60_000,
+      'the page back on it',
+    );
+    const back = await Promise.all(ARMS.map(stored));
+    await until(
+      async () => (await Promise.all(ARMS.map(stored))).every((n, i) => n > back[i]! + 50),
+      60_000,
+      'every arm stored after the node came back',
+    );
+
+    // Every state report each arm made is one point: nothing lost, nothing stored twice.
+    const published = new Map<string, number>();
+    for (const arm of ARMS) {
+      const sim = sims.get(arm)!;
+      await sim.stop();
+      sims.delete(arm);
+      published.set(arm, sim.runner!.counters.stateSamples);
+    }
+    const settled = () =>
+      Promise.all(ARMS.map(async (a) => (await stored(a)) === published.get(a)));
+    await until(async () => (await settled()).every(Boolean), 60_000, 'every report stored').catch(
+      () => {},
+    );
+    const counts = Object.fromEntries(
+      await Promise.all(
+        ARMS.map(async (a) => [a, { published: published.get(a), stored: await stored(a) }]),
+      ),
+    );
+    for (const arm of ARMS)
+      expect(counts[arm].stored, JSON.stringify(counts)).toBe(published.get(arm));
+    // Both middlewares took part of the stream, and neither dropped a point.
+    const taken = await statusTaken();
+    expect(
+      taken.every((n) => n > 0),
+      JSON.stringify(taken),
+    ).toBe(true);
+    for (const m of mw) expect((await m.metrics())['points_dropped_total']).toBe(0);
+    console.log(
+      `cluster: node ${victimNode.name} killed; page on another node after ${pageBackMs} ms, ` +
+        `new stream leader after ${newLeaderMs} ms; status messages per middleware ${taken.join(', ')}; ` +
+        `stored = published per arm: ${JSON.stringify(counts)}`,
+    );
+  },
+);
