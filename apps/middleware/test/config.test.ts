@@ -46,11 +46,22 @@ describe('loadConfig', () => {
     ['MQTT_URL', 'http://x'],
     ['WRITE_MODE', 'async'],
     ['MQTT_SHARE_GROUP', 'a/b'],
+    ['NATS_URL', 'mqtt://n1:1883'],
+    ['NATS_URL', 'nats://n1:4222,'],
+    ['NATS_CONSUMER', 'a.b'],
+    ['NATS_ACK_WAIT_MS', '10'],
     ['PORT', '70000'],
     ['LOG_LEVEL', 'loud'],
   ])('%s=%s stops start-up with a message naming the variable', (name, value) => {
     expect(() => loadConfig({ [name]: value })).toThrow(ConfigError);
     expect(() => loadConfig({ [name]: value })).toThrow(new RegExp(`${name}=`));
+  });
+
+  test('NATS_URL takes a list of NATS servers, kept in order', () => {
+    const c = loadConfig({ NATS_URL: 'nats://n1:4222, nats://n2:4222,tls://n3:4222' });
+    expect(c.natsUrl).toBe('nats://n1:4222,nats://n2:4222,tls://n3:4222');
+    expect(c.natsConsumer).toBe('armtwin-middleware');
+    expect(loadConfig({}).natsUrl).toBe(''); // MQTT intake
   });
 
   test('several bad variables are all named', () => {
