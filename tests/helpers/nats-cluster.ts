@@ -41,7 +41,8 @@ export interface NatsCluster {
    * copy of it is current (the leader first), as the leader's `/jsz` tells; null while nobody leads it.
    */
   stream(name: string): Promise<{ leader: string; current: string[] } | null>;
-  dispose(opts?: { keepLogs?: boolean }): Promise<string[]>;
+  /** Kills every node; with `keepLogs`, says where the logs were kept. */
+  dispose(opts?: { keepLogs?: boolean }): Promise<string | undefined>;
 }
 
 interface Jsz {
@@ -150,7 +151,7 @@ export async function startNatsCluster(): Promise<NatsCluster> {
     },
     async dispose(opts = {}) {
       const kept = await Promise.all(nodes.map((n) => n.process.dispose(opts)));
-      return kept.filter((k): k is string => !!k);
+      return kept.filter((k): k is string => !!k).join(', ') || undefined;
     },
   };
 }

@@ -47,10 +47,7 @@ export function useMosquitto(opts?: MosquittoOptions): () => MosquittoService {
 
 /** A throwaway 3-node NATS cluster (JetStream, MQTT, MQTT over WebSockets) on 127.0.0.1. */
 export function useNatsCluster(): () => NatsCluster {
-  return useService('nats-cluster', async () => {
-    const c = await startNatsCluster();
-    return { ...c, dispose: async (o) => (await c.dispose(o)).join(', ') || undefined };
-  });
+  return useService('nats-cluster', startNatsCluster);
 }
 
 /** A throwaway influxd for the enclosing file or describe; call the result to get it. */

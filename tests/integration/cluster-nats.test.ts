@@ -11,6 +11,7 @@
  * and both middlewares stored part of it. Only generous wait-for-condition timeouts, no timing
  * assertion (the times are printed).
  */
+import fs from 'node:fs';
 import mqtt, { type MqttClient } from 'mqtt';
 import pino from 'pino';
 import { afterAll, expect, test } from 'vitest';
@@ -304,6 +305,15 @@ test(
         }))
         .filter((g) => Math.abs(g.ms - 20) > 5);
     };
+    if (ARMS.some((arm) => counts[arm].stored !== published.get(arm)))
+      for (const k of [1, 2])
+        console.log(
+          fs
+            .readFileSync(mws.log(`mw-cluster-${k}`), 'utf8')
+            .split('\n')
+            .filter((l) => /NATS|consumer|error/i.test(l))
+            .join('\n'),
+        );
     for (const arm of ARMS)
       if (counts[arm].stored !== published.get(arm))
         expect

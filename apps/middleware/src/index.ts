@@ -196,6 +196,7 @@ export async function startMiddleware(
           password: config.mqttPassword,
           reconnectMs: config.mqttReconnectMs,
           ackWaitMs: config.natsAckWaitMs,
+          note: (message, fields) => log.info(fields, message),
         },
         handlers,
       )

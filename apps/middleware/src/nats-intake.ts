@@ -45,6 +45,8 @@ export interface NatsIntakeOptions {
   reconnectMs: number;
   /** A message not acknowledged for this long is delivered again. */
   ackWaitMs: number;
+  /** Told what happens to the consumer (made, bound, its reading broken off). */
+  note?: (message: string, fields: object) => void;
 }
 
 /** Unacknowledged messages the consumer lets out to all its middlewares together. */
@@ -108,11 +110,19 @@ export function startNatsIntake(o: NatsIntakeOptions, h: MqttHandlers): MqttEdge
     const jsm = await jetstreamManager(conn);
     const config = consumerConfig(o);
     try {
-      await jsm.consumers.add(MQTT_MSGS_STREAM, config);
+      const info = await jsm.consumers.add(MQTT_MSGS_STREAM, config);
+      o.note?.('NATS: the shared consumer is there', {
+        consumer: o.consumer,
+        delivered: info.delivered.stream_seq,
+        pending: info.num_pending,
+      });
     } catch (err) {
       if (!/already exists/i.test((err as Error).message)) throw err;
       const { durable_name: _, ...change } = config;
       await jsm.consumers.update(MQTT_MSGS_STREAM, o.consumer, change);
+      o.note?.('NATS: the shared consumer is there (its settings updated)', {
+        consumer: o.consumer,
+      });
     }
   };
 
@@ -155,8 +165,10 @@ export function startNatsIntake(o: NatsIntakeOptions, h: MqttHandlers): MqttEdge
       try {
         await ensureConsumer(nc);
         await consume(nc);
+        o.note?.('NATS: reading the shared consumer ended', {});
       } catch (err) {
         if (!stopping) h.onError(err as Error);
+        o.note?.('NATS: reading the shared consumer broke off', { err: (err as Error).message });
       }
       if (!stopping) await sleep(o.reconnectMs);
     }

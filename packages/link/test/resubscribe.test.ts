@@ -25,8 +25,7 @@ function fakeClient(refuse: string[], times: number) {
     const topics = map ? Object.keys(map).filter((k) => k !== 'resubscribe') : (what as string[]);
     for (const t of topics)
       c.qos.set(t, map ? (map[t] as { qos: number }).qos : (opts as { qos: number }).qos);
-    cb ??= typeof opts === 'function' ? opts : () => {};
-    const done = cb;
+    const done: Cb = cb ?? (typeof opts === 'function' ? (opts as Cb) : () => {});
     c.asked.push(topics);
     const granted = topics.map((t) => {
       const n = left.get(t) ?? 0;
