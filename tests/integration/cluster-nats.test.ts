@@ -91,7 +91,7 @@ test(
 
     // The first MQTT client makes MQTT's streams. The node to kill is the one after the node
     // leading its message stream, or (CLUSTER_KILL=leader) that node itself: then every QoS 1
-    // store waits for a new leader, and in 3 of 8 runs 5 s of the reports of the arms on one
+    // store waits for a new leader, and in 3 of 9 runs 5 s of the reports of the arms on one
     // surviving node were lost (docs/cluster.md § Found on the cluster: not fixed).
     const first = await mqtt.connectAsync(c.nodes[0]!.mqttUrl, { clientId: 'first' });
     await until(async () => (await c.stream('$MQTT_msgs')) !== null, 30_000, 'a stream leader');
