@@ -20,7 +20,8 @@ import { linkOptions } from '@armtwin/protocol';
 import { startSim, type Sim } from '@armtwin/sim';
 import { useInflux, useNatsCluster } from '../helpers/use-services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
-import { select } from '../../apps/middleware/test/support/harness.ts';
+import { reportGaps, storedReports } from './stored-reports.ts';
+import { holdersOn } from './holders.ts';
 import type { MiddlewareProcess } from '../../apps/middleware/test/support/harness.ts';
 
 const cluster = useNatsCluster();
@@ -48,46 +49,13 @@ async function until(fn: () => boolean | Promise<boolean>, ms: number, what: str
   }
 }
 
-/**
- * The user holding each of `arms`, as the retained `arm/{id}/holder` a fresh client is sent on
- * subscribing through `url` (undefined: none came within 5 s); rejects when the subscription is
- * refused.
- */
-async function holdersOn(url: string, arms: string[]): Promise<(string | null | undefined)[]> {
-  const c = await mqtt.connectAsync(url, { clientId: `reader-${Date.now()}`, reconnectPeriod: 0 });
-  c.on('error', () => {});
-  const seen = new Map<string, string | null>();
-  c.on('message', (t, p, packet) => {
-    if (packet.retain) seen.set(t, (JSON.parse(p.toString()) as { user: string | null }).user);
-  });
-  const topics = arms.map((a) => `arm/${a}/holder`);
-  try {
-    await c.subscribeAsync(topics, { qos: 1 });
-  } catch (err) {
-    await c.endAsync(true);
-    throw err;
-  }
-  const deadline = Date.now() + 5000;
-  while (seen.size < topics.length && Date.now() < deadline) await sleep(100);
-  await c.endAsync();
-  return topics.map((t) => seen.get(t));
-}
-
 test(
   'a node killed mid-stream: arms and the page move, the holder stays, every report is stored once, the node rejoins',
   { timeout: 300_000 },
   async () => {
     const c = cluster();
     const inf = { url: influx().url, db: influx().db };
-    const stored = async (arm: string) =>
-      Number(
-        (
-          await select(
-            inf,
-            `SELECT count("pwm") FROM "servo" WHERE "arm" = '${arm}' AND "id" = '000'`,
-          ).catch(() => [])
-        )[0]?.[1] ?? 0,
-      );
+    const stored = (arm: string) => storedReports(inf, arm);
 
     // The first MQTT client makes MQTT's streams. The node to kill is the one after the node
     // leading its message stream, or (CLUSTER_KILL=leader) that node itself: then every QoS 1
@@ -299,18 +267,6 @@ test(
       ),
     );
     // On a failure, say where reports are missing: the stored times not 20 ms after the one before.
-    const gaps = async (arm: string) => {
-      const times = (
-        await select(inf, `SELECT "pwm" FROM "servo" WHERE "arm" = '${arm}' AND "id" = '000'`)
-      ).map((r) => Number(r[0]));
-      return times
-        .slice(1)
-        .map((t, i) => ({
-          after: new Date(times[i]! / 1000).toISOString(),
-          ms: (t - times[i]!) / 1000,
-        }))
-        .filter((g) => Math.abs(g.ms - 20) > 5);
-    };
     if (ARMS.some((arm) => counts[arm].stored !== published.get(arm)))
       for (const k of [1, 2])
         console.log(
@@ -325,7 +281,7 @@ test(
         expect
           .soft(
             counts[arm].stored,
-            `${arm}: ${JSON.stringify(await gaps(arm))}; killed at ${new Date(killedAt).toISOString()}`,
+            `${arm}: ${JSON.stringify(await reportGaps(inf, arm))}; killed at ${new Date(killedAt).toISOString()}`,
           )
           .toBe(published.get(arm));
     for (const arm of ARMS)
