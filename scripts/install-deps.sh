@@ -3,6 +3,7 @@
 #   - Debian packages: mosquitto, mosquitto-clients, chromium, socat, ffmpeg (and golang-go if no Go)
 #   - influxd 1.8.10 (scripts/build-influxd.sh: built once per machine, linked into .tools/bin)
 #   - influxd 2.7.11 (scripts/build-influxd2.sh: Go + Rust's cargo, built once, .tools/bin/influxd2)
+#   - nats-server 2.14.9 (scripts/build-nats.sh: built once per machine, linked into .tools/bin)
 #   - a Python venv with the servo vendors' SDKs (dynamixel-sdk, feetech-servo-sdk), cached outside the clone
 #   - a Python 3.11 venv with ROS 2 Kilted's rclpy and FastDDS (scripts/install-ros2.sh), cached likewise
 #   - node_modules (`npm ci`) when missing or older than package-lock.json
@@ -69,6 +70,12 @@ if ! bash "$ROOT/scripts/build-influxd2.sh"; then
   apt_install cargo
   bash "$ROOT/scripts/build-influxd2.sh"
 fi
+
+# --- nats-server 2.14.9 ------------------------------------------------------------------
+# The cluster tests (tests/integration/cluster-*.test.ts, docs/cluster.md) run a 3-node NATS
+# cluster. Debian's nats-server (2.9.10) lacks MQTT over WebSockets (NATS 2.10), so it is built
+# with Go (installed above when missing), once per machine, like influxd.
+bash "$ROOT/scripts/build-nats.sh"
 
 # --- Python venv for the servo-bus SDK tests -------------------------------------------
 # tests/integration/servo-bus-sdk.test.ts drives the emulated servo buses with the vendors'

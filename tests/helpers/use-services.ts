@@ -7,6 +7,7 @@ import { afterAll, beforeAll } from 'vitest';
 import { startInflux, type InfluxOptions, type InfluxService } from './influx.ts';
 import { startInflux2, type Influx2Service } from './influx2.ts';
 import { startMosquitto, type MosquittoOptions, type MosquittoService } from './mosquitto.ts';
+import { startNatsCluster, type NatsCluster } from './nats-cluster.ts';
 
 interface TaskLike {
   result?: { state?: string };
@@ -42,6 +43,11 @@ function useService<T extends { dispose(o: { keepLogs: boolean }): Promise<strin
 /** A throwaway Mosquitto for the enclosing file or describe; call the result to get it. */
 export function useMosquitto(opts?: MosquittoOptions): () => MosquittoService {
   return useService('mosquitto', () => startMosquitto(opts));
+}
+
+/** A throwaway 3-node NATS cluster (JetStream, MQTT, MQTT over WebSockets) on 127.0.0.1. */
+export function useNatsCluster(): () => NatsCluster {
+  return useService('nats-cluster', startNatsCluster);
 }
 
 /** A throwaway influxd for the enclosing file or describe; call the result to get it. */

@@ -11,7 +11,7 @@ import fs from 'node:fs';
 import { afterAll, expect, test } from 'vitest';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
-import { select } from '../../apps/middleware/test/support/harness.ts';
+import { reportGaps, storedReports } from './stored-reports.ts';
 import { armtwin, StatusWatcher, type Child } from './sim-helpers.ts';
 
 // The second broker may queue a whole move's worth for the middleware's offline session.
@@ -55,15 +55,7 @@ test(
   { timeout: 150_000 },
   async () => {
     const inf = { url: influx().url, db: influx().db };
-    const stored = async () =>
-      Number(
-        (
-          await select(
-            inf,
-            `SELECT count("pwm") FROM "servo" WHERE "arm" = '${ARM}' AND "id" = '000'`,
-          ).catch(() => [])
-        )[0]?.[1] ?? 0,
-      );
+    const stored = () => storedReports(inf, ARM);
     const mw = await mws.spawn({ env: { FLUSH_INTERVAL_MS: '500' } });
     const onA = await StatusWatcher.connect(first().url, ARM);
     const onB = await StatusWatcher.connect(second().url, ARM);
@@ -147,16 +139,7 @@ test(
     );
     // On a failure, say where samples are missing or extra: the stored times that are not 20 ms
     // after the previous one (one sample per 20 ms).
-    const times = (
-      await select(inf, `SELECT "pwm" FROM "servo" WHERE "arm" = '${ARM}' AND "id" = '000'`)
-    ).map((r) => Number(r[0]));
-    const gaps = times
-      .slice(1)
-      .map((t, i) => ({
-        after: new Date(times[i]! / 1000).toISOString(),
-        ms: (t - times[i]!) / 1000,
-      }))
-      .filter((g) => Math.abs(g.ms - 20) > 5);
+    const gaps = await reportGaps(inf, ARM);
     expect(await stored(), `irregular steps: ${JSON.stringify(gaps)}`).toBe(published);
     expect((await metrics())['points_dropped_total']).toBe(0);
     console.log(`brokers: ${published} state reports published across two moves, all stored`);

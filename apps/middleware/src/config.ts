@@ -27,6 +27,17 @@ export interface MiddlewareConfig {
   mqttReconnectMs: number;
   /** MQTT_SHARE_GROUP: '' = plain subscription; else `$share/<group>/arm/+/…`. */
   mqttShareGroup: string;
+  /**
+   * NATS_URL: '' = take the stream in over MQTT (above). Else a NATS cluster's servers
+   * (`nats://host:4222`, comma-separated): the stream is taken from the JetStream stream where the
+   * cluster's MQTT keeps every QoS 1 message, through one durable pull consumer that every
+   * middleware of the cluster shares (./nats-intake.ts, docs/cluster.md); MQTT is not used.
+   */
+  natsUrl: string;
+  /** NATS_CONSUMER: the durable consumer's name; the same for every middleware that shares the stream. */
+  natsConsumer: string;
+  /** NATS_ACK_WAIT_MS: a message a middleware took and did not acknowledge is delivered again after this long. */
+  natsAckWaitMs: number;
   /** INFLUX_URL: '' = run without storage. */
   influxUrl: string;
   /** INFLUX_TOKEN: 2.x API token, or `user:password` on 1.8 ('' = no auth). */
@@ -87,8 +98,8 @@ export interface MiddlewareConfig {
   /**
    * THERMAL_WATCH: run the thermal model's watch over every arm's status stream and publish and
    * store its early warnings (`arm/{id}/alert`, docs/protocol.md § A thermal model of each
-   * servo). Needs storage (the models are fitted from it); off with a share group (each instance
-   * would see only part of a stream).
+   * servo). Needs storage (the models are fitted from it); off with a share group or NATS intake
+   * (each instance would see only part of a stream).
    */
   thermalWatch: boolean;
   /** THERMAL_REFIT_MS: how often each arm's thermal models are refitted from its history, ms. */
@@ -101,7 +112,7 @@ export interface MiddlewareConfig {
   foxglovePort: number | 'off';
   /**
    * CAMERA_RECORD: record every announced camera's H.264 stream (docs/cameras-recording.md).
-   * Off with a share group (each instance would record every camera).
+   * Off with a share group or NATS_URL (each instance would record every camera).
    */
   cameraRecord: boolean;
   /** CAMERA_DIR: the recordings' folder (`<dir>/<arm>/<camera>/<startMs>-<endMs>.mp4`). */
@@ -127,6 +138,9 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   mqttKeepaliveS: MQTT_KEEPALIVE_S,
   mqttReconnectMs: MQTT_RECONNECT_MS,
   mqttShareGroup: '',
+  natsUrl: '',
+  natsConsumer: 'armtwin-middleware',
+  natsAckWaitMs: 30_000,
   influxUrl: '',
   influxToken: '',
   influxOrg: '',
@@ -170,6 +184,9 @@ export const CONFIG_ENV: Record<keyof MiddlewareConfig, string> = {
   mqttKeepaliveS: 'MQTT_KEEPALIVE_S',
   mqttReconnectMs: 'MQTT_RECONNECT_MS',
   mqttShareGroup: 'MQTT_SHARE_GROUP',
+  natsUrl: 'NATS_URL',
+  natsConsumer: 'NATS_CONSUMER',
+  natsAckWaitMs: 'NATS_ACK_WAIT_MS',
   influxUrl: 'INFLUX_URL',
   influxToken: 'INFLUX_TOKEN',
   influxOrg: 'INFLUX_ORG',
@@ -231,6 +248,23 @@ const SCHEMA = z.object({
   mqttKeepaliveS: int(0, 65535),
   mqttReconnectMs: int(10, 3_600_000),
   mqttShareGroup: z.string().regex(/^[^/+#]*$/, 'must not contain "/", "+" or "#"'),
+  natsUrl: z.union([
+    z.literal(''),
+    z
+      .string()
+      .transform((s) => s.split(',').map((u) => u.trim()))
+      .pipe(
+        z
+          .array(url(/^(nats|tls):$/))
+          .min(1)
+          .max(16),
+      )
+      .transform((list) => list.join(',')),
+  ]),
+  natsConsumer: z
+    .string()
+    .regex(/^[A-Za-z0-9_-]{1,64}$/, 'letters, digits, "_" or "-" (at most 64)'),
+  natsAckWaitMs: int(1000, 3_600_000),
   influxUrl: z.union([z.literal(''), url(/^https?:$/)]),
   influxToken: z.string(),
   influxOrg: z.string(),

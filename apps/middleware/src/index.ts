@@ -18,7 +18,8 @@ import { createInfluxWriter, type InfluxWriter } from './influx.ts';
 import { Ingest } from './ingest.ts';
 import { createLogger, LogOnce, type Logger } from './log.ts';
 import { Metrics } from './metrics.ts';
-import { startMqtt, type ConnectFn } from './mqtt.ts';
+import { startMqtt, type ConnectFn, type MqttHandlers } from './mqtt.ts';
+import { startNatsIntake } from './nats-intake.ts';
 import { Storage } from './storage.ts';
 import { episodeStore } from './episodes/store.ts';
 import type { ApiService } from '@armtwin/http-api';
@@ -132,7 +133,7 @@ export async function startMiddleware(
   // The thermal model's early warnings (docs/protocol.md § A thermal model of each servo); it
   // fits from the history, so it needs storage.
   const heat =
-    storage && config.influxUrl && config.thermalWatch && !config.mqttShareGroup
+    storage && config.influxUrl && config.thermalWatch && !config.mqttShareGroup && !config.natsUrl
       ? startThermalAlerts(
           { refitMs: config.thermalRefitMs },
           {
@@ -150,64 +151,85 @@ export async function startMiddleware(
 
   // Every announced camera recorded beside the history (docs/cameras-recording.md).
   const recordings =
-    config.cameraRecord && !config.mqttShareGroup ? startRecordings(config, log, now) : null;
+    config.cameraRecord && !config.mqttShareGroup && !config.natsUrl
+      ? startRecordings(config, log, now)
+      : null;
   metrics.cameras = recordings?.counters ?? null;
 
-  const client = startMqtt(
-    {
-      url: config.mqttUrl,
-      username: config.mqttUsername,
-      password: config.mqttPassword,
-      clientId: config.mqttClientId,
-      qos: config.mqttQos,
-      keepaliveS: config.mqttKeepaliveS,
-      reconnectMs: config.mqttReconnectMs,
-      shareGroup: config.mqttShareGroup,
-      extraTopics: recordings ? [CAMERA_FILTER] : [],
+  const handlers: MqttHandlers = {
+    onMessage: (topic, payload) => {
+      if (recordings && topicMatches(CAMERA_FILTER, topic))
+        return recordings.handle(topic, payload);
+      const lines = ingest.handle(topic, payload, now());
+      storage?.add(lines);
     },
-    {
-      onMessage: (topic, payload) => {
-        if (recordings && topicMatches(CAMERA_FILTER, topic))
-          return recordings.handle(topic, payload);
-        const lines = ingest.handle(topic, payload, now());
-        storage?.add(lines);
-      },
-      commit: () => storage?.commit(),
-      onConnect: () => {
-        metrics.mqttConnected = true;
-        metrics.mqttConnects++;
-        once.reset('mqtt-error');
-        const b = client.brokers.choice;
-        metrics.mqttBroker = b.index + 1;
-        log.info(
-          {
-            url: redactBrokerUrl(b.url),
-            broker: b.index + 1,
-            brokers: b.count,
-            clientId: config.mqttClientId,
-            qos: config.mqttQos,
-            shareGroup: config.mqttShareGroup || undefined,
-          },
-          'MQTT connected',
-        );
-      },
-      onClose: () => {
-        if (metrics.mqttConnected && !stopped) log.warn('MQTT connection closed; reconnecting');
-        metrics.mqttConnected = false;
-      },
-      onError: (err) => once.warn('mqtt-error', { err: err.message }, 'MQTT error'),
-      onMove: (move) => {
-        if (!move.from) return;
-        metrics.mqttBrokerMoves++;
-        log.info(
-          { from: move.from.index + 1, to: move.to.index + 1, reason: move.reason },
-          `broker move: ${describeBroker(move.to)}`,
-        );
-      },
-      gate: () => storage?.gate() ?? null,
+    commit: () => storage?.commit(),
+    onConnect: () => {
+      metrics.mqttConnected = true;
+      metrics.mqttConnects++;
+      once.reset('mqtt-error');
+      const b = client.brokers.choice;
+      metrics.mqttBroker = b.index + 1;
+      log.info(
+        {
+          url: redactBrokerUrl(b.url),
+          broker: b.index + 1,
+          brokers: b.count,
+          clientId: config.mqttClientId,
+          qos: config.mqttQos,
+          shareGroup: config.mqttShareGroup || undefined,
+          natsConsumer: config.natsUrl ? config.natsConsumer : undefined,
+        },
+        config.natsUrl ? 'NATS connected' : 'MQTT connected',
+      );
     },
-    deps.connect,
-  );
+    onClose: () => {
+      if (metrics.mqttConnected && !stopped)
+        log.warn(`${config.natsUrl ? 'NATS' : 'MQTT'} connection closed; reconnecting`);
+      metrics.mqttConnected = false;
+    },
+    onError: (err) =>
+      once.warn('mqtt-error', { err: err.message }, config.natsUrl ? 'NATS error' : 'MQTT error'),
+    onMove: (move) => {
+      if (!move.from) return;
+      metrics.mqttBrokerMoves++;
+      log.info(
+        { from: move.from.index + 1, to: move.to.index + 1, reason: move.reason },
+        `broker move: ${describeBroker(move.to)}`,
+      );
+    },
+    gate: () => storage?.gate() ?? null,
+  };
+  // Over MQTT, or from a NATS cluster's JetStream (NATS_URL: one consumer shared by every middleware).
+  const client = config.natsUrl
+    ? startNatsIntake(
+        {
+          url: config.natsUrl,
+          consumer: config.natsConsumer,
+          name: config.mqttClientId,
+          username: config.mqttUsername,
+          password: config.mqttPassword,
+          reconnectMs: config.mqttReconnectMs,
+          ackWaitMs: config.natsAckWaitMs,
+          note: (message, fields) => log.info(fields, message),
+        },
+        handlers,
+      )
+    : startMqtt(
+        {
+          url: config.mqttUrl,
+          username: config.mqttUsername,
+          password: config.mqttPassword,
+          clientId: config.mqttClientId,
+          qos: config.mqttQos,
+          keepaliveS: config.mqttKeepaliveS,
+          reconnectMs: config.mqttReconnectMs,
+          shareGroup: config.mqttShareGroup,
+          extraTopics: recordings ? [CAMERA_FILTER] : [],
+        },
+        handlers,
+        deps.connect,
+      );
 
   const pingTimer = writer
     ? setInterval(() => {

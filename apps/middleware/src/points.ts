@@ -125,40 +125,57 @@ export const COLLISION_WINDOW_US: Micros = 1000;
  *   keeps every point; the bump is at most a few µs and never crosses into the next real stamp
  *   unless > 1000 points per ms.
  * - the same report again (same stamp, same `fields`: a QoS 1 message delivered twice, e.g.
- *   re-sent across a broker move) gets the time of the first: it overwrites it with itself.
+ *   re-sent across a broker move) gets the time of the first: it overwrites it with itself, also
+ *   when another point of the series came in between within the window (a state report and a
+ *   health report stamped in the same ms, then the state report again).
  * - a time older than that (a report that arrives late, behind newer ones: a redelivery after a
  *   broker move, or one queued on another broker) keeps its own time: a redelivered report
  *   overwrites its first copy with itself, a late one lands where it belongs. (Bumped to the
  *   series' end, it would be a second copy, at the wrong time.)
- * Memory: one entry per series (arm × servo × measurement).
+ * Memory: one entry per series (arm × servo × measurement), with the few points of its last ms.
  */
 export class SeriesClock {
-  private readonly last = new Map<string, { stamp: Micros; at: Micros; fields: string }>();
+  /** Per series, its points within COLLISION_WINDOW_US of its last one (the last at the end). */
+  private readonly recent = new Map<string, { stamp: Micros; at: Micros; fields: string }[]>();
   /** Times moved forward because they collided. */
   bumped = 0;
 
   /** The time for a point of `series` stamped `t`; `fields` (its values) says a repeat. */
   next(series: string, t: Micros, fields = ''): Micros {
-    const prev = this.last.get(series);
-    if (prev === undefined) {
-      this.last.set(series, { stamp: t, at: t, fields });
-      return t;
-    }
-    if (fields !== '' && t === prev.stamp && fields === prev.fields) return prev.at;
-    if (t < prev.at - COLLISION_WINDOW_US) return t; // late: its own time
+    let recent = this.recent.get(series);
+    if (recent === undefined) this.recent.set(series, (recent = []));
+    const prev = recent[recent.length - 1];
     let at = t;
-    if (t <= prev.at) {
-      at = prev.at + 1;
-      this.bumped++;
+    if (prev !== undefined) {
+      // A repeat of any point the window still holds, not only of the last: another report of
+      // the series (a health report stamped in the same ms) may have come in between.
+      if (fields !== '')
+        for (const r of recent) if (r.stamp === t && r.fields === fields) return r.at;
+      if (t < prev.at - COLLISION_WINDOW_US) return t; // late: its own time
+      if (t <= prev.at) {
+        at = prev.at + 1;
+        this.bumped++;
+      }
     }
-    // updated in place: no object per point
-    prev.stamp = t;
-    prev.at = at;
-    prev.fields = fields;
+    // Forget what has left the window (oldest first), in place; the first entry forgotten is
+    // reused for this point, so a steady stream allocates nothing here.
+    let gone = 0;
+    while (gone < recent.length && recent[gone]!.at < at - COLLISION_WINDOW_US) gone++;
+    const reuse = gone > 0 ? recent[0]! : undefined;
+    if (gone > 0) {
+      recent.copyWithin(0, gone);
+      recent.length -= gone;
+    }
+    if (reuse) {
+      reuse.stamp = t;
+      reuse.at = at;
+      reuse.fields = fields;
+      recent.push(reuse);
+    } else recent.push({ stamp: t, at, fields });
     return at;
   }
 
   get size(): number {
-    return this.last.size;
+    return this.recent.size;
   }
 }

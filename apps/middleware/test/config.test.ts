@@ -46,6 +46,10 @@ describe('loadConfig', () => {
     ['MQTT_URL', 'http://x'],
     ['WRITE_MODE', 'async'],
     ['MQTT_SHARE_GROUP', 'a/b'],
+    ['NATS_URL', 'mqtt://n1:1883'],
+    ['NATS_URL', 'nats://n1:4222,'],
+    ['NATS_CONSUMER', 'a.b'],
+    ['NATS_ACK_WAIT_MS', '10'],
     ['PORT', '70000'],
     ['LOG_LEVEL', 'loud'],
     ['FOXGLOVE_PORT', 'yes'],
@@ -59,6 +63,13 @@ describe('loadConfig', () => {
     expect(loadConfig({}).foxglovePort).toBe('off');
     expect(loadConfig({ FOXGLOVE_PORT: '8765' }).foxglovePort).toBe(8765);
     expect(loadConfig({ FOXGLOVE_PORT: '0' }).foxglovePort).toBe(0);
+  });
+
+  test('NATS_URL takes a list of NATS servers, kept in order', () => {
+    const c = loadConfig({ NATS_URL: 'nats://n1:4222, nats://n2:4222,tls://n3:4222' });
+    expect(c.natsUrl).toBe('nats://n1:4222,nats://n2:4222,tls://n3:4222');
+    expect(c.natsConsumer).toBe('armtwin-middleware');
+    expect(loadConfig({}).natsUrl).toBe(''); // MQTT intake
   });
 
   test('several bad variables are all named', () => {

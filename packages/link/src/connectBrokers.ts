@@ -22,6 +22,7 @@ import {
   type BrokerMove,
 } from './brokers.ts';
 import { probeBroker, type ConnectFn, type ProbeConnected } from './probe.ts';
+import { retryRefusedSubscriptions } from './resubscribe.ts';
 
 export interface BrokerLinkOptions extends BrokerListOptions {
   /** Makes an mqtt.js client (tests and the page may hand in theirs). */
@@ -72,6 +73,8 @@ export function connectBrokers(
         : builder(o.connect(url, { ...opts, manualConnect: true })).streamBuilder,
     );
     builder(client).streamBuilder = (c) => builders[failover.choice.index]!(c);
+    // A broker of a cluster may refuse a subscription while it recovers from a lost node.
+    retryRefusedSubscriptions(client, opts.reconnectPeriod ?? 1000);
   }
   client.on('connect', () => {
     const move = failover.connected();

@@ -1,0 +1,314 @@
+/**
+ * Past one machine (docs/cluster.md): a 3-node NATS cluster on 127.0.0.1 (JetStream, MQTT and MQTT
+ * over WebSockets on every node, MQTT's streams with 3 replicas), six simulated arms spread over
+ * its nodes (each given the three nodes as its broker list), a page-like client (mqtt.js over
+ * WebSockets through @armtwin/link, as the HUD connects), and two middlewares sharing the stream
+ * through one JetStream consumer (NATS_URL), into InfluxDB 1.8. A node (by default not the one
+ * leading MQTT's message stream; CLUSTER_KILL=leader kills that one), which two arms, one
+ * middleware, the page and the holder's client are on, is SIGKILLed mid-stream: the arms and the page move to other nodes, the holder's retained record is still
+ * read there, and once the node is back and has rejoined, every state report each arm made is one
+ * point in InfluxDB (counted per arm against the sim's own counter: nothing lost, nothing twice),
+ * and both middlewares stored part of it. Only generous wait-for-condition timeouts, no timing
+ * assertion (the times are printed).
+ */
+import fs from 'node:fs';
+import mqtt, { type MqttClient } from 'mqtt';
+import pino from 'pino';
+import { afterAll, expect, test } from 'vitest';
+import { connectBrokers, parseBrokerList, type BrokerClient } from '@armtwin/link';
+import { linkOptions } from '@armtwin/protocol';
+import { startSim, type Sim } from '@armtwin/sim';
+import { useInflux, useNatsCluster } from '../helpers/use-services.ts';
+import { useMiddlewares } from '../helpers/use-middlewares.ts';
+import { reportGaps, storedReports } from './stored-reports.ts';
+import { holdersOn } from './holders.ts';
+import type { MiddlewareProcess } from '../../apps/middleware/test/support/harness.ts';
+
+const cluster = useNatsCluster();
+const influx = useInflux();
+const mws = useMiddlewares('mw-cluster', () => ({
+  mqttUrl: cluster().mqttUrls(),
+  influx: influx(),
+}));
+// Six arms by default (a shared 2-core machine); CLUSTER_ARMS=50 runs the issue's fifty.
+const ARMS = Array.from({ length: Number(process.env.CLUSTER_ARMS ?? 6) }, (_, i) => `cl${i + 1}`);
+const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
+const sims = new Map<string, Sim>();
+const clients: MqttClient[] = [];
+
+afterAll(async () => {
+  await Promise.all([...sims.values()].map((s) => s.stop().catch(() => {})));
+  await Promise.all(clients.map((c) => c.endAsync(true).catch(() => {})));
+});
+
+async function until(fn: () => boolean | Promise<boolean>, ms: number, what: string) {
+  const deadline = Date.now() + ms;
+  while (!(await fn())) {
+    if (Date.now() > deadline) throw new Error(`timed out waiting for ${what}`);
+    await sleep(200);
+  }
+}
+
+test(
+  'a node killed mid-stream: arms and the page move, the holder stays, every report is stored once, the node rejoins',
+  { timeout: 300_000 },
+  async () => {
+    const c = cluster();
+    const inf = { url: influx().url, db: influx().db };
+    const stored = (arm: string) => storedReports(inf, arm);
+
+    // The first MQTT client makes MQTT's streams. The node to kill is the one after the node
+    // leading its message stream, or (CLUSTER_KILL=leader) that node itself: then every QoS 1
+    // store waits for a new leader, and in 3 of 9 runs 5 s of the reports of the arms on one
+    // surviving node were lost (docs/cluster.md § Found on the cluster: not fixed).
+    const first = await mqtt.connectAsync(c.nodes[0]!.mqttUrl, { clientId: 'first' });
+    await until(async () => (await c.stream('$MQTT_msgs')) !== null, 30_000, 'a stream leader');
+    await first.endAsync();
+    const leader = (await c.stream('$MQTT_msgs'))?.leader;
+    const leads = c.nodes.findIndex((n) => n.name === leader);
+    expect(leads).toBeGreaterThanOrEqual(0);
+    const victim = process.env.CLUSTER_KILL === 'leader' ? leads : (leads + 1) % 3;
+    const victimNode = c.nodes[victim]!;
+
+    // Two middlewares, one on the victim and one on the next node; one consumer between them.
+    const env = { NATS_ACK_WAIT_MS: '5000', FLUSH_INTERVAL_MS: '500' };
+    const mw: MiddlewareProcess[] = [];
+    for (const k of [0, 1])
+      mw.push(
+        await mws.spawn({
+          clientId: `mw-cluster-${k + 1}`,
+          env: { ...env, NATS_URL: c.natsUrls((victim + k) % 3) },
+        }),
+      );
+    // The consumer is there before the arms start: a report sent on a stand-in arm is taken.
+    const probe = await mqtt.connectAsync(c.nodes[(victim + 2) % 3]!.mqttUrl, {
+      clientId: 'probe',
+    });
+    clients.push(probe);
+    const statusTaken = async () => {
+      const m = await Promise.all(mw.map((x) => x.metrics().catch(() => ({}))));
+      return m.map((x: Record<string, number>) => x['messages_total{topic="status"}'] ?? 0);
+    };
+    let probes = 0;
+    await until(
+      async () => {
+        await probe.publishAsync('arm/probe/status', `$TIM:${Date.now()}!#000P1500!`, { qos: 1 });
+        probes++;
+        return (await statusTaken()).some((n) => n > 0);
+      },
+      60_000,
+      'the shared consumer taking messages',
+    );
+
+    // The arms, a third preferring each node.
+    // Each sim's last log line says how many status payloads it handed to its client.
+    const simLog: string[] = [];
+    const log = pino({ level: 'info' }, { write: (line: string) => void simLog.push(line) });
+    for (const [i, arm] of ARMS.entries())
+      sims.set(
+        arm,
+        await startSim({
+          mqttUrl: c.mqttUrls((victim + i) % 3),
+          armId: arm,
+          rate: 50,
+          log,
+          onFirst: (kind, message) => log.warn({ arm, kind }, message),
+        }),
+      );
+
+    // The page, on the victim over WebSockets, following cl1 (whose arm is on the victim too).
+    let pageReports = 0;
+    const page: BrokerClient = connectBrokers(parseBrokerList(c.wsUrls(victim)), {
+      clientId: 'page-cluster',
+      ...linkOptions(),
+    });
+    clients.push(page);
+    page.on('connect', () => void page.subscribe(['arm/cl1/status', 'arm/cl1/holder'], { qos: 1 }));
+    page.on('message', (t) => t === 'arm/cl1/status' && pageReports++);
+    await until(() => page.connected && pageReports > 10, 30_000, 'the page following cl1');
+
+    // alice takes cl1 and cl2 (arms on the victim and on the next node) from the victim; she
+    // never beats, so the arms keep her as holder (docs/protocol.md § Control).
+    const alice = await mqtt.connectAsync(victimNode.mqttUrl, {
+      clientId: 'alice',
+      reconnectPeriod: 0,
+    });
+    clients.push(alice);
+    // A claim sent before an arm's claim subscription is made (a busy cluster makes one JetStream
+    // consumer per QoS 1 subscription) reaches nobody: alice asks until she holds both.
+    await until(
+      async () => {
+        const holders = await holdersOn(victimNode.mqttUrl, ['cl1', 'cl2']).catch(() => []);
+        for (const [i, arm] of ['cl1', 'cl2'].entries())
+          if (holders[i] !== 'alice')
+            await alice.publishAsync(`arm/${arm}/claim/alice`, 'take', { qos: 1 });
+        return holders.length === 2 && holders.every((h) => h === 'alice');
+      },
+      60_000,
+      'alice holding cl1 and cl2',
+    );
+    await until(
+      async () => (await Promise.all(ARMS.map(stored))).every((n) => n > 50),
+      60_000,
+      'every arm stored',
+    );
+
+    // The node goes down mid-stream (a crash: nothing saved, no will published by it).
+    const before = await Promise.all(ARMS.map(stored));
+    const killedAt = Date.now();
+    await victimNode.process.kill();
+    await until(
+      () => page.connected && page.brokers.choice.index !== 0,
+      30_000,
+      'the page on another node',
+    );
+    const pageBackMs = Date.now() - killedAt;
+    const reportsThen = pageReports;
+    await until(() => pageReports > reportsThen + 10, 30_000, "cl1's reports on the page again");
+    await until(
+      async () => ((await c.stream('$MQTT_msgs'))?.leader ?? victimNode.name) !== victimNode.name,
+      30_000,
+      'a leader of the message stream on a running node',
+    );
+    const newLeaderMs = Date.now() - killedAt;
+    // The holder survived on the other nodes (cl2's arm never left its node: nobody republished
+    // it). A QoS 1 subscription may be refused while JetStream elects leaders: read until it is not.
+    const other = c.nodes[(victim + 1) % 3]!;
+    let holders: unknown[] = [];
+    await until(
+      async () => {
+        holders = await holdersOn(other.wsUrl, ['cl1', 'cl2']).catch(() => []);
+        return holders.length > 0;
+      },
+      30_000,
+      'the holders read on another node',
+    );
+    expect(holders).toEqual(['alice', 'alice']);
+    // Every arm hears its control topic where it is now (its subscriptions were asked for while
+    // the cluster recovered: @armtwin/link asks again for any refused): a ping is echoed.
+    const echoes = connectBrokers(parseBrokerList(c.mqttUrls((victim + 1) % 3)), {
+      clientId: 'pinger',
+      ...linkOptions(),
+    });
+    clients.push(echoes);
+    const echoed = new Set<string>();
+    const lastReport = new Map<string, number>();
+    echoes.on('message', (t, p) => {
+      lastReport.set(t, Date.now());
+      const ping = /\$PNG:(\d+)!/.exec(p.toString());
+      if (ping) echoed.add(`${t.split('/')[1]}:${ping[1]}`);
+    });
+    echoes.on('connect', () => void echoes.subscribe('arm/+/status', { qos: 0 }));
+    for (const [i, arm] of ARMS.entries())
+      await until(
+        async () => {
+          if (echoes.connected)
+            await echoes.publishAsync(`arm/${arm}/control`, `$PNG:${i}!`, { qos: 1 });
+          await sleep(800);
+          return echoed.has(`${arm}:${i}`);
+        },
+        60_000,
+        `${arm} echoing a ping after the kill`,
+      ).catch((err: Error) => {
+        const seen = lastReport.get(`arm/${arm}/status`);
+        const said = simLog.filter((l) => l.includes(`"${arm}"`) || l.includes('subscribe'));
+        throw new Error(
+          `${err.message}; its last report ${seen ? `${Date.now() - seen} ms ago` : 'never seen'}; ` +
+            `its log:\n${said.join('')}`,
+        );
+      });
+    await until(
+      async () => (await Promise.all(ARMS.map(stored))).every((n, i) => n > before[i]! + 50),
+      60_000,
+      'every arm stored after the kill',
+    );
+
+    // The node comes back, rejoins (routes to both others, its copy of the stream current) and
+    // the page goes back to it (it is first in its list).
+    await victimNode.process.start();
+    await until(
+      async () => (await c.routes(victim)) === 2,
+      60_000,
+      'the node routed to both others',
+    );
+    await until(
+      async () => (await c.stream('$MQTT_msgs'))?.current.includes(victimNode.name) ?? false,
+      60_000,
+      'its copy of the message stream current',
+    );
+    await until(
+      () => page.connected && page.brokers.choice.index === 0,
+      60_000,
+      'the page back on it',
+    );
+    const back = await Promise.all(ARMS.map(stored));
+    await until(
+      async () => (await Promise.all(ARMS.map(stored))).every((n, i) => n > back[i]! + 50),
+      60_000,
+      'every arm stored after the node came back',
+    );
+
+    // Every state report each arm made is one point: nothing lost, nothing stored twice.
+    const published = new Map<string, number>();
+    for (const arm of ARMS) {
+      const sim = sims.get(arm)!;
+      await sim.stop();
+      sims.delete(arm);
+      published.set(arm, sim.runner!.counters.stateSamples);
+    }
+    const settled = () =>
+      Promise.all(ARMS.map(async (a) => (await stored(a)) === published.get(a)));
+    await until(async () => (await settled()).every(Boolean), 60_000, 'every report stored').catch(
+      () => {},
+    );
+    const counts = Object.fromEntries(
+      await Promise.all(
+        ARMS.map(async (a) => [a, { published: published.get(a), stored: await stored(a) }]),
+      ),
+    );
+    // On a failure, say where reports are missing: the stored times not 20 ms after the one before.
+    if (ARMS.some((arm) => counts[arm].stored !== published.get(arm)))
+      for (const k of [1, 2])
+        console.log(
+          fs
+            .readFileSync(mws.log(`mw-cluster-${k}`), 'utf8')
+            .split('\n')
+            .filter((l) => /NATS|consumer|error/i.test(l))
+            .join('\n'),
+        );
+    for (const arm of ARMS)
+      if (counts[arm].stored !== published.get(arm))
+        expect
+          .soft(
+            counts[arm].stored,
+            `${arm}: ${JSON.stringify(await reportGaps(inf, arm))}; killed at ${new Date(killedAt).toISOString()}`,
+          )
+          .toBe(published.get(arm));
+    for (const arm of ARMS)
+      expect(counts[arm].stored, JSON.stringify(counts)).toBe(published.get(arm));
+    // Both middlewares took part of the stream; together they read every status message, and
+    // none twice but the few delivered again around the kill (an acknowledgement lost with the
+    // node, or a publish the node stored but never acknowledged, sent again by the arm).
+    const taken = await statusTaken();
+    expect(
+      taken.every((n) => n > 0),
+      JSON.stringify(taken),
+    ).toBe(true);
+    const sent =
+      probes +
+      simLog
+        .filter((l) => l.includes('"sim stopped"'))
+        .map((l) => (JSON.parse(l) as { published: Record<string, number> }).published)
+        .reduce((n, p) => n + p.state! + p.health! + p.reply!, 0);
+    const read = taken[0]! + taken[1]!;
+    expect(read, `read ${read} of ${sent} sent`).toBeGreaterThanOrEqual(sent);
+    expect(read, `read ${read} of ${sent} sent`).toBeLessThan(sent * 1.1);
+    for (const m of mw) expect((await m.metrics())['points_dropped_total']).toBe(0);
+    console.log(
+      `cluster: node ${victimNode.name} killed; page on another node after ${pageBackMs} ms, ` +
+        `stream led by a running node after ${newLeaderMs} ms; status messages per middleware ${taken.join(', ')} ` +
+        `(${read - sent} read twice of ${sent}); ` +
+        `stored = published per arm: ${JSON.stringify(counts)}`,
+    );
+  },
+);
