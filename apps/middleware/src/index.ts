@@ -8,7 +8,7 @@ import path from 'node:path';
 import { MODELS_DIR } from '@armtwin/motion/robot-folder';
 import { SYSTEM_CLOCK, type Clock } from '@armtwin/protocol';
 import { describeBroker, redactBrokerUrl } from '@armtwin/link';
-import { LoginThrottle, loadUsers, topicMatches } from '@armtwin/auth';
+import { LoginThrottle, loadUsers } from '@armtwin/auth';
 import { ConfigError, influxSource, type MiddlewareConfig } from './config.ts';
 import { createHistoryHandler, type HistoryHandlerDeps } from './history/index.ts';
 import { historyReader } from './history/reader.ts';
@@ -18,15 +18,15 @@ import { createInfluxWriter, type InfluxWriter } from './influx.ts';
 import { Ingest } from './ingest.ts';
 import { createLogger, LogOnce, type Logger } from './log.ts';
 import { Metrics } from './metrics.ts';
-import { startMqtt, type ConnectFn, type MqttHandlers } from './mqtt.ts';
-import { startNatsIntake } from './nats-intake.ts';
+import type { ConnectFn } from './mqtt.ts';
+import { startIntake } from './intake.ts';
 import { Storage } from './storage.ts';
 import { episodeStore } from './episodes/store.ts';
 import type { ApiService } from '@armtwin/http-api';
 import { startThermalAlerts } from './thermal-alerts-run.ts';
 import { startMiddlewareFoxglove } from './foxglove.ts';
 import type { ArmtwinFoxglove } from '@armtwin/foxglove';
-import { CAMERA_FILTER, startRecordings } from './cameras/index.ts';
+import { startRecordings } from './cameras/index.ts';
 
 export {
   loadConfig,
@@ -156,80 +156,18 @@ export async function startMiddleware(
       : null;
   metrics.cameras = recordings?.counters ?? null;
 
-  const handlers: MqttHandlers = {
-    onMessage: (topic, payload) => {
-      if (recordings && topicMatches(CAMERA_FILTER, topic))
-        return recordings.handle(topic, payload);
-      const lines = ingest.handle(topic, payload, now());
-      storage?.add(lines);
-    },
-    commit: () => storage?.commit(),
-    onConnect: () => {
-      metrics.mqttConnected = true;
-      metrics.mqttConnects++;
-      once.reset('mqtt-error');
-      const b = client.brokers.choice;
-      metrics.mqttBroker = b.index + 1;
-      log.info(
-        {
-          url: redactBrokerUrl(b.url),
-          broker: b.index + 1,
-          brokers: b.count,
-          clientId: config.mqttClientId,
-          qos: config.mqttQos,
-          shareGroup: config.mqttShareGroup || undefined,
-          natsConsumer: config.natsUrl ? config.natsConsumer : undefined,
-        },
-        config.natsUrl ? 'NATS connected' : 'MQTT connected',
-      );
-    },
-    onClose: () => {
-      if (metrics.mqttConnected && !stopped)
-        log.warn(`${config.natsUrl ? 'NATS' : 'MQTT'} connection closed; reconnecting`);
-      metrics.mqttConnected = false;
-    },
-    onError: (err) =>
-      once.warn('mqtt-error', { err: err.message }, config.natsUrl ? 'NATS error' : 'MQTT error'),
-    onMove: (move) => {
-      if (!move.from) return;
-      metrics.mqttBrokerMoves++;
-      log.info(
-        { from: move.from.index + 1, to: move.to.index + 1, reason: move.reason },
-        `broker move: ${describeBroker(move.to)}`,
-      );
-    },
-    gate: () => storage?.gate() ?? null,
-  };
-  // Over MQTT, or from a NATS cluster's JetStream (NATS_URL: one consumer shared by every middleware).
-  const client = config.natsUrl
-    ? startNatsIntake(
-        {
-          url: config.natsUrl,
-          consumer: config.natsConsumer,
-          name: config.mqttClientId,
-          username: config.mqttUsername,
-          password: config.mqttPassword,
-          reconnectMs: config.mqttReconnectMs,
-          ackWaitMs: config.natsAckWaitMs,
-          note: (message, fields) => log.info(fields, message),
-        },
-        handlers,
-      )
-    : startMqtt(
-        {
-          url: config.mqttUrl,
-          username: config.mqttUsername,
-          password: config.mqttPassword,
-          clientId: config.mqttClientId,
-          qos: config.mqttQos,
-          keepaliveS: config.mqttKeepaliveS,
-          reconnectMs: config.mqttReconnectMs,
-          shareGroup: config.mqttShareGroup,
-          extraTopics: recordings ? [CAMERA_FILTER] : [],
-        },
-        handlers,
-        deps.connect,
-      );
+  // Over MQTT, or from a NATS cluster's JetStream (NATS_URL): ./intake.ts.
+  const client = startIntake(config, {
+    ingest,
+    storage,
+    recordings,
+    metrics,
+    log,
+    once,
+    now,
+    stopped: () => stopped,
+    connect: deps.connect,
+  });
 
   const pingTimer = writer
     ? setInterval(() => {
