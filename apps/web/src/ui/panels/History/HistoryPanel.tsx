@@ -78,6 +78,10 @@ export function HistoryPanel() {
     () => new EpisodesApi({ base: apiBase, headers: authHeaders({ username, password }) }),
     [apiBase, username, password],
   );
+  const segmentSource = useMemo(
+    () => ({ base: apiBase, headers: authHeaders({ username, password }) }),
+    [apiBase, username, password],
+  );
   const [choice, setChoice] = useState(initialChoice);
   const [tab, setTab] = useState<Tab>('charts');
   const [joint, setJoint] = useState(servoId(0));
@@ -212,7 +216,14 @@ export function HistoryPanel() {
           <TablesView arm={arm} overview={overview} servoName={servoName} />
         )}
         {tab === 'replay' && (
-          <ReplayControls api={api} arm={arm} range={range} player={replay} joints={replayJoints} />
+          <ReplayControls
+            api={api}
+            arm={arm}
+            range={range}
+            player={replay}
+            joints={replayJoints}
+            segments={segmentSource}
+          />
         )}
         {tab === 'episodes' && (
           <EpisodesView
