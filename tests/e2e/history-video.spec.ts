@@ -77,9 +77,9 @@ async function scrubTo(page: Page, t: number) {
   await expect
     .poll(async () => {
       const v = await videoNow(page);
-      return v.decoded && !v.hidden && v.paused && Math.abs(v.shownMs - t) <= FRAME_MS;
+      return { ...v, withinFrame: Math.abs(v.shownMs - t) <= FRAME_MS };
     })
-    .toBe(true);
+    .toMatchObject({ decoded: true, hidden: false, paused: true, withinFrame: true });
 }
 
 test('one timeline: the replay plays the recorded camera with the twin', async ({

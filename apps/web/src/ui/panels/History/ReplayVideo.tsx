@@ -11,7 +11,7 @@ import { useCameras } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import type { ReplayPlayer } from '../../../core/replay/ReplayPlayer.ts';
 import { needsSeek, videoAt, type RecordedSegment } from '../../../core/replay/videoAt.ts';
-import { listSegments, segmentUrl } from './cameraSegmentsApi.ts';
+import { fetchSegment, listSegments } from './cameraSegmentsApi.ts';
 import type { Loaded } from './loaded.ts';
 import { ViewError } from './ViewHeader.tsx';
 
@@ -26,15 +26,33 @@ function CameraReplay(props: {
   camId: string;
   label: string;
   segments: readonly RecordedSegment[];
-  url: (name: string) => string;
+  /** One segment's MP4 (fetched whole: see ./cameraSegmentsApi.ts). */
+  load: (name: string) => Promise<Blob>;
 }) {
-  const { player, segments, url } = props;
+  const { player, segments, load } = props;
   const video = useRef<HTMLVideoElement>(null);
   const [gap, setGap] = useState(true);
+  const [failed, setFailed] = useState<string | null>(null);
   useEffect(() => {
     let raf = 0;
     let shownGap: boolean | null = null;
-    let src = '';
+    /** The segment asked for, and the blob: URL of the one in the <video>. */
+    let wanted = '';
+    let objectUrl = '';
+    const show = (name: string, startMs: number) => {
+      wanted = name;
+      load(name).then(
+        (blob) => {
+          if (wanted !== name || !video.current) return;
+          if (objectUrl) URL.revokeObjectURL(objectUrl);
+          objectUrl = URL.createObjectURL(blob);
+          video.current.dataset.segmentStart = String(startMs);
+          video.current.src = objectUrl;
+          setFailed(null);
+        },
+        (err: unknown) => wanted === name && setFailed(String(err)),
+      );
+    };
     const step = () => {
       raf = requestAnimationFrame(step);
       const v = video.current;
@@ -46,12 +64,8 @@ function CameraReplay(props: {
         if (!v.paused) v.pause();
         return;
       }
-      const want = url(at.segment.name);
-      if (src !== want) {
-        src = want;
-        v.dataset.segmentStart = String(at.segment.startMs);
-        v.src = want;
-      }
+      if (wanted !== at.segment.name) show(at.segment.name, at.segment.startMs);
+      if (v.dataset.segmentStart !== String(at.segment.startMs)) return; // still loading
       if (v.readyState < HTMLMediaElement.HAVE_METADATA) return;
       if (v.playbackRate !== clock.speed) v.playbackRate = clock.speed;
       if (!v.seeking && needsSeek(v.currentTime, at.offsetS, clock.playing))
@@ -60,8 +74,12 @@ function CameraReplay(props: {
       else if (!clock.playing && !v.paused) v.pause();
     };
     raf = requestAnimationFrame(step);
-    return () => cancelAnimationFrame(raf);
-  }, [player, segments, url]);
+    return () => {
+      cancelAnimationFrame(raf);
+      wanted = '';
+      if (objectUrl) URL.revokeObjectURL(objectUrl);
+    };
+  }, [player, segments, load]);
 
   return (
     <figure className="replay-video" data-testid={`replay-video-${props.camId}`}>
@@ -76,6 +94,7 @@ function CameraReplay(props: {
         hidden={gap}
       />
       {gap && <p className="replay-video-gap dim">{props.label}: no recording</p>}
+      {failed && <ViewError error={failed} />}
       <figcaption className="dim small-print">{props.label}</figcaption>
     </figure>
   );
@@ -114,13 +133,13 @@ export function ReplayVideos(props: { player: ReplayPlayer; arm: string; source:
     };
   }, [s.start, s.stop, idsKey, arm, source, loadKey]);
   const byCam = lists.key === loadKey ? lists.byCam : {};
-  const urls = useMemo(
+  const loaders = useMemo(
     () =>
       Object.fromEntries(
-        s.ids.map((cam) => [cam, (name: string) => segmentUrl(source.base, arm, cam, name)]),
+        s.ids.map((cam) => [cam, (name: string) => fetchSegment(source, arm, cam, name)]),
       ),
     // eslint-disable-next-line react-hooks/exhaustive-deps -- idsKey stands for s.ids
-    [idsKey, source.base, arm],
+    [idsKey, source, arm],
   );
 
   if (Number.isNaN(s.start)) return null;
@@ -139,7 +158,7 @@ export function ReplayVideos(props: { player: ReplayPlayer; arm: string; source:
             camId={cam}
             label={s.labels[i]!}
             segments={l.data}
-            url={urls[cam]!}
+            load={loaders[cam]!}
           />
         );
       })}

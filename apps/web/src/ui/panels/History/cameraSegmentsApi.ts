@@ -50,3 +50,19 @@ export async function listSegments(
     return { ok: false, error: `The camera recordings of ${cam} are unreachable: ${String(err)}` };
   }
 }
+
+/**
+ * One segment's MP4 as a Blob, for a `blob:` URL: the <video> can then seek anywhere in it (the
+ * API sends whole files, no byte ranges, and a <video> cannot send a login's headers).
+ */
+export async function fetchSegment(
+  o: { base: string; headers?: Record<string, string>; fetch?: Fetch },
+  arm: string,
+  cam: string,
+  name: string,
+): Promise<Blob> {
+  const get = o.fetch ?? ((url, init) => globalThis.fetch(url, init));
+  const res = await get(segmentUrl(o.base, arm, cam, name), { headers: { ...o.headers } });
+  if (!res.ok) throw new Error(`segment ${name} of ${cam}: HTTP ${res.status}`);
+  return res.blob();
+}
