@@ -37,9 +37,7 @@ test.afterAll(async () => {
 
 async function startCamera(stack: StorageStack, armId: string, port: number) {
   const c = await serveCamera({
-    cameras: [
-      { armId, camId: 'front', label: 'Front', source: 'testsrc', kinds: ['h264-ws'] },
-    ],
+    cameras: [{ armId, camId: 'front', label: 'Front', source: 'testsrc', kinds: ['h264-ws'] }],
     port,
     mqttUrl: stack.broker.url,
   });
@@ -58,13 +56,16 @@ const covered = (list: Listed[], t: number) => list.some((s) => s.startMs <= t &
 
 /** What the replay's <video> shows now: its segment's start + media time, and its state. */
 const videoNow = (page: Page) =>
-  page.getByTestId('replay-video-front').locator('video').evaluate((v: HTMLVideoElement) => ({
-    shownMs: Number(v.dataset.segmentStart) + v.currentTime * 1000,
-    paused: v.paused,
-    rate: v.playbackRate,
-    decoded: v.readyState >= HTMLMediaElement.HAVE_CURRENT_DATA,
-    hidden: v.hidden,
-  }));
+  page
+    .getByTestId('replay-video-front')
+    .locator('video')
+    .evaluate((v: HTMLVideoElement) => ({
+      shownMs: Number(v.dataset.segmentStart) + v.currentTime * 1000,
+      paused: v.paused,
+      rate: v.playbackRate,
+      decoded: v.readyState >= HTMLMediaElement.HAVE_CURRENT_DATA,
+      hidden: v.hidden,
+    }));
 
 const replayElbow = (page: Page) =>
   page.evaluate(() => (window as unknown as ReplayHook).__armtwin!.replay.angles[2]!);
