@@ -6,7 +6,8 @@
  * recorded with the elbow moving and the camera server down for a while; the History replay then
  * plays the recorded video beside the amber arm: at a paused replay time T the <video>'s media
  * time + its segment's start is T within one frame while the replay's pose is the stored pose
- * of T; playing moves the video at the replay's speed; in the camera's gap "no recording" shows.
+ * of T; playing moves the video at the replay's speed; in the camera's gap "no recording" shows;
+ * the History charts mark the replay's instant.
  */
 import type { Page } from '@playwright/test';
 import { serveCamera, type ServedCameras } from '@armtwin/camera';
@@ -27,7 +28,10 @@ interface Listed {
   endMs: number;
 }
 interface ReplayHook {
-  __armtwin?: { replay: { angles: Float64Array; clock: { position: number } } };
+  __armtwin?: {
+    replay: { angles: Float64Array; clock: { position: number } };
+    history: { charts: Record<string, { replayAt: number | null } | undefined> };
+  };
 }
 
 const cameras: ServedCameras[] = [];
@@ -153,4 +157,14 @@ test('one timeline: the replay plays the recorded camera with the twin', async (
       return v.paused && Math.abs(v.shownMs - t) <= FRAME_MS;
     })
     .toBe(true);
+
+  // The charts (temperature, voltage, power, angle) mark the replay's instant on their time axis.
+  await page.getByRole('tab', { name: 'Charts' }).click();
+  await expect
+    .poll(() =>
+      page.evaluate(
+        () => (window as unknown as ReplayHook).__armtwin!.history.charts['temp']?.replayAt,
+      ),
+    )
+    .toBe(t);
 });

@@ -82,6 +82,7 @@ export function HistoryPanel() {
     () => ({ base: apiBase, headers: authHeaders({ username, password }) }),
     [apiBase, username, password],
   );
+  const replayAt = useCallback(() => (replay.record ? replay.clock.position : null), [replay]);
   const [choice, setChoice] = useState(initialChoice);
   const [tab, setTab] = useState<Tab>('charts');
   const [joint, setJoint] = useState(servoId(0));
@@ -206,6 +207,7 @@ export function HistoryPanel() {
             servoIds={servoIds}
             joint={joint}
             servoName={servoName}
+            replayAt={replayAt}
             onJoint={(id) => {
               setJoint(id);
               if (range) fetchAngles(range, id);
