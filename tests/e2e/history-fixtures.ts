@@ -2,7 +2,7 @@
  * Fixtures for the History panel and replay: the HUD fixtures of ./fixtures.ts plus storage.
  * The worker's `stack` is overridden: the same Mosquitto, and also a throwaway influxd, the
  * middleware as a child process (`node --import tsx apps/middleware/src/main.ts`, writing
- * every 200 ms), and the built HUD served with `/api/*` proxied to the middleware, as
+ * every 200 ms, recording announced cameras in 2 s segments), and the built HUD served with `/api/*` proxied to the middleware, as
  * `npm start` serves it (same origin, so the HUD's default API base `/api` works, no CORS).
  * Files that import this `test` get their own worker; ./hud-*.spec.ts keep the plain stack.
  */
@@ -30,6 +30,7 @@ export const test = base.extend<object, { stack: StorageStack }>({
     async ({ stack }, use, workerInfo) => {
       const influx = await startInflux();
       const spoolDir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-e2e-spool-'));
+      const cameraDir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-e2e-cameras-'));
       const logFile = path.join(workerInfo.project.outputDir, `middleware-${process.pid}.log`);
       fs.mkdirSync(path.dirname(logFile), { recursive: true });
       let middleware: MiddlewareProcess | undefined;
@@ -43,6 +44,9 @@ export const test = base.extend<object, { stack: StorageStack }>({
             INFLUX_BUCKET: influx.bucket,
             FLUSH_INTERVAL_MS: '200',
             SPOOL_DIR: spoolDir,
+            // Cameras a test announces are recorded, in short segments (./history-video.spec.ts).
+            CAMERA_DIR: cameraDir,
+            CAMERA_SEGMENT_S: '2',
           },
           await freePort(),
           logFile,
@@ -68,6 +72,7 @@ export const test = base.extend<object, { stack: StorageStack }>({
         await middleware?.stop();
         await influx.dispose({ keepLogs: failed || Boolean(process.env.ARMTWIN_KEEP_LOGS) });
         fs.rmSync(spoolDir, { recursive: true, force: true });
+        fs.rmSync(cameraDir, { recursive: true, force: true });
       }
     },
     { scope: 'worker', timeout: 180_000 },

@@ -7,11 +7,15 @@ export interface Marker {
   label: string;
 }
 
-/** A uPlot plugin that draws markers (early warnings, say) over the plot on every redraw. */
-export function markerPlugin(markers: readonly Marker[]): uPlot.Plugin {
+/**
+ * A uPlot plugin that draws markers (early warnings, say) over the plot on every redraw; a
+ * function is read at each redraw (a moving marker: the History replay's instant).
+ */
+export function markerPlugin(markers: readonly Marker[] | (() => readonly Marker[])): uPlot.Plugin {
   return {
     hooks: {
       draw: (u: uPlot) => {
+        const list = typeof markers === 'function' ? markers() : markers;
         const { ctx } = u;
         const { left, top, width, height } = u.bbox;
         ctx.save();
@@ -19,7 +23,7 @@ export function markerPlugin(markers: readonly Marker[]): uPlot.Plugin {
         ctx.lineWidth = 1.5 * uPlot.pxRatio;
         ctx.font = `${10 * uPlot.pxRatio}px system-ui`;
         ctx.textBaseline = 'top';
-        for (const m of markers) {
+        for (const m of list) {
           const x = Math.round(u.valToPos(m.at / 1000, 'x', true));
           if (x < left || x > left + width) continue;
           ctx.strokeStyle = ctx.fillStyle = m.colour;

@@ -17,6 +17,7 @@ import type { SeriesAnswer, ThermalModelAnswer } from '@armtwin/api';
 import type { Marker } from '../../charts/markerPlugin.ts';
 import { powerSeries, predictedSeries, warningMarkers } from './thermalSeries.ts';
 import type { Loaded } from './loaded.ts';
+import type { ReplayAt } from './historyChart.ts';
 import { ViewError, ViewHeader } from './ViewHeader.tsx';
 
 const colourOf = (id: string) => SERVO_COLOURS[Number(id) % SERVO_COLOURS.length]!;
@@ -53,6 +54,7 @@ function ServoSeriesView(props: {
   arm: string;
   model: ThermalModelAnswer | null;
   markers?: readonly Marker[];
+  replayAt: ReplayAt;
 }) {
   const { view, servoName, spec, model, markers, name } = props;
   const shown = useMemo(() => {
@@ -86,6 +88,7 @@ function ServoSeriesView(props: {
           title={props.title}
           aligned={shown.aligned}
           spec={shown.spec}
+          replayAt={props.replayAt}
         />
       )}
     </section>
@@ -105,8 +108,10 @@ export function ChartsView(props: {
   joint: string;
   onJoint: (id: string) => void;
   servoName: (id: string) => string;
+  /** The History replay's instant, marked on every chart. */
+  replayAt: ReplayAt;
 }) {
-  const { overview, angles, servoName } = props;
+  const { overview, angles, servoName, replayAt } = props;
   const model = overview.thermal.ok ? overview.thermal.data : null;
   const markers = useMemo(
     () => (overview.audit.ok ? warningMarkers(overview.audit.data.events, servoName) : []),
@@ -178,6 +183,7 @@ export function ChartsView(props: {
         arm={props.arm}
         model={model}
         markers={markers}
+        replayAt={replayAt}
       />
       <ServoSeriesView
         name="volt"
@@ -187,6 +193,7 @@ export function ChartsView(props: {
         servoName={servoName}
         arm={props.arm}
         model={model}
+        replayAt={replayAt}
       />
       <section className="history-view" aria-label="Power drawn by the motion">
         <ViewHeader
@@ -201,6 +208,7 @@ export function ChartsView(props: {
             title="Power drawn by the motion, measured and predicted by the thermal model"
             aligned={power.aligned}
             spec={power.spec}
+            replayAt={replayAt}
           />
         )}
         {model && (
@@ -234,6 +242,7 @@ export function ChartsView(props: {
             title={`Actual and commanded angle of ${servoName(props.joint)}`}
             aligned={angle.aligned}
             spec={angle.spec}
+            replayAt={replayAt}
           />
         )}
       </section>

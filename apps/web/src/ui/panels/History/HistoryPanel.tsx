@@ -78,6 +78,11 @@ export function HistoryPanel() {
     () => new EpisodesApi({ base: apiBase, headers: authHeaders({ username, password }) }),
     [apiBase, username, password],
   );
+  const segmentSource = useMemo(
+    () => ({ base: apiBase, headers: authHeaders({ username, password }) }),
+    [apiBase, username, password],
+  );
+  const replayAt = useCallback(() => (replay.record ? replay.clock.position : null), [replay]);
   const [choice, setChoice] = useState(initialChoice);
   const [tab, setTab] = useState<Tab>('charts');
   const [joint, setJoint] = useState(servoId(0));
@@ -202,6 +207,7 @@ export function HistoryPanel() {
             servoIds={servoIds}
             joint={joint}
             servoName={servoName}
+            replayAt={replayAt}
             onJoint={(id) => {
               setJoint(id);
               if (range) fetchAngles(range, id);
@@ -212,7 +218,14 @@ export function HistoryPanel() {
           <TablesView arm={arm} overview={overview} servoName={servoName} />
         )}
         {tab === 'replay' && (
-          <ReplayControls api={api} arm={arm} range={range} player={replay} joints={replayJoints} />
+          <ReplayControls
+            api={api}
+            arm={arm}
+            range={range}
+            player={replay}
+            joints={replayJoints}
+            segments={segmentSource}
+          />
         )}
         {tab === 'episodes' && (
           <EpisodesView

@@ -2,7 +2,8 @@
  * Replay of the recorded pose over the selected range: load it (`/history/pose`), then play,
  * pause, pick a speed (0.25×–8×) and scrub. The amber sibling arm beside the live one follows;
  * its pose is read by the 3D view's frame loop from the ReplayPlayer, and this panel only
- * samples the position ten times a second. A LeRobot dataset's episode plays the same way
+ * samples the position ten times a second. Every camera of the arm plays its recorded video on
+ * the same time axis (./ReplayVideo.tsx). A LeRobot dataset's episode plays the same way
  * (./DatasetImport.tsx).
  */
 import { useState } from 'react';
@@ -16,6 +17,7 @@ import { ViewError } from './ViewHeader.tsx';
 import { MakePlan } from './MakePlan.tsx';
 import { loadReplay } from './replayLoad.ts';
 import { DatasetImport } from './DatasetImport.tsx';
+import { ReplayVideos, type SegmentSource } from './ReplayVideo.tsx';
 
 const SCRUB_SAMPLE_MS = 100;
 
@@ -40,6 +42,8 @@ export function ReplayControls(props: {
   player: ReplayPlayer;
   /** Per servo of the active robot: its name and the replay's store angle in joint units. */
   joints: readonly ReplayJoint[];
+  /** Where the arm's recorded camera segments are read (the middleware's API). */
+  segments: SegmentSource;
 }) {
   const { player, range } = props;
   const [error, setError] = useState<string | null>(null);
@@ -131,6 +135,7 @@ export function ReplayControls(props: {
           {props.joints.map((j, i) => `${j.name} ${s.angles[i]}`).join(' · ')}
         </p>
       )}
+      <ReplayVideos player={player} arm={props.arm} source={props.segments} />
       <DatasetImport player={player} />
       <MakePlan player={player} loaded={s.loaded} />
     </div>

@@ -49,7 +49,20 @@ const AXIS = {
   font: '10px system-ui',
 };
 
-export function createHistoryChart(el: HTMLElement, spec: ChartSpec, a: Aligned): uPlot {
+/** The History replay's instant, epoch ms (null: no replay loaded), marked on every chart. */
+export type ReplayAt = () => number | null;
+const REPLAY_COLOUR = '#fbbf24';
+
+export function createHistoryChart(
+  el: HTMLElement,
+  spec: ChartSpec,
+  a: Aligned,
+  replayAt?: ReplayAt,
+): uPlot {
+  const replayMarker = (): Marker[] => {
+    const at = replayAt?.() ?? null;
+    return at === null ? [] : [{ at, colour: REPLAY_COLOUR, label: 'replay' }];
+  };
   const include = spec.include;
   const stepped = uPlot.paths.stepped?.({ align: 1 });
   const opts: uPlot.Options = {
@@ -57,7 +70,11 @@ export function createHistoryChart(el: HTMLElement, spec: ChartSpec, a: Aligned)
     height: spec.height,
     legend: { show: true, live: false },
     cursor: { drag: { x: false, y: false } },
-    plugins: [thresholdPlugin(spec.thresholds ?? []), markerPlugin(spec.markers ?? [])],
+    plugins: [
+      thresholdPlugin(spec.thresholds ?? []),
+      markerPlugin(spec.markers ?? []),
+      markerPlugin(replayMarker),
+    ],
     scales: {
       x: { time: true },
       y: {

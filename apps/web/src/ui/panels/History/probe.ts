@@ -13,6 +13,8 @@ export interface ChartProbe {
   max: number[];
   /** Labels of the moments marked (the thermal model's early warnings). */
   markers: string[];
+  /** The replay's instant marked on it now, epoch ms (null: none). */
+  replayAt: number | null;
 }
 
 /** The last "Make plan from this range": samples read, waypoints made, error (MakePlan.tsx). */

@@ -1,0 +1,167 @@
+/**
+ * The replay's cameras: every camera of the arm plays its recorded video (the middleware's MP4
+ * segments, docs/cameras-recording.md) on the replay's time axis, beside the amber arm. For the
+ * replay's instant t, each camera's <video> shows the segment covering t at media time
+ * t − segment start (core/replay/videoAt.ts), kept in step with the replay clock on every
+ * animation frame: played and paused with it, at its speed, moved when it is scrubbed; a gap in
+ * the recording shows "no recording". The cameras are those the arm announces (the camera hub).
+ */
+import { useEffect, useMemo, useRef, useState } from 'react';
+import { useCameras } from '../../hud/HudParts.ts';
+import { useSampled } from '../../hud/useSampled.ts';
+import type { ReplayPlayer } from '../../../core/replay/ReplayPlayer.ts';
+import { needsSeek, videoAt, type RecordedSegment } from '../../../core/replay/videoAt.ts';
+import { fetchSegment, listSegments } from './cameraSegmentsApi.ts';
+import type { Loaded } from './loaded.ts';
+import { ViewError } from './ViewHeader.tsx';
+
+export interface SegmentSource {
+  base: string;
+  headers?: Record<string, string>;
+}
+
+/** One camera's <video>, driven by the replay clock. */
+function CameraReplay(props: {
+  player: ReplayPlayer;
+  camId: string;
+  label: string;
+  segments: readonly RecordedSegment[];
+  /** One segment's MP4 (fetched whole: see ./cameraSegmentsApi.ts). */
+  load: (name: string) => Promise<Blob>;
+}) {
+  const { player, segments, load } = props;
+  const video = useRef<HTMLVideoElement>(null);
+  const [gap, setGap] = useState(true);
+  const [failed, setFailed] = useState<string | null>(null);
+  useEffect(() => {
+    let raf = 0;
+    let shownGap: boolean | null = null;
+    /** The segment asked for, and the blob: URL of the one in the <video>. */
+    let wanted = '';
+    let objectUrl = '';
+    const show = (name: string, startMs: number) => {
+      wanted = name;
+      load(name).then(
+        (blob) => {
+          if (wanted !== name || !video.current) return;
+          if (objectUrl) URL.revokeObjectURL(objectUrl);
+          objectUrl = URL.createObjectURL(blob);
+          video.current.dataset.segmentStart = String(startMs);
+          video.current.src = objectUrl;
+          setFailed(null);
+        },
+        (err: unknown) => wanted === name && setFailed(String(err)),
+      );
+    };
+    const step = () => {
+      raf = requestAnimationFrame(step);
+      const v = video.current;
+      if (!v) return;
+      const clock = player.clock;
+      const at = player.record ? videoAt(segments, clock.position) : null;
+      if ((at === null) !== shownGap) setGap((shownGap = at === null));
+      if (!at) {
+        if (!v.paused) v.pause();
+        return;
+      }
+      if (wanted !== at.segment.name) show(at.segment.name, at.segment.startMs);
+      if (v.dataset.segmentStart !== String(at.segment.startMs)) return; // still loading
+      if (v.readyState < HTMLMediaElement.HAVE_METADATA) return;
+      if (v.playbackRate !== clock.speed) v.playbackRate = clock.speed;
+      if (!v.seeking && needsSeek(v.currentTime, at.offsetS, clock.playing))
+        v.currentTime = at.offsetS;
+      if (clock.playing && v.paused) v.play().catch(() => undefined);
+      else if (!clock.playing && !v.paused) v.pause();
+    };
+    raf = requestAnimationFrame(step);
+    return () => {
+      cancelAnimationFrame(raf);
+      wanted = '';
+      if (objectUrl) URL.revokeObjectURL(objectUrl);
+    };
+  }, [player, segments, load]);
+
+  return (
+    <figure className="replay-video" data-testid={`replay-video-${props.camId}`}>
+      <video
+        ref={(v) => {
+          video.current = v;
+          if (v) v.muted = true;
+        }}
+        aria-label={`Recorded video of ${props.label}`}
+        playsInline
+        preload="auto"
+        hidden={gap}
+      />
+      {gap && <p className="replay-video-gap dim">{props.label}: no recording</p>}
+      {failed && <ViewError error={failed} />}
+      <figcaption className="dim small-print">{props.label}</figcaption>
+    </figure>
+  );
+}
+
+export function ReplayVideos(props: { player: ReplayPlayer; arm: string; source: SegmentSource }) {
+  const { player, arm, source } = props;
+  const { hub } = useCameras();
+  const s = useSampled(() => ({
+    ids: hub.list.map((c) => c.camId),
+    labels: hub.list.map((c) => c.label || c.camId),
+    start: player.record ? player.clock.start : NaN,
+    stop: player.record ? player.clock.stop : NaN,
+  }));
+  const idsKey = s.ids.join('\n');
+  /** The lists answered for this record and these cameras (older answers are not shown). */
+  const loadKey = `${arm} ${s.start} ${s.stop} ${idsKey}`;
+  const [lists, setLists] = useState<{
+    key: string;
+    byCam: Record<string, Loaded<RecordedSegment[]>>;
+  }>({ key: '', byCam: {} });
+  useEffect(() => {
+    if (Number.isNaN(s.start)) return;
+    let gone = false;
+    for (const cam of idsKey ? idsKey.split('\n') : []) {
+      void listSegments(source, arm, cam, { start: s.start, stop: s.stop }).then((l) => {
+        if (gone) return;
+        setLists((prev) => ({
+          key: loadKey,
+          byCam: { ...(prev.key === loadKey ? prev.byCam : {}), [cam]: l },
+        }));
+      });
+    }
+    return () => {
+      gone = true;
+    };
+  }, [s.start, s.stop, idsKey, arm, source, loadKey]);
+  const byCam = lists.key === loadKey ? lists.byCam : {};
+  const loaders = useMemo(
+    () =>
+      Object.fromEntries(
+        s.ids.map((cam) => [cam, (name: string) => fetchSegment(source, arm, cam, name)]),
+      ),
+    // eslint-disable-next-line react-hooks/exhaustive-deps -- idsKey stands for s.ids
+    [idsKey, source, arm],
+  );
+
+  if (Number.isNaN(s.start)) return null;
+  if (s.ids.length === 0)
+    return <p className="dim small-print">No camera announced for {arm}: joints only.</p>;
+  return (
+    <div className="replay-videos">
+      {s.ids.map((cam, i) => {
+        const l = byCam[cam];
+        if (!l) return <p key={cam} className="dim">{`${s.labels[i]}: loading…`}</p>;
+        if (!l.ok) return <ViewError key={cam} error={l.error} />;
+        return (
+          <CameraReplay
+            key={cam}
+            player={player}
+            camId={cam}
+            label={s.labels[i]!}
+            segments={l.data}
+            load={loaders[cam]!}
+          />
+        );
+      })}
+    </div>
+  );
+}

@@ -1,0 +1,170 @@
+/// <reference lib="dom" />
+/**
+ * One timeline (issue 32 item 2), end to end: real Mosquitto, the real simulator, the real
+ * middleware with InfluxDB recording a real camera server (ffmpeg's test source, H.264) in 2 s
+ * MP4 segments (./history-fixtures.ts), the built HUD in the system Chromium. A few seconds are
+ * recorded with the elbow moving and the camera server down for a while; the History replay then
+ * plays the recorded video beside the amber arm: at a paused replay time T the <video>'s media
+ * time + its segment's start is T within one frame while the replay's pose is the stored pose
+ * of T; playing moves the video at the replay's speed; in the camera's gap "no recording" shows;
+ * the History charts mark the replay's instant.
+ */
+import type { Page } from '@playwright/test';
+import { serveCamera, type ServedCameras } from '@armtwin/camera';
+import { angleFromPwm, pwmFromAngle } from '@armtwin/protocol';
+import { shot } from './fixtures.ts';
+import { expect, test, type StorageStack } from './history-fixtures.ts';
+import { until } from './support/sim.ts';
+import { freePort } from '../helpers/services.ts';
+
+const FPS = 30;
+const FRAME_MS = 1000 / FPS;
+/** 45° as stored: the angle of the pulse the sim reports (whole µs). */
+const ELBOW_45 = angleFromPwm(pwmFromAngle(45, 1), 1);
+
+interface Listed {
+  name: string;
+  startMs: number;
+  endMs: number;
+}
+interface ReplayHook {
+  __armtwin?: {
+    replay: { angles: Float64Array; clock: { position: number } };
+    history: { charts: Record<string, { replayAt: number | null } | undefined> };
+  };
+}
+
+const cameras: ServedCameras[] = [];
+test.afterAll(async () => {
+  await Promise.all(cameras.map((c) => c.stop()));
+});
+
+async function startCamera(stack: StorageStack, armId: string, port: number) {
+  const c = await serveCamera({
+    cameras: [{ armId, camId: 'front', label: 'Front', source: 'testsrc', kinds: ['h264-ws'] }],
+    port,
+    mqttUrl: stack.broker.url,
+  });
+  cameras.push(c);
+  await c.announced;
+  return c;
+}
+
+async function segments(stack: StorageStack, armId: string): Promise<Listed[]> {
+  const res = await fetch(`${stack.apiUrl}/arms/${armId}/cameras/front/segments`);
+  expect(res.status).toBe(200);
+  return ((await res.json()) as { segments: Listed[] }).segments;
+}
+
+const covered = (list: Listed[], t: number) => list.some((s) => s.startMs <= t && t <= s.endMs);
+
+/** What the replay's <video> shows now: its segment's start + media time, and its state. */
+const videoNow = (page: Page) =>
+  page
+    .getByTestId('replay-video-front')
+    .locator('video')
+    .evaluate((v: HTMLVideoElement) => ({
+      shownMs: Number(v.dataset.segmentStart) + v.currentTime * 1000,
+      paused: v.paused,
+      rate: v.playbackRate,
+      decoded: v.readyState >= HTMLMediaElement.HAVE_CURRENT_DATA,
+      hidden: v.hidden,
+    }));
+
+const replayElbow = (page: Page) =>
+  page.evaluate(() => (window as unknown as ReplayHook).__armtwin!.replay.angles[2]!);
+const replayPosition = (page: Page) =>
+  page.evaluate(() => (window as unknown as ReplayHook).__armtwin!.replay.clock.position);
+
+/** Scrubs to `t` and waits until the paused video shows `t` within one frame. */
+async function scrubTo(page: Page, t: number) {
+  await page.getByRole('slider', { name: 'Replay position' }).fill(String(t));
+  await expect
+    .poll(async () => {
+      const v = await videoNow(page);
+      return { ...v, withinFrame: Math.abs(v.shownMs - t) <= FRAME_MS };
+    })
+    .toMatchObject({ decoded: true, hidden: false, paused: true, withinFrame: true });
+}
+
+test('one timeline: the replay plays the recorded camera with the twin', async ({
+  hud,
+  arm,
+  stack,
+}, testInfo) => {
+  test.setTimeout(120_000);
+  const { page } = hud;
+  const port = await freePort();
+  const camera = await startCamera(stack, arm.id, port);
+  await expect
+    .poll(async () => (await segments(stack, arm.id)).length, { timeout: 30_000 })
+    .toBeGreaterThanOrEqual(1);
+
+  // Home (0°) for a while, then 45° for a while, all on camera.
+  await page.waitForTimeout(2000);
+  const atHome = Date.now() - 1000;
+  await page.getByRole('slider', { name: 'Elbow', exact: true }).fill('45');
+  const want = pwmFromAngle(45, 1);
+  await until(() => arm.observer.pwm[2] === want, 10_000, `the sim's elbow at ${want} µs`);
+  await page.waitForTimeout(2500);
+  const at45 = Date.now() - 1000;
+
+  // The camera server goes away for a few seconds: a gap in the recording.
+  await camera.stop();
+  const down = Date.now();
+  await page.waitForTimeout(4000);
+  await startCamera(stack, arm.id, port);
+  await expect
+    .poll(async () => (await segments(stack, arm.id)).some((s) => s.startMs > down), {
+      timeout: 30_000,
+    })
+    .toBe(true);
+  const list = await segments(stack, arm.id);
+  const inGap = down + 2000;
+  expect(covered(list, atHome) && covered(list, at45)).toBe(true);
+  expect(covered(list, inGap)).toBe(false);
+
+  await page.locator('summary', { hasText: 'History' }).click();
+  await page.getByRole('tab', { name: 'Replay' }).click();
+  await page.getByRole('button', { name: 'Load replay' }).click();
+  await expect(page.getByTestId('replay-video-front')).toBeVisible();
+
+  // Paused at T: the video shows T within a frame, the twin the stored pose of T.
+  await scrubTo(page, at45);
+  expect(await replayElbow(page)).toBeCloseTo(ELBOW_45, 3);
+  await shot(page, testInfo, 'replay-video-45');
+  await scrubTo(page, atHome);
+  expect(await replayElbow(page)).toBeCloseTo(0, 1);
+
+  // In the gap: no picture, "no recording".
+  await page.getByRole('slider', { name: 'Replay position' }).fill(String(inGap));
+  await expect(page.getByTestId('replay-video-front')).toContainText('Front: no recording');
+  expect((await videoNow(page)).hidden).toBe(true);
+  await shot(page, testInfo, 'replay-video-gap');
+
+  // Played at 2×: the video plays at 2× with the replay; paused, they agree again.
+  await scrubTo(page, atHome - 1000);
+  await page.getByLabel('Replay speed').selectOption('2');
+  await page.getByRole('button', { name: 'Play', exact: true }).click();
+  await expect.poll(async () => (await videoNow(page)).paused).toBe(false);
+  expect((await videoNow(page)).rate).toBe(2);
+  await expect.poll(async () => (await videoNow(page)).shownMs).toBeGreaterThan(atHome);
+  await page.getByRole('button', { name: 'Pause', exact: true }).click();
+  const t = await replayPosition(page);
+  await expect
+    .poll(async () => {
+      const v = await videoNow(page);
+      return v.paused && Math.abs(v.shownMs - t) <= FRAME_MS;
+    })
+    .toBe(true);
+
+  // The charts (temperature, voltage, power, angle) mark the replay's instant on their time axis.
+  await page.getByRole('tab', { name: 'Charts' }).click();
+  await expect
+    .poll(() =>
+      page.evaluate(
+        () => (window as unknown as ReplayHook).__armtwin!.history.charts['temp']?.replayAt,
+      ),
+    )
+    .toBe(t);
+});
