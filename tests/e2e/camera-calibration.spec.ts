@@ -15,7 +15,7 @@ import mqtt, { type MqttClient } from 'mqtt';
 import { serveCamera, type ServedCameras } from '@armtwin/camera';
 import { projectPoint, type CameraPose, type Vec3 } from '@armtwin/camera/client';
 import { encodeMove } from '@armtwin/protocol';
-import { expect, renderedAngles, shot, test } from './fixtures.ts';
+import { expect, renderedAngles, shot, test, type HudWindow } from './fixtures.ts';
 import {
   diffSnaps,
   picturePatch,
@@ -247,14 +247,24 @@ test.describe('camera view-through and calibration', () => {
     const jog = async (pwm: number[]) => {
       const group = `{${pwm.map((p, id) => encodeMove(id, p, 400)).join('')}}`;
       await client!.publishAsync(control, group, { qos: 1 });
-      // Until the twin is drawn where the arm is, and holds still.
+      // Until the arm is there, the page has its report of it, and the twin is drawn there
+      // and holds still (still alone is not enough: on a loaded page the twin can stand at
+      // the end of its prediction while the last reports are still on their way).
+      const seen = () =>
+        page.evaluate(() => {
+          const s = (window as unknown as HudWindow).__armtwin!.store;
+          return { pwm: Array.from(s.pwm), angle: Array.from(s.angle) };
+        });
       await expect
         .poll(async () => {
           const a = await renderedAngles(page);
           await sleep(200);
           const b = await renderedAngles(page);
+          const page_ = await seen();
           return (
             arm.observer.pwm.slice(0, 4).every((v, i) => Math.abs(v - pwm[i]!) <= 2) &&
+            page_.pwm.slice(0, 4).every((v, i) => Math.abs(v - pwm[i]!) <= 2) &&
+            b.every((v, i) => !(Math.abs(v - page_.angle[i]!) >= 0.05)) &&
             a.every((v, i) => Math.abs(v - b[i]!) < 0.05)
           );
         })

@@ -128,7 +128,12 @@ export { expect };
 export interface HudWindow {
   __armtwin?: {
     ready: boolean;
-    store: { rendered: Float64Array; pwm: Float64Array; commandedPwm: Float64Array };
+    store: {
+      rendered: Float64Array;
+      pwm: Float64Array;
+      angle: Float64Array;
+      commandedPwm: Float64Array;
+    };
     viewer: { renderedFrames: number };
   };
 }
