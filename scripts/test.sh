@@ -14,7 +14,7 @@ START=$(date +%s)
 FAILED=0
 
 mkdir -p "$RESULTS"
-rm -f "$RESULTS"/vitest-*.json "$RESULTS/e2e-results.json" "$STEPS"
+rm -f "$RESULTS"/vitest-*.json "$RESULTS"/e2e-*.json "$STEPS"
 
 finish() {
   local rc=$?
@@ -74,7 +74,10 @@ if [ "$has_build" != yes ]; then
 elif [ -z "$has_specs" ]; then
   skip e2e 'no specs in tests/e2e'
 elif step build-web '' npm run build -w @armtwin/web; then
-  step e2e "$RESULTS/e2e-results.json" npx playwright test || true
+  # Two at a time, then the specs that must run alone (playwright.config.ts says which).
+  step e2e "$RESULTS/e2e-results.json" npx playwright test --project shared || true
+  E2E_REPORT="$RESULTS/e2e-alone-results.json" \
+    step e2e-alone "$RESULTS/e2e-alone-results.json" npx playwright test --project alone || true
 else
   skip e2e 'web build failed'
 fi
