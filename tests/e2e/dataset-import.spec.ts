@@ -5,7 +5,9 @@
  * make_dataset.py in the pyenv-lerobot venv), picked as a folder in the History panel's replay
  * (Chromium, real Mosquitto, a simulated SO-101), and played on the amber sibling. Its joints on
  * the twin match the file, frame by frame, in armtwin's units (the gripper back from 0–100 %);
- * "Make plan from this range" turns it into a plan.
+ * its camera (`observation.images.front`, LeRobot's own AV1 encoding, both episodes in one v3.0
+ * MP4) shows that frame's picture under the scrubber, paused and at 4×; "Make plan from this
+ * range" turns it into a plan.
  */
 import fs from 'node:fs';
 import os from 'node:os';
@@ -18,6 +20,8 @@ import { runLerobotScript } from '../helpers/lerobot-python.ts';
 
 const SO101 = loadProfile('so101');
 const FPS = 30;
+/** make_dataset.py draws frame k of episode e as the number 64 e + k in eight bars. */
+const CAMERA = { key: 'front', width: 160, height: 120 };
 
 /** Episode e's frame k in LeRobot's units: every joint sweeps, the gripper opens 0 → 87 %. */
 function frame(e: number, k: number): number[] {
@@ -38,7 +42,11 @@ let root = '';
 test.beforeAll(async ({}) => {
   test.setTimeout(180_000);
   root = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-import-')), 'so101-sweep');
-  runLerobotScript('make_dataset.py', { root, fps: FPS, episodes: EPISODES }, 'lerobot, numpy');
+  runLerobotScript(
+    'make_dataset.py',
+    { root, fps: FPS, camera: CAMERA, episodes: EPISODES },
+    'lerobot, numpy',
+  );
 });
 
 test.afterAll(() => {
@@ -74,6 +82,28 @@ async function atFrame(page: Page, k: number) {
   return page.evaluate(() => ({
     angles: Array.from((window as unknown as ImportHook).__armtwin!.replay.angles),
   }));
+}
+
+/** The dataset camera's picture as the user sees it: the number its eight bars draw. */
+function shownNumber(page: Page) {
+  return page
+    .getByTestId('replay-video-dataset-front')
+    .locator('video')
+    .evaluate((v) => {
+      const video = v as HTMLVideoElement;
+      if (video.hidden || video.seeking || video.readyState < HTMLMediaElement.HAVE_CURRENT_DATA)
+        return null;
+      const c = document.createElement('canvas');
+      [c.width, c.height] = [video.videoWidth, video.videoHeight];
+      const g = c.getContext('2d')!;
+      g.drawImage(video, 0, 0);
+      let n = 0;
+      for (let bit = 0; bit < 8; bit++) {
+        const [r] = g.getImageData(((bit + 0.5) * c.width) / 8, c.height / 2, 1, 1).data;
+        n = n * 2 + (r! > 128 ? 1 : 0);
+      }
+      return n;
+    });
 }
 
 /** The three.js replay sibling's joints (deg), or null while it is not shown. */
@@ -135,12 +165,26 @@ test('a dataset written by LeRobot plays on the twin with the file’s joint val
           { message: `the drawn model at frame ${k}` },
         )
         .toEqual(want.map(() => true));
+      // Its camera at that instant: episode 1's frame k, from the middle of the shared MP4.
+      await expect
+        .poll(() => shownNumber(page), { message: `the dataset video at frame ${k}` })
+        .toBe(64 + k);
     }
+    const video = page.getByTestId('replay-video-dataset-front').locator('video');
+    expect(await video.evaluate((v) => (v as HTMLVideoElement).paused)).toBe(true);
     expect(await atFrame(page, 44).then((s) => s.angles[5])).toBeCloseTo(
       degreesFromLerobot(SO101.servos[5]!, Math.fround((44 * 87) / 59)),
       3,
     );
     await shot(page, testInfo, 'dataset-import');
+
+    // Played at 4× from frame 7: the video plays at 4× and stops with the joints on the last frame.
+    await atFrame(page, 7);
+    await page.getByLabel('Replay speed').selectOption('4');
+    await page.getByRole('button', { name: 'Play', exact: true }).click();
+    await expect.poll(() => video.evaluate((v) => (v as HTMLVideoElement).playbackRate)).toBe(4);
+    await expect.poll(() => shownNumber(page), { message: 'the last frame' }).toBe(64 + 44);
+    await expect.poll(() => video.evaluate((v) => (v as HTMLVideoElement).paused)).toBe(true);
 
     // Played as a recording: a plan from it, to rehearse in Model mode and run.
     await page.getByRole('button', { name: 'Make plan from this range' }).click();

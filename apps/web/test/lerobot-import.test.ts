@@ -82,13 +82,22 @@ describe('reading a dataset folder', () => {
     );
   });
 
-  test('v2.1: per-episode data files and meta/tasks.jsonl', async () => {
+  test('v2.1: per-episode data files, meta/tasks.jsonl and one video per episode', async () => {
     const { root, files } = exported('old');
     const info = JSON.parse(fs.readFileSync(path.join(root, 'meta/info.json'), 'utf8'));
+    const key = 'observation.images.wrist';
     fs.writeFileSync(
       path.join(root, 'meta/info.json'),
-      JSON.stringify({ ...info, codebase_version: 'v2.1' }),
+      JSON.stringify({
+        ...info,
+        codebase_version: 'v2.1',
+        video_path: 'videos/chunk-{episode_chunk:03d}/{video_key}/episode_{episode_index:06d}.mp4',
+        features: { ...info.features, [key]: { dtype: 'video', shape: [48, 64, 3] } },
+      }),
     );
+    // Episode 1's video only: episode 0's is missing from the folder.
+    fs.mkdirSync(path.join(root, 'videos/chunk-000', key), { recursive: true });
+    fs.writeFileSync(path.join(root, 'videos/chunk-000', key, 'episode_000001.mp4'), 'mp4');
     fs.renameSync(
       path.join(root, 'data/chunk-000/file-000.parquet'),
       path.join(root, 'data/chunk-000/episode_000000.parquet'),
@@ -104,6 +113,16 @@ describe('reading a dataset folder', () => {
       ['pick', 7],
       ['place', 5],
     ]);
+    expect(d.videoKeys).toEqual([key]);
+    const [first, second] = d.episodes.map((e) => e.videos[0]!);
+    expect(first).toMatchObject({ file: null });
+    expect(second!.clip).toEqual({
+      key,
+      path: `videos/chunk-000/${key}/episode_000001.mp4`,
+      fromS: 0,
+      toS: 5 / 30,
+    });
+    expect(await second!.file!.text()).toBe('mp4');
   });
 
   test('what is not a usable dataset is refused, saying why', async () => {

@@ -16,7 +16,7 @@ type Servo = Pick<ProfileServo, 'key' | 'name' | 'min' | 'max'>;
 export function recordFromEpisode(
   servos: readonly Servo[],
   names: readonly string[],
-  episode: DatasetEpisode,
+  episode: Omit<DatasetEpisode, 'videos'>,
   startMs: number,
 ): { ok: true; record: ReplayRecord } | { ok: false; error: string } {
   const columns = servos.map((s) => names.indexOf(lerobotMotorName(s)));

@@ -3,16 +3,36 @@
  * `meta/tasks.parquet`, `data/chunk-NNN/file-NNN.parquet`) and v2.1 (`meta/tasks.jsonl`,
  * `data/chunk-NNN/episode_NNNNNN.parquet`). The frames' Parquet is read with hyparquet (pure
  * JavaScript, the reader beside the export's hyparquet-writer): `observation.state`,
- * `action`, `timestamp`, `episode_index`, `task_index`. Video features are not read. Every
- * refusal says what is missing. No DOM: the files come as `DatasetFile`s.
+ * `action`, `timestamp`, `episode_index`, `task_index`. Each video feature
+ * (`observation.images.<cam>`) gives every episode its clip: which MP4 of the folder, and where
+ * in it (./episodeVideo.ts; v3.0 from meta/episodes). Every refusal says what is missing. No
+ * DOM: the files come as `DatasetFile`s.
  */
 import { parquetReadObjects } from 'hyparquet';
+import {
+  v21Clip,
+  v3Clip,
+  v3Columns,
+  videoKeys,
+  type EpisodeClip,
+  type VideoInfo,
+} from './episodeVideo.ts';
 
 export interface DatasetFile {
   /** Path inside the picked folder, `/`-separated; a leading folder name is allowed. */
   path: string;
   arrayBuffer(): Promise<ArrayBuffer>;
   text(): Promise<string>;
+  /** The file itself where it is one (a picked File): played without a copy. */
+  blob?(): Blob;
+}
+
+/** One camera of an episode: its clip (or why there is none) and the folder's MP4. */
+export interface EpisodeVideo {
+  key: string;
+  clip: EpisodeClip | string;
+  /** Null where the folder lacks the clip's file. */
+  file: DatasetFile | null;
 }
 
 export interface DatasetEpisode {
@@ -23,6 +43,8 @@ export interface DatasetEpisode {
   /** One row per frame, in LeRobot's units, in `names` order. */
   state: number[][];
   action: number[][];
+  /** One per video feature of the dataset. */
+  videos: EpisodeVideo[];
 }
 
 export interface LerobotDataset {
@@ -33,6 +55,8 @@ export interface LerobotDataset {
   robotType: string;
   /** The motors of `observation.state` (`shoulder_pan.pos`, …). */
   names: string[];
+  /** Its video features, `observation.images.<cam>`. */
+  videoKeys: string[];
   episodes: DatasetEpisode[];
 }
 
@@ -74,14 +98,50 @@ const vector = (v: unknown, what: string): number[] => {
   return v.map(Number);
 };
 
+/** v3.0: each episode's meta/episodes row (the video columns only), by episode index. */
+async function readEpisodeRows(
+  byPath: Map<string, DatasetFile>,
+  keys: readonly string[],
+): Promise<Map<number, Record<string, unknown>>> {
+  const out = new Map<number, Record<string, unknown>>();
+  if (keys.length === 0) return out;
+  const paths = [...byPath.keys()].filter((p) => /^meta\/episodes\/.+\.parquet$/.test(p)).sort();
+  for (const path of paths) {
+    const rows = await parquetReadObjects({
+      file: await byPath.get(path)!.arrayBuffer(),
+      columns: ['episode_index', ...keys.flatMap(v3Columns)],
+    });
+    for (const r of rows) out.set(num(r.episode_index), r);
+  }
+  return out;
+}
+
+/** The episode's clip of every video feature, with the folder's file for it. */
+function episodeVideos(
+  info: VideoInfo & { codebase_version?: string },
+  keys: readonly string[],
+  ep: DatasetEpisode,
+  rows: Map<number, Record<string, unknown>>,
+  byPath: Map<string, DatasetFile>,
+): EpisodeVideo[] {
+  return keys.map((key) => {
+    const clip =
+      info.codebase_version === 'v2.1'
+        ? v21Clip(info, key, ep.index, ep.timestamps.length)
+        : v3Clip(info, key, rows.get(ep.index) ?? { episode_index: ep.index });
+    const file = typeof clip === 'string' ? null : (byPath.get(clip.path) ?? null);
+    return { key, clip, file };
+  });
+}
+
 /** Reads the folder's metadata and every episode's frames. */
 export async function readLerobotDataset(files: readonly DatasetFile[]): Promise<LerobotDataset> {
   const { name, byPath } = rooted(files);
-  const info = JSON.parse(await byPath.get('meta/info.json')!.text()) as {
+  const info = JSON.parse(await byPath.get('meta/info.json')!.text()) as VideoInfo & {
     codebase_version?: string;
     fps?: number;
     robot_type?: string | null;
-    features?: Record<string, { names?: unknown }>;
+    features?: Record<string, { names?: unknown; dtype?: string }>;
   };
   const version = String(info.codebase_version ?? '');
   if (!(SUPPORTED_VERSIONS as readonly string[]).includes(version))
@@ -105,7 +165,7 @@ export async function readLerobotDataset(files: readonly DatasetFile[]): Promise
       let ep = episodes.get(e);
       if (!ep) {
         const task = tasks.get(num(r.task_index)) ?? '';
-        ep = { index: e, task, timestamps: [], state: [], action: [] };
+        ep = { index: e, task, timestamps: [], state: [], action: [], videos: [] };
         episodes.set(e, ep);
       }
       const state = vector(r['observation.state'], `${path}: observation.state`);
@@ -114,12 +174,16 @@ export async function readLerobotDataset(files: readonly DatasetFile[]): Promise
       ep.action.push(r.action === undefined ? state : vector(r.action, `${path}: action`));
     }
   }
+  const keys = videoKeys(info);
+  const rows = version === 'v2.1' ? new Map() : await readEpisodeRows(byPath, keys);
+  for (const ep of episodes.values()) ep.videos = episodeVideos(info, keys, ep, rows, byPath);
   return {
     name,
     version,
     fps: Number(info.fps),
     robotType: String(info.robot_type ?? ''),
     names: names as string[],
+    videoKeys: keys,
     episodes: [...episodes.values()].sort((a, b) => a.index - b.index),
   };
 }

@@ -2,7 +2,8 @@
  * "Open a LeRobot dataset" in the replay's controls (docs/dataset.md, "Import"): pick the
  * dataset's folder (v3.0, or v2.1), choose an episode, and it plays on the amber sibling like
  * a stored range: its `observation.state` converted back to this robot's servo angles
- * (core/dataset). Nothing leaves the page. "Make plan from this range" below then turns it into
+ * (core/dataset), and each of its camera videos under it (./DatasetVideos.tsx). Nothing leaves
+ * the page. "Make plan from this range" below then turns it into
  * a plan, to rehearse in Model mode and run through the controller's limits and zones.
  */
 import { useState } from 'react';
@@ -15,6 +16,7 @@ import {
 } from '../../../core/dataset/lerobotDataset.ts';
 import { recordFromEpisode } from '../../../core/dataset/episodeRecord.ts';
 import { fixed } from './format.ts';
+import { DatasetVideos, type LoadedEpisode } from './DatasetVideos.tsx';
 
 type Note = { text: string; bad: boolean };
 
@@ -24,6 +26,7 @@ const datasetFiles = (list: FileList): DatasetFile[] =>
     path: f.webkitRelativePath || f.name,
     arrayBuffer: () => f.arrayBuffer(),
     text: () => f.text(),
+    blob: () => f,
   }));
 
 export function DatasetImport(props: { player: ReplayPlayer }) {
@@ -31,6 +34,7 @@ export function DatasetImport(props: { player: ReplayPlayer }) {
   const [dataset, setDataset] = useState<LerobotDataset | null>(null);
   const [episode, setEpisode] = useState(0);
   const [note, setNote] = useState<Note | null>(null);
+  const [loaded, setLoaded] = useState<LoadedEpisode | null>(null);
 
   const open = (list: FileList | null) => {
     if (!list || list.length === 0) return;
@@ -57,6 +61,7 @@ export function DatasetImport(props: { player: ReplayPlayer }) {
     const r = recordFromEpisode(spec.profile.servos, dataset.names, ep, Date.now());
     if (!r.ok) return setNote({ text: `Not for ${spec.name}: ${r.error}.`, bad: true });
     props.player.load(r.record);
+    setLoaded({ record: r.record, fps: dataset.fps, videos: ep.videos });
     const seconds = (r.record.stop - r.record.start) / 1000;
     setNote({
       text: `Episode ${ep.index} ("${ep.task}") loaded on the replay: ${ep.timestamps.length} frames, ${fixed(seconds, 1)} s. Play it, or make a plan from it.`,
@@ -72,7 +77,7 @@ export function DatasetImport(props: { player: ReplayPlayer }) {
           <input
             type="file"
             aria-label="LeRobot dataset folder"
-            // The whole folder: meta/info.json, meta/tasks.*, data/…/*.parquet.
+            // The whole folder: meta/info.json, meta/tasks.*, data/…/*.parquet, videos/….
             {...{ webkitdirectory: '', directory: '' }}
             multiple
             onChange={(e) => open(e.currentTarget.files)}
@@ -102,6 +107,7 @@ export function DatasetImport(props: { player: ReplayPlayer }) {
           {note.text}
         </p>
       )}
+      <DatasetVideos player={props.player} loaded={loaded} />
     </div>
   );
 }

@@ -20,8 +20,8 @@ export interface SegmentSource {
   headers?: Record<string, string>;
 }
 
-/** One camera's <video>, driven by the replay clock. */
-function CameraReplay(props: {
+/** One camera's <video>, driven by the replay clock (also an imported dataset's: ./DatasetVideos.tsx). */
+export function CameraReplay(props: {
   player: ReplayPlayer;
   camId: string;
   label: string;
