@@ -246,7 +246,7 @@ describe.each(DRIVERS.map((d, i) => ({ ...d, arm: `behaviour-${i}` })))(
         30_000,
         'the request to end',
       );
-      expect(done).toMatchObject({ status: 'done' });
+      expect(done, JSON.stringify(done)).toMatchObject({ status: 'done' });
       await reaches(0, 40.5, from); // 1800 µs = +40.5° through the profile (§2)
     });
 

@@ -130,8 +130,12 @@ describe('a leader arm drives its follower through the controller (armtwin gatew
       hand({ 1: deg });
       await new Promise((r) => setTimeout(r, 400));
     }
-    // The leader's pose goes on being announced; the follower does not move.
-    expect(poses.slice(posesFrom).some((p) => /#001A-04[45]\.\d\d!/.test(p))).toBe(true);
+    // The leader's pose goes on being announced (waited for: on a loaded machine the last
+    // hand move can be announced after the 400 ms above); the follower does not move.
+    await until(
+      () => poses.slice(posesFrom).some((p) => /#001A-04[45]\.\d\d!/.test(p)),
+      "the leader's pose at −45° announced",
+    );
     expect(pan(from).length).toBeGreaterThan(10);
     expect(pan(from).every((d) => near(d, stopped))).toBe(true);
     expect(audit.slice(auditFrom).some((e) => e.kind === 'e-stop-released')).toBe(false);
