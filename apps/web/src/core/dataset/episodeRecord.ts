@@ -40,6 +40,7 @@ export function recordFromEpisode(
       angles,
       start: times[0]!,
       stop: Math.max(times.at(-1)!, times[0]! + 1),
+      dataset: `episode ${episode.index}`,
     },
   };
 }

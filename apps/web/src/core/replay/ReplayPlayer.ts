@@ -12,6 +12,8 @@ export interface ReplayRecord extends PoseRecord {
   /** The selected range, epoch ms: what the scrubber spans. */
   start: number;
   stop: number;
+  /** An imported dataset's episode (its own time, not the arm's history), by its name. */
+  dataset?: string;
 }
 
 export class ReplayPlayer {

@@ -52,6 +52,7 @@ export function ReplayControls(props: {
   const s = useSampled(
     () => ({
       loaded: player.record !== null,
+      dataset: player.record?.dataset !== undefined,
       playing: player.clock.playing,
       position: player.clock.position,
       start: player.clock.start,
@@ -135,7 +136,8 @@ export function ReplayControls(props: {
           {props.joints.map((j, i) => `${j.name} ${s.angles[i]}`).join(' · ')}
         </p>
       )}
-      <ReplayVideos player={player} arm={props.arm} source={props.segments} />
+      {/* the arm's recorded cameras belong to its history, not to an imported episode */}
+      {!s.dataset && <ReplayVideos player={player} arm={props.arm} source={props.segments} />}
       <DatasetImport player={player} />
       <MakePlan player={player} loaded={s.loaded} />
     </div>
