@@ -15,6 +15,7 @@ import { CHROMIUM_ARGS, CHROMIUM_PATH } from './tests/helpers/chromium.ts';
  */
 const ALONE = [
   'hud-rate',
+  'hold-jog',
   'predictive-twin',
   'render-worker',
   'camera-calibration',
