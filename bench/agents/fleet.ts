@@ -3,8 +3,8 @@
  * the real simulator (`startSim` of @armtwin/sim, its own MQTT connection, status at `rate` Hz).
  * Prints one JSON line each:
  * - `{"ready":N,"startS":…}` once every arm is started;
- * - on SIGUSR2, `{"atMs":…,"samples":{arm: state samples published so far}}` (a rate snapshot,
- *   in this process's clock);
+ * - on SIGUSR2, `{"atMs":…,"samples":{arm: n},"payloads":{arm: n}}`: the state samples and the
+ *   state payloads (messages) each arm published so far, in this process's clock;
  * - on SIGTERM, after stopping every arm (each says offline),
  *   `{"published":{arm:{"state","health","servos"}}}`, then exits.
  * Usage: fleet.ts <mqtt url> <first> <last> <rate Hz> <id prefix>
@@ -33,8 +33,12 @@ for (let i = Number(firstS); i <= Number(lastS); i += 10) {
 say({ ready: sims.length, startS: (performance.now() - t0) / 1000 });
 process.on('SIGUSR2', () => {
   const samples: Record<string, number> = {};
-  for (const { arm, sim } of sims) samples[arm] = sim.publishedSamples?.state ?? 0;
-  say({ atMs: performance.now(), samples });
+  const payloads: Record<string, number> = {};
+  for (const { arm, sim } of sims) {
+    samples[arm] = sim.publishedSamples?.state ?? 0;
+    payloads[arm] = sim.published?.state ?? 0;
+  }
+  say({ atMs: performance.now(), samples, payloads });
 });
 process.once('SIGTERM', () => {
   void Promise.all(sims.map(({ sim }) => sim.stop())).then(() => {

@@ -1,12 +1,20 @@
 /**
  * A fleet step's simulators (issue 34 item 3): arms 1…N spread over P processes of
  * ../agents/fleet.ts (./fleet-steps.ts says how), each hosting a range of arms. Takes rate
- * snapshots from all of them at once (SIGUSR2) and, on stop, what every arm published.
+ * snapshots from all of them at once (SIGUSR2) and, on stop, what every arm published; measures
+ * a window (rates, CPU, memory); reads back what InfluxDB holds per arm.
  */
+import fs from 'node:fs';
 import path from 'node:path';
 import { startAgent } from './stack.ts';
-import type { Child } from './proc.ts';
-import { ratesByArm, splitArms, type ArmPublished } from './fleet-steps.ts';
+import { cpuMeter, sleep, type Child } from './proc.ts';
+import {
+  rateSummary,
+  ratesByArm,
+  splitArms,
+  type ArmPublished,
+  type RateSummary,
+} from './fleet-steps.ts';
 
 /** The JSON lines a child prints on stdout, one at a time, each awaited with a bound. */
 function lineReader(child: Child, what: string) {
@@ -46,7 +54,9 @@ function lineReader(child: Child, what: string) {
 
 interface Snapshot {
   atMs: number;
+  /** State samples and state payloads (messages) each arm published so far. */
   samples: Record<string, number>;
+  payloads: Record<string, number>;
 }
 
 export interface FleetSims {
@@ -92,17 +102,100 @@ export async function startFleetSims(o: {
     async stop() {
       const finals = agents.map((a) => a.next<{ published: Record<string, ArmPublished> }>(30_000));
       for (const a of agents) a.child.proc.kill('SIGTERM');
-      const out = Object.assign({}, ...(await Promise.all(finals)).map((f) => f.published)) as Record<
-        string,
-        ArmPublished
-      >;
-      await stopAll();
-      return out;
+      try {
+        return Object.assign({}, ...(await Promise.all(finals)).map((f) => f.published)) as Record<
+          string,
+          ArmPublished
+        >;
+      } finally {
+        await stopAll();
+      }
     },
   };
 }
 
-/** Each arm's state samples a second between two snapshots of the same processes. */
-export function windowRates(a: Snapshot[], b: Snapshot[]): Record<string, number> {
-  return Object.assign({}, ...a.map((s, k) => ratesByArm(s, b[k]!))) as Record<string, number>;
+/** Each arm's state samples (or payloads) a second between two snapshots of the same processes. */
+export function windowRates(
+  a: Snapshot[],
+  b: Snapshot[],
+  what: 'samples' | 'payloads' = 'samples',
+): Record<string, number> {
+  const pick = (s: Snapshot) => ({ atMs: s.atMs, samples: s[what] });
+  return Object.assign({}, ...a.map((s, k) => ratesByArm(pick(s), pick(b[k]!)))) as Record<
+    string,
+    number
+  >;
+}
+
+/** Resident memory of a process, MiB (NaN once it is gone). */
+function rssMiB(pid: number): number {
+  try {
+    const m = /VmRSS:\s+(\d+) kB/.exec(fs.readFileSync(`/proc/${pid}/status`, 'utf8'));
+    return m ? Number(m[1]) / 1024 : NaN;
+  } catch {
+    return NaN;
+  }
+}
+
+export interface Window {
+  /** Each arm's state samples a second, and state payloads (messages) a second. */
+  rates: RateSummary;
+  payloads: RateSummary;
+  /** State payloads the arms published in the window, and the status messages the subscriber saw. */
+  publishedMessages: number;
+  seen: number;
+  /** Share of a core and resident MiB: each simulator process, then each of `others`. */
+  cpu: number[];
+  rss: number[];
+}
+
+/** A measuring window of `windowS` over the simulators and the `others` processes. */
+export async function measureWindow(
+  sims: FleetSims,
+  others: number[],
+  seen: () => number,
+  windowS: number,
+): Promise<Window> {
+  const pids = [...sims.pids, ...others];
+  const meters = pids.map((p) => cpuMeter(p));
+  for (const m of meters) m.start();
+  const seen0 = seen();
+  const a = await sims.snapshot();
+  await sleep(windowS * 1000);
+  const b = await sims.snapshot();
+  const seenN = seen() - seen0;
+  const cpu = meters.map((m) => m.stop().share);
+  const payloads = windowRates(a, b, 'payloads');
+  const s = (b[0]!.atMs - a[0]!.atMs) / 1000;
+  return {
+    rates: rateSummary(windowRates(a, b)),
+    payloads: rateSummary(payloads),
+    publishedMessages: Math.round(Object.values(payloads).reduce((x, v) => x + v, 0) * s),
+    seen: seenN,
+    cpu,
+    rss: pids.map(rssMiB),
+  };
+}
+
+/** Servo points (angles and temperatures) InfluxDB holds per arm for arms named `prefix…`. */
+export async function storedByArm(
+  url: string,
+  db: string,
+  prefix: string,
+): Promise<Record<string, number>> {
+  const q = `SELECT count("angle"), count("temp") FROM "servo" WHERE "arm" =~ /^${prefix}/ GROUP BY "arm"`;
+  const res = await fetch(`${url}/query?db=${encodeURIComponent(db)}`, {
+    method: 'POST',
+    body: new URLSearchParams({ q }),
+  }).catch(() => null);
+  const out: Record<string, number> = {};
+  if (!res?.ok) return out;
+  const body = (await res.json()) as {
+    results?: { series?: { tags?: { arm?: string }; values: unknown[][] }[] }[];
+  };
+  for (const s of body.results?.[0]?.series ?? []) {
+    const v = s.values[0] ?? [];
+    if (s.tags?.arm) out[s.tags.arm] = Number(v[1] ?? 0) + Number(v[2] ?? 0);
+  }
+  return out;
 }

@@ -117,15 +117,22 @@ export function lossByArm(
 /** Below this share of the rate a step did not hold it (the loop catching up stays above). */
 export const RATE_HELD = 0.95;
 
+/** How long the store may take to catch up once the arms stop (as the ingest ramp's limit). */
+export const drainLimitS = (flushS: number, publishS: number): number =>
+  flushS + Math.max(2, 0.25 * publishS);
+
 /**
  * A step's verdict: '' when every arm's points were stored once, the middleware dropped
- * nothing and every arm reported at ≥ RATE_HELD of the rate; else why not (all reasons).
+ * nothing, the backlog was stored within its limit after the arms stopped, and every arm
+ * reported at ≥ RATE_HELD of the rate; else why not (all reasons).
  */
 export function stepWhy(f: {
   loss: LossAccount;
   dropped: number;
   rateHz: number;
   rates: RateSummary;
+  drainS: number;
+  drainLimitS: number;
 }): string {
   const why: string[] = [];
   const { loss } = f;
@@ -135,11 +142,27 @@ export function stepWhy(f: {
     );
   if (loss.extra) why.push(`${loss.extra} points stored beyond what was published`);
   if (f.dropped) why.push(`${f.dropped} points dropped by the middleware`);
+  if (f.drainS > f.drainLimitS)
+    why.push(
+      `stored ${f.drainS.toFixed(1)} s after the arms stopped (limit ${f.drainLimitS.toFixed(1)} s)`,
+    );
   if (!(f.rates.min >= RATE_HELD * f.rateHz))
     why.push(
       `simulators below ${f.rateHz} Hz: slowest arm ${f.rates.min.toFixed(1)} Hz, median ${f.rates.median.toFixed(1)} Hz`,
     );
   return why.join('; ');
+}
+
+/**
+ * Whether a failed step is run again with its arms spread over one process per core: only when
+ * it lost nothing and failed by the simulators' rate alone, in fewer processes than cores.
+ */
+export function spreadAgain(
+  step: { why: string; lost: number; extra: number; processes: number },
+  cores: number,
+): boolean {
+  const onlyRate = step.why !== '' && step.why.split('; ').every((w) => w.startsWith('simulators'));
+  return onlyRate && step.lost === 0 && step.extra === 0 && step.processes < cores;
 }
 
 /** The last step that passed before the first that failed (undefined when the first failed). */

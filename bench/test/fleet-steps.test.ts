@@ -1,11 +1,13 @@
 import { describe, expect, it } from 'vitest';
 import {
+  drainLimitS,
   highestHeld,
   lossByArm,
   rateSummary,
   ratesByArm,
   simProcesses,
   splitArms,
+  spreadAgain,
   stepWhy,
 } from '../lib/fleet-steps.ts';
 
@@ -73,9 +75,10 @@ describe('lossByArm', () => {
 describe('stepWhy', () => {
   const even = lossByArm({ a: { state: 250, health: 5, servos: 6 } }, { a: 1530 });
   const atRate = { min: 49.2, median: 49.8, slowest: 'a' };
+  const drain = { drainS: 2.5, drainLimitS: drainLimitS(1, 7) };
 
   it('passes a step that stored everything at the rate', () => {
-    expect(stepWhy({ loss: even, dropped: 0, rateHz: 50, rates: atRate })).toBe('');
+    expect(stepWhy({ loss: even, dropped: 0, rateHz: 50, rates: atRate, ...drain })).toBe('');
   });
 
   it('says what was lost, dropped and how slow the slowest arm was, all of it', () => {
@@ -85,16 +88,45 @@ describe('stepWhy', () => {
       dropped: 7,
       rateHz: 50,
       rates: { min: 31.5, median: 44, slowest: 'a' },
+      drainS: 12.25,
+      drainLimitS: drainLimitS(1, 20),
     });
     expect(why).toBe(
-      '30 of 1530 points lost (1 of 1 arms short); 7 points dropped by the middleware; simulators below 50 Hz: slowest arm 31.5 Hz, median 44.0 Hz',
+      '30 of 1530 points lost (1 of 1 arms short); 7 points dropped by the middleware; stored 12.3 s after the arms stopped (limit 6.0 s); simulators below 50 Hz: slowest arm 31.5 Hz, median 44.0 Hz',
     );
   });
 
   it('fails a step whose rate was never measured', () => {
-    expect(stepWhy({ loss: even, dropped: 0, rateHz: 50, rates: rateSummary({}) })).toMatch(
-      /below 50 Hz/,
-    );
+    expect(
+      stepWhy({ loss: even, dropped: 0, rateHz: 50, rates: rateSummary({}), ...drain }),
+    ).toMatch(/below 50 Hz/);
+  });
+});
+
+describe('spreadAgain', () => {
+  const slow = 'simulators below 50 Hz: slowest arm 24.9 Hz, median 27.3 Hz';
+
+  it('runs a step again over one process per core when the sims alone fell short', () => {
+    expect(spreadAgain({ why: slow, lost: 0, extra: 0, processes: 1 }, 2)).toBe(true);
+    expect(spreadAgain({ why: slow, lost: 0, extra: 0, processes: 2 }, 2)).toBe(false);
+  });
+
+  it('not when the step lost points or failed for anything else', () => {
+    expect(
+      spreadAgain({ why: `3 of 9 points lost; ${slow}`, lost: 3, extra: 0, processes: 1 }, 2),
+    ).toBe(false);
+    expect(
+      spreadAgain(
+        {
+          why: 'stored 9.0 s after the arms stopped (limit 3.3 s)',
+          lost: 0,
+          extra: 0,
+          processes: 1,
+        },
+        2,
+      ),
+    ).toBe(false);
+    expect(spreadAgain({ why: '', lost: 0, extra: 0, processes: 1 }, 2)).toBe(false);
   });
 });
 

@@ -83,7 +83,8 @@ export interface Sim {
   runner?: SimRunner;
   /** The emulated servo bus (`bus` set). */
   bus?: BusSimCore;
-  /** On MQTT: the `$TIM` samples handed to the client so far, by kind (mqtt-sim.ts). */
+  /** On MQTT: the status payloads handed to the client so far, and their `$TIM` samples, by kind (mqtt-sim.ts). */
+  published?: Readonly<Record<PayloadKind, number>>;
   publishedSamples?: Readonly<Record<PayloadKind, number>>;
   /** Resolves with the reason when the serial line closes under the sim; never on MQTT. */
   closed: Promise<string>;
@@ -217,6 +218,7 @@ export async function startSim(
   );
   return {
     runner: sim.runner,
+    published: sim.published,
     publishedSamples: sim.publishedSamples,
     closed: new Promise<string>(() => {}),
     async stop() {
