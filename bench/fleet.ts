@@ -26,6 +26,7 @@ import {
 import type { BenchContext, Row, Section, SectionOutput } from './lib/types.ts';
 import { measureWindow, startFleetSims, storedByArm, type Window } from './lib/fleet-sims.ts';
 import {
+  BEHIND,
   drainLimitS,
   highestHeld,
   lossByArm,
@@ -163,10 +164,11 @@ async function ramp(ctx: BenchContext, b: Broker, counts: number[], windowS: num
   const steps: FleetStep[] = [];
   const cores = os.cpus().length;
   let simCost = NaN;
+  let behind = false;
   try {
     for (const arms of counts) {
       prefix = `f${b.tag}${arms}-`;
-      let step = await runStep(r, arms, simProcesses(arms, simCost, cores), prefix);
+      let step = await runStep(r, arms, simProcesses(arms, simCost, cores, behind), prefix);
       ctx.log(`fleet ${b.name}: ${arms} arms → ${step.why || 'every point stored'}`);
       if (spreadAgain(step, cores)) {
         const first = step;
@@ -184,6 +186,7 @@ async function ramp(ctx: BenchContext, b: Broker, counts: number[], windowS: num
         );
       }
       simCost = (step.cpuShare.sims * 1000) / arms;
+      behind = step.payloadHz.median < BEHIND * RATE_HZ;
       steps.push(step);
       if (!step.pass) break;
     }

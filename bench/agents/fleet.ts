@@ -3,8 +3,9 @@
  * the real simulator (`startSim` of @armtwin/sim, its own MQTT connection, status at `rate` Hz).
  * Prints one JSON line each:
  * - `{"ready":N,"startS":…}` once every arm is started;
- * - on SIGUSR2, `{"atMs":…,"samples":{arm: n},"payloads":{arm: n}}`: the state samples and the
- *   state payloads (messages) each arm published so far, in this process's clock;
+ * - on SIGUSR2, `{"atMs":…,"samples":{arm: n},"payloads":{arm: n},"messages":n}`: the state
+ *   samples and state payloads each arm published so far, and the status messages of every kind
+ *   all of them did, in this process's clock;
  * - on SIGTERM, after stopping every arm (each says offline),
  *   `{"published":{arm:{"state","health","servos"}}}`, then exits.
  * Usage: fleet.ts <mqtt url> <first> <last> <rate Hz> <id prefix>
@@ -34,11 +35,14 @@ say({ ready: sims.length, startS: (performance.now() - t0) / 1000 });
 process.on('SIGUSR2', () => {
   const samples: Record<string, number> = {};
   const payloads: Record<string, number> = {};
+  let messages = 0;
   for (const { arm, sim } of sims) {
     samples[arm] = sim.publishedSamples?.state ?? 0;
     payloads[arm] = sim.published?.state ?? 0;
+    const p = sim.published;
+    messages += p ? p.state + p.health + p.reply : 0;
   }
-  say({ atMs: performance.now(), samples, payloads });
+  say({ atMs: performance.now(), samples, payloads, messages });
 });
 process.once('SIGTERM', () => {
   void Promise.all(sims.map(({ sim }) => sim.stop())).then(() => {

@@ -22,7 +22,7 @@ export interface FleetStep {
   rateHz: { min: number; median: number };
   /** State payloads (messages) a second each arm published: below the samples when batched. */
   payloadHz: { min: number; median: number };
-  /** State messages the arms published over the window, and those the bare subscriber saw (what the broker delivered then). */
+  /** Status messages the arms published over the window, and those the bare subscriber saw then (what the broker delivered). */
   publishedMessages: number;
   seenMessages: number;
   middlewareMessages: number;

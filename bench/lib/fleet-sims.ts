@@ -57,6 +57,8 @@ interface Snapshot {
   /** State samples and state payloads (messages) each arm published so far. */
   samples: Record<string, number>;
   payloads: Record<string, number>;
+  /** Status messages of every kind (state, health, replies) all its arms published so far. */
+  messages: number;
 }
 
 export interface FleetSims {
@@ -141,7 +143,7 @@ export interface Window {
   /** Each arm's state samples a second, and state payloads (messages) a second. */
   rates: RateSummary;
   payloads: RateSummary;
-  /** State payloads the arms published in the window, and the status messages the subscriber saw. */
+  /** Status messages the arms published in the window, and those the subscriber saw then. */
   publishedMessages: number;
   seen: number;
   /** Share of a core and resident MiB: each simulator process, then each of `others`. */
@@ -165,12 +167,10 @@ export async function measureWindow(
   const b = await sims.snapshot();
   const seenN = seen() - seen0;
   const cpu = meters.map((m) => m.stop().share);
-  const payloads = windowRates(a, b, 'payloads');
-  const s = (b[0]!.atMs - a[0]!.atMs) / 1000;
   return {
     rates: rateSummary(windowRates(a, b)),
-    payloads: rateSummary(payloads),
-    publishedMessages: Math.round(Object.values(payloads).reduce((x, v) => x + v, 0) * s),
+    payloads: rateSummary(windowRates(a, b, 'payloads')),
+    publishedMessages: b.reduce((n, s, k) => n + s.messages - a[k]!.messages, 0),
     seen: seenN,
     cpu,
     rss: pids.map(rssMiB),

@@ -8,20 +8,27 @@
 /** A Node process is one thread: a step plans each simulator process at most this busy. */
 export const PROCESS_BUDGET_MS = 500;
 
+/** Below this share of the rate in messages an arm's loop is batching samples: it is behind. */
+export const BEHIND = 0.8;
+
 /**
  * Simulator processes for `arms` arms: one while one process can host them all within
  * `budgetMs` of CPU a second at `cpuMsPerArmS` (the cost measured on the step before; NaN when
- * none was: one process), otherwise as many as that needs, at most one per core.
+ * none was: one process), otherwise as many as that needs, at most one per core; one per core
+ * at once when the step before was `behind` (its loop sent its samples in batches).
  */
 export function simProcesses(
   arms: number,
   cpuMsPerArmS: number,
   cores: number,
+  behind = false,
   budgetMs = PROCESS_BUDGET_MS,
 ): number {
+  const most = Math.max(1, Math.min(cores, arms));
+  if (behind) return most;
   if (!(cpuMsPerArmS > 0)) return 1;
   const perProcess = Math.max(1, Math.floor(budgetMs / cpuMsPerArmS));
-  return Math.max(1, Math.min(Math.max(1, cores), Math.ceil(arms / perProcess), arms));
+  return Math.min(most, Math.ceil(arms / perProcess));
 }
 
 /** Arms 1…arms split into `processes` consecutive ranges, as even as can be: [first, last]. */

@@ -24,6 +24,11 @@ describe('simProcesses', () => {
     expect(simProcesses(3, 900, 16)).toBe(3);
     expect(simProcesses(10, 8, 0)).toBe(1);
   });
+
+  it('spreads over one process per core at once when the step before was behind', () => {
+    expect(simProcesses(200, 1.5, 2, true)).toBe(2);
+    expect(simProcesses(1, 1.5, 2, true)).toBe(1);
+  });
 });
 
 describe('splitArms', () => {
