@@ -28,6 +28,7 @@ import { measureWindow, startFleetSims, storedByArm, type Window } from './lib/f
 import {
   BEHIND,
   drainLimitS,
+  RATE_HELD,
   highestHeld,
   lossByArm,
   simProcesses,
@@ -83,7 +84,13 @@ async function runStep(
   let published: Record<string, ArmPublished>;
   try {
     await sleep(1000); // past the first announcements
-    w = await measureWindow(sims, [b.pid ?? -1, mw.child.pid], r.seen, windowS);
+    w = await measureWindow(
+      sims,
+      [b.pid ?? -1, mw.child.pid],
+      r.seen,
+      windowS,
+      RATE_HELD * RATE_HZ,
+    );
   } finally {
     published = await sims.stop();
   }
@@ -117,7 +124,12 @@ async function runStep(
     arms,
     processes,
     windowS,
-    rateHz: { min: round(w.rates.min, 1), median: round(w.rates.median, 1) },
+    rateHz: {
+      min: round(w.rates.min, 1),
+      median: round(w.rates.median, 1),
+      slowest: w.rates.slowest,
+      short: w.rates.short,
+    },
     payloadHz: { min: round(w.payloads.min, 1), median: round(w.payloads.median, 1) },
     seenMessages: w.seen,
     publishedMessages: w.publishedMessages,

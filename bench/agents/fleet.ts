@@ -15,7 +15,8 @@ import { startSim, type Sim } from '@armtwin/sim';
 
 const [url = '', firstS = '1', lastS = '1', rateS = '50', prefix = 'fleet-'] =
   process.argv.slice(2);
-const log = pino({ level: 'warn' });
+// Logs go to stderr (the run's log file): stdout carries the JSON lines.
+const log = pino({ level: 'warn' }, pino.destination(2));
 const t0 = performance.now();
 const sims: { arm: string; sim: Sim }[] = [];
 const say = (o: unknown, then?: () => void) => process.stdout.write(`${JSON.stringify(o)}\n`, then);
@@ -26,7 +27,9 @@ for (let i = Number(firstS); i <= Number(lastS); i += 10) {
     ...(await Promise.all(
       ids.map(async (k) => {
         const arm = `${prefix}${k}`;
-        return { arm, sim: await startSim({ mqttUrl: url, armId: arm, log, rate: Number(rateS) }) };
+        const onFirst = (kind: string, message: string) => log.warn({ arm, kind }, message);
+        const sim = await startSim({ mqttUrl: url, armId: arm, log, rate: Number(rateS), onFirst });
+        return { arm, sim };
       }),
     )),
   );

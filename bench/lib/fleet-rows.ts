@@ -18,8 +18,8 @@ export interface FleetStep {
   /** Simulator processes the arms were spread over. */
   processes: number;
   windowS: number;
-  /** State samples a second each arm published over the window: the slowest arm, the median. */
-  rateHz: { min: number; median: number };
+  /** State samples a second each arm published over the window: the slowest arm, the median; which arm was slowest, how many arms fell short. */
+  rateHz: { min: number; median: number; slowest?: string; short?: number };
   /** State payloads (messages) a second each arm published: below the samples when batched. */
   payloadHz: { min: number; median: number };
   /** Status messages the arms published over the window, and those the bare subscriber saw then (what the broker delivered). */
@@ -52,10 +52,15 @@ export interface FleetStep {
 
 const PARTS = { sims: 'simulators', broker: 'broker', middleware: 'middleware' } as const;
 
-/** CPU ms per arm-second and marginal MiB per arm of one part at a step. */
+/**
+ * CPU ms per arm-second and marginal MiB per arm of one part at a step: its memory beyond what
+ * the 1-arm step's process took, once per simulator process.
+ */
 export function perArm(s: FleetStep, first: FleetStep, k: keyof Part): string {
   const ms = (s.cpuShare[k] * 1000) / s.arms;
-  const mib = s.arms > first.arms ? (s.rssMiB[k] - first.rssMiB[k]) / (s.arms - first.arms) : NaN;
+  const n = k === 'sims' ? s.processes : 1;
+  const mib =
+    s.arms > n * first.arms ? (s.rssMiB[k] - n * first.rssMiB[k]) / (s.arms - n * first.arms) : NaN;
   return `${fmt(ms, 2)} ms CPU per arm-second, ${fmt(mib, 2)} MiB per arm (${fmt(s.rssMiB[k], 0)} MiB in all)`;
 }
 
@@ -73,7 +78,7 @@ export function fleetRows(
     {
       figure: `Arms at ${rateHz} Hz through ${broker} into the middleware and InfluxDB: highest step with every arm's points stored, each arm ≥ 95 % of the rate`,
       value: best
-        ? `${best.arms} (${best.stored} of ${best.published} points, stored ${fmt(best.drainS, 1)} s after the arms stopped; the broker delivered ${best.seenMessages} of ${best.publishedMessages} messages in the window)`
+        ? `${best.arms} (${best.stored} of ${best.published} points, stored ${fmt(best.drainS, 1)} s after the arms stopped; in the window the arms sent ${best.publishedMessages} messages, a bare subscriber got ${best.seenMessages})`
         : 'none',
       baseline: next ? `next step ${lost(next)}` : 'no step failed',
       target: 'reported',

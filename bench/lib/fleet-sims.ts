@@ -157,6 +157,7 @@ export async function measureWindow(
   others: number[],
   seen: () => number,
   windowS: number,
+  heldHz: number,
 ): Promise<Window> {
   const pids = [...sims.pids, ...others];
   const meters = pids.map((p) => cpuMeter(p));
@@ -168,7 +169,7 @@ export async function measureWindow(
   const seenN = seen() - seen0;
   const cpu = meters.map((m) => m.stop().share);
   return {
-    rates: rateSummary(windowRates(a, b)),
+    rates: rateSummary(windowRates(a, b), heldHz),
     payloads: rateSummary(windowRates(a, b, 'payloads')),
     publishedMessages: b.reduce((n, s, k) => n + s.messages - a[k]!.messages, 0),
     seen: seenN,

@@ -59,14 +59,18 @@ export interface RateSummary {
   median: number;
   /** The arm that reported slowest. */
   slowest: string;
+  /** Arms below `held` (the arms that did not hold the rate), and arms counted. */
+  short: number;
+  arms: number;
 }
 
-export function rateSummary(rates: Record<string, number>): RateSummary {
+export function rateSummary(rates: Record<string, number>, held = 0): RateSummary {
   const e = Object.entries(rates).sort((x, y) => x[1] - y[1]);
-  if (!e.length) return { min: NaN, median: NaN, slowest: '' };
+  const short = e.filter(([, r]) => r < held).length;
+  if (!e.length) return { min: NaN, median: NaN, slowest: '', short, arms: 0 };
   const mid = e.length / 2;
   const median = e.length % 2 ? e[Math.floor(mid)]![1] : (e[mid - 1]![1] + e[mid]![1]) / 2;
-  return { min: e[0]![1], median, slowest: e[0]![0] };
+  return { min: e[0]![1], median, slowest: e[0]![0], short, arms: e.length };
 }
 
 /** What one arm's simulator published over its life: samples by kind and its servos. */
@@ -155,7 +159,7 @@ export function stepWhy(f: {
     );
   if (!(f.rates.min >= RATE_HELD * f.rateHz))
     why.push(
-      `simulators below ${f.rateHz} Hz: slowest arm ${f.rates.min.toFixed(1)} Hz, median ${f.rates.median.toFixed(1)} Hz`,
+      `simulators below ${f.rateHz} Hz: ${f.rates.short} of ${f.rates.arms} arms under ${(RATE_HELD * f.rateHz).toFixed(1)} Hz, slowest ${f.rates.slowest} ${f.rates.min.toFixed(1)} Hz, median ${f.rates.median.toFixed(1)} Hz`,
     );
   return why.join('; ');
 }

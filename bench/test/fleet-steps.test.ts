@@ -49,7 +49,7 @@ describe('rates', () => {
       { atMs: 3000, samples: { a: 110, b: 80, c: 98 } },
     );
     expect(r).toEqual({ a: 50, b: 40, c: 49 });
-    expect(rateSummary(r)).toEqual({ min: 40, median: 49, slowest: 'b' });
+    expect(rateSummary(r, 47.5)).toEqual({ min: 40, median: 49, slowest: 'b', short: 1, arms: 3 });
     expect(rateSummary({}).min).toBeNaN();
   });
 });
@@ -79,7 +79,7 @@ describe('lossByArm', () => {
 
 describe('stepWhy', () => {
   const even = lossByArm({ a: { state: 250, health: 5, servos: 6 } }, { a: 1530 });
-  const atRate = { min: 49.2, median: 49.8, slowest: 'a' };
+  const atRate = { min: 49.2, median: 49.8, slowest: 'a', short: 0, arms: 1 };
   const drain = { drainS: 2.5, drainLimitS: drainLimitS(1, 7) };
 
   it('passes a step that stored everything at the rate', () => {
@@ -92,12 +92,12 @@ describe('stepWhy', () => {
       loss: short,
       dropped: 7,
       rateHz: 50,
-      rates: { min: 31.5, median: 44, slowest: 'a' },
+      rates: { min: 31.5, median: 44, slowest: 'a', short: 1, arms: 1 },
       drainS: 12.25,
       drainLimitS: drainLimitS(1, 20),
     });
     expect(why).toBe(
-      '30 of 1530 points lost (1 of 1 arms short); 7 points dropped by the middleware; stored 12.3 s after the arms stopped (limit 6.0 s); simulators below 50 Hz: slowest arm 31.5 Hz, median 44.0 Hz',
+      '30 of 1530 points lost (1 of 1 arms short); 7 points dropped by the middleware; stored 12.3 s after the arms stopped (limit 6.0 s); simulators below 50 Hz: 1 of 1 arms under 47.5 Hz, slowest a 31.5 Hz, median 44.0 Hz',
     );
   });
 
@@ -109,7 +109,8 @@ describe('stepWhy', () => {
 });
 
 describe('spreadAgain', () => {
-  const slow = 'simulators below 50 Hz: slowest arm 24.9 Hz, median 27.3 Hz';
+  const slow =
+    'simulators below 50 Hz: 400 of 400 arms under 47.5 Hz, slowest f9 24.9 Hz, median 27.3 Hz';
 
   it('runs a step again over one process per core when the sims alone fell short', () => {
     expect(spreadAgain({ why: slow, lost: 0, extra: 0, processes: 1 }, 2)).toBe(true);
