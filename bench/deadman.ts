@@ -11,16 +11,14 @@
 import path from 'node:path';
 import mqtt, { type MqttClient } from 'mqtt';
 import { OPERATOR_BEAT_MS, OPERATOR_LEASE_MS } from '@armtwin/protocol';
-import { freePort } from '../tests/helpers/ports.ts';
 import { rawOperator } from '../tests/helpers/raw-operator.ts';
-import { REPO, startSim } from './lib/stack.ts';
-import { sleep, spawnChild, until } from './lib/proc.ts';
+import { startEmbeddedBroker, startSim } from './lib/stack.ts';
+import { sleep, until } from './lib/proc.ts';
 import { summarize, type Summary } from './lib/stats.ts';
 import { fmt, type Row, type Section, type SectionOutput } from './lib/types.ts';
 
 const KEEPALIVE_S = 2;
 const BOUND_MS = 1.5 * KEEPALIVE_S * 1000;
-const ARMTWIN = path.join(REPO, 'apps', 'cli', 'bin', 'armtwin.mjs');
 
 /** Arrival times (epoch ms) of the stop and of the will, on one arm. */
 class Watch {
@@ -116,35 +114,19 @@ export const deadmanSection: Section = {
       reps,
       path.join(ctx.logDir, 'deadman-sim-mosquitto.log'),
     );
-    const aedesPort = await freePort();
-    const aedes = spawnChild(process.execPath, [ARMTWIN, 'broker', '--port', String(aedesPort)], {
-      cwd: REPO,
-      logFile: path.join(ctx.logDir, 'deadman-aedes.log'),
-      env: { ...process.env, LOG_LEVEL: 'warn' },
-    });
+    const aedes = await startEmbeddedBroker(path.join(ctx.logDir, 'deadman-aedes.log'));
     let embedded;
     try {
-      const url = `mqtt://127.0.0.1:${aedesPort}`;
-      const up = await until(
-        async () => {
-          const c = await mqtt.connectAsync(url, { reconnectPeriod: 0 }).catch(() => null);
-          await c?.endAsync();
-          return c !== null;
-        },
-        30_000,
-        250,
-      );
-      if (!up) throw new Error('armtwin broker did not start');
       ctx.log(`deadman: ${reps} drops each way on the embedded broker`);
       embedded = await measure(
-        url,
-        aedesPort,
+        aedes.url,
+        aedes.port,
         'bench-deadman-a',
         reps,
         path.join(ctx.logDir, 'deadman-sim-aedes.log'),
       );
     } finally {
-      await aedes.stop();
+      await aedes.child.stop();
     }
     const row = (broker: string, r: typeof mosquitto): Row => ({
       figure: `Deadman on ${broker}: silence → arm stopped (HUD beat, lease ${OPERATOR_LEASE_MS} ms)`,

@@ -1,209 +1,275 @@
 /**
- * Section `fleet` (issue 34 item 3, server side; a skeleton): N simulated arms in one process
- * (./agents/fleet.ts: the real simulator, one MQTT connection each, status at 50 Hz) through
- * the bench's Mosquitto into the middleware (defaults) and InfluxDB, N stepped up until a step
- * loses something or the simulators cannot hold the rate. Per step: CPU (share of a core) and
- * resident memory of the simulators' process, the broker and the middleware, each also per arm;
- * the status messages a bare mqtt.js subscriber saw (the baseline: what the broker delivered)
- * against what the middleware took in, and the points it made against those InfluxDB holds (servo, profile and audit points).
- * Not yet here: the embedded broker's run, the page side (HUD frame rate with 1/10/50 arms).
+ * Section `fleet` (issue 34 item 3): N simulated arms at 50 Hz (./lib/fleet-sims.ts: the real
+ * simulator, one MQTT connection each, spread over one process per core once one process would
+ * be over half busy) through each broker in turn, the bench's Mosquitto and the embedded Aedes
+ * broker (`armtwin broker`, what `armtwin up` embeds), into a middleware of its own and InfluxDB,
+ * N stepped up (./lib/fleet-steps.ts) until a step loses a point or an arm reports below 95 % of
+ * the rate. Per step: every arm's `$TIM` samples as its simulator published them against the
+ * servo points InfluxDB holds for it (read back per arm), each arm's achieved rate, and CPU and
+ * resident memory of the simulators, the broker and the middleware; the status messages a bare
+ * mqtt.js subscriber saw is the broker-side baseline, the 1-arm step the server-side one.
+ * Then the page side, same run: the HUD with 1, 10 and 50 arms (./lib/fleet-page.ts, shared
+ * with the browser section).
  */
 import fs from 'node:fs';
+import os from 'node:os';
 import path from 'node:path';
-import { cpuMeter, findPid, sleep } from './lib/proc.ts';
+import { findPid, sleep } from './lib/proc.ts';
 import { round } from './lib/stats.ts';
 import {
-  agentResult,
   connectMqtt,
-  firstRow,
-  startAgent,
+  startEmbeddedBroker,
   startMiddleware,
   waitForCount,
+  type Middleware,
 } from './lib/stack.ts';
-import { fmt, type Row, type Section, type SectionOutput } from './lib/types.ts';
+import type { BenchContext, Row, Section, SectionOutput } from './lib/types.ts';
+import { measureWindow, startFleetSims, storedByArm, type Window } from './lib/fleet-sims.ts';
+import {
+  BEHIND,
+  drainLimitS,
+  RATE_HELD,
+  highestHeld,
+  lossByArm,
+  simProcesses,
+  spreadAgain,
+  stepWhy,
+  type ArmPublished,
+} from './lib/fleet-steps.ts';
+import { fleetPageRows } from './lib/fleet-page.ts';
+import { hudPrecheck } from './lib/hud-browser.ts';
+import { fleetRows, type FleetStep, type Part } from './lib/fleet-rows.ts';
 
 const RATE_HZ = 50;
 const FLUSH_MS = 1000;
-/**
- * The share of the rate the simulators must hold for a step to count (they share the cores with
- * the broker, the middleware and influxd: on a loaded machine a lone sim keeps about 87 %).
- */
-const SIM_HELD = 0.8;
 
-interface FleetStep {
-  arms: number;
+const sum = (o: Record<string, number>) => Object.values(o).reduce((a, b) => a + b, 0);
+
+interface Broker {
+  name: string;
+  tag: string;
+  url: string;
+  pid: number | undefined;
+}
+
+interface Ramp {
+  ctx: BenchContext;
+  b: Broker;
+  mw: Middleware;
+  /** Status messages the bare subscriber saw of the step's arms so far. */
+  seen: () => number;
   windowS: number;
-  /** Status messages per arm per second, as the bare subscriber saw them. */
-  perArmHz: number;
-  seenMessages: number;
-  middlewareMessages: number;
-  producedPoints: number;
-  storedPoints: number;
-  dropped: number;
-  cpuShare: { sims: number; broker: number; middleware: number };
-  rssMiB: { sims: number; broker: number; middleware: number };
-  pass: boolean;
-  why: string;
 }
 
-/** Resident memory of a process, MiB (NaN once it is gone). */
-function rssMiB(pid: number | undefined): number {
-  if (!pid) return NaN;
+/** One step: `arms` arms in `processes` simulator processes, from start to stored. */
+async function runStep(
+  r: Ramp,
+  arms: number,
+  processes: number,
+  prefix: string,
+): Promise<FleetStep> {
+  const { ctx, b, mw, windowS } = r;
+  ctx.log(`fleet ${b.name}: ${arms} arms at ${RATE_HZ} Hz in ${processes} process(es)`);
+  const before = await mw.metrics();
+  const t0 = performance.now();
+  const sims = await startFleetSims({
+    url: b.url,
+    arms,
+    processes,
+    rateHz: RATE_HZ,
+    prefix,
+    logDir: ctx.logDir,
+  });
+  let w: Window;
+  let published: Record<string, ArmPublished>;
   try {
-    const m = /VmRSS:\s+(\d+) kB/.exec(fs.readFileSync(`/proc/${pid}/status`, 'utf8'));
-    return m ? Number(m[1]) / 1024 : NaN;
-  } catch {
-    return NaN;
+    await sleep(1000); // past the first announcements
+    w = await measureWindow(
+      sims,
+      [b.pid ?? -1, mw.child.pid],
+      r.seen,
+      windowS,
+      RATE_HELD * RATE_HZ,
+    );
+  } finally {
+    published = await sims.stop();
   }
+  const publishS = (performance.now() - t0) / 1000;
+  const stopped = performance.now();
+  const want = lossByArm(published, {}).published;
+  const stored = () => storedByArm(ctx.influx.url, ctx.influx.db, prefix);
+  await waitForCount(async () => sum(await stored()), want, 60_000, 10_000);
+  const drainS = (performance.now() - stopped) / 1000;
+  const loss = lossByArm(published, await stored());
+  const after = await mw.metrics();
+  const dropped = (after.points_dropped_total ?? 0) - (before.points_dropped_total ?? 0);
+  const limitS = drainLimitS(FLUSH_MS / 1000, publishS);
+  const why = stepWhy({
+    loss,
+    dropped,
+    rateHz: RATE_HZ,
+    rates: w.rates,
+    drainS,
+    drainLimitS: limitS,
+  });
+  const [broker = NaN, middleware = NaN] = w.cpu.slice(-2);
+  const [brokerRss = NaN, middlewareRss = NaN] = w.rss.slice(-2);
+  const simsPart = (xs: number[]) => xs.slice(0, -2).reduce((a, x) => a + x, 0);
+  const r3 = (p: Part, d: number): Part => ({
+    sims: round(p.sims, d),
+    broker: round(p.broker, d),
+    middleware: round(p.middleware, d),
+  });
+  return {
+    arms,
+    processes,
+    windowS,
+    rateHz: {
+      min: round(w.rates.min, 1),
+      median: round(w.rates.median, 1),
+      slowest: w.rates.slowest,
+      short: w.rates.short,
+    },
+    payloadHz: { min: round(w.payloads.min, 1), median: round(w.payloads.median, 1) },
+    seenMessages: w.seen,
+    publishedMessages: w.publishedMessages,
+    middlewareMessages:
+      (after['messages_total{topic="status"}'] ?? 0) -
+      (before['messages_total{topic="status"}'] ?? 0),
+    published: loss.published,
+    stored: loss.stored,
+    lost: loss.lost,
+    extra: loss.extra,
+    worstArms: loss.uneven.slice(0, 5),
+    dropped,
+    drainS: round(drainS, 1),
+    drainLimitS: round(limitS, 1),
+    cpuShare: r3({ sims: simsPart(w.cpu), broker, middleware }, 3),
+    rssMiB: r3({ sims: simsPart(w.rss), broker: brokerRss, middleware: middlewareRss }, 1),
+    pass: why === '',
+    why,
+  };
 }
 
-/**
- * Points stored for arms whose id starts with `prefix`: servo positions/angles and health, and
- * the profile each arm announces and the control events it sends (all a simulator makes).
- */
-async function storedPoints(url: string, db: string, prefix: string): Promise<number> {
-  const where = `WHERE "arm" =~ /^${prefix}/`;
-  const [servo, profile, audit] = await Promise.all([
-    firstRow(url, db, `SELECT count("angle"), count("temp") FROM "servo" ${where}`),
-    firstRow(url, db, `SELECT count("name") FROM "profile" ${where}`),
-    firstRow(url, db, `SELECT count("by") FROM "audit" ${where}`),
-  ]);
-  return [servo[1], servo[2], profile[1], audit[1]].reduce<number>((n, v) => n + Number(v ?? 0), 0);
+/** One broker's ramp: a middleware of its own, N stepped until a step fails. */
+async function ramp(ctx: BenchContext, b: Broker, counts: number[], windowS: number) {
+  const mw = await startMiddleware(
+    {
+      MQTT_URL: b.url,
+      MQTT_CLIENT_ID: `bench-fleet-${b.tag}-${process.pid}`,
+      INFLUX_URL: ctx.influx.url,
+      INFLUX_BUCKET: ctx.influx.bucket,
+      SPOOL_DIR: fs.mkdtempSync(path.join(ctx.logDir, `spool-fleet-${b.tag}-`)),
+      FLUSH_INTERVAL_MS: String(FLUSH_MS),
+      THERMAL_WATCH: 'false',
+    },
+    path.join(ctx.logDir, `fleet-middleware-${b.tag}.log`),
+  );
+  const counter = await connectMqtt(b.url, `bench-fleet-count-${b.tag}-${process.pid}`);
+  let seen = 0;
+  let prefix = '';
+  counter.on('message', (topic) => {
+    if (topic.startsWith(`arm/${prefix}`)) seen++;
+  });
+  await counter.subscribeAsync('arm/+/status', { qos: 0 });
+  const r: Ramp = { ctx, b, mw, seen: () => seen, windowS };
+  const steps: FleetStep[] = [];
+  const cores = os.cpus().length;
+  let simCost = NaN;
+  let behind = false;
+  try {
+    for (const arms of counts) {
+      prefix = `f${b.tag}${arms}-`;
+      let step = await runStep(r, arms, simProcesses(arms, simCost, cores, behind), prefix);
+      ctx.log(`fleet ${b.name}: ${arms} arms → ${step.why || 'every point stored'}`);
+      if (spreadAgain(step, cores)) {
+        const first = step;
+        prefix = `f${b.tag}${arms}s-`;
+        step = await runStep(r, arms, cores, prefix);
+        step.firstTry = {
+          processes: first.processes,
+          rateHz: first.rateHz,
+          payloadHz: first.payloadHz,
+          why: first.why,
+        };
+        step.pass = step.why === '';
+        ctx.log(
+          `fleet ${b.name}: ${arms} arms over ${cores} processes → ${step.why || 'every point stored'}`,
+        );
+      }
+      simCost = (step.cpuShare.sims * 1000) / arms;
+      behind = step.payloadHz.median < BEHIND * RATE_HZ;
+      steps.push(step);
+      if (!step.pass) break;
+    }
+  } finally {
+    await counter.endAsync().catch(() => {});
+    await mw.child.stop();
+  }
+  return { steps, best: highestHeld(steps) };
 }
 
 export const fleetSection: Section = {
   id: 'fleet',
-  title: 'Fleet: N simulated arms at 50 Hz through Mosquitto into the middleware and InfluxDB',
+  title:
+    'Fleet: N simulated arms at 50 Hz through Mosquitto and the embedded broker into the middleware and InfluxDB; the HUD with 1, 10, 50 arms',
   async run(ctx): Promise<SectionOutput> {
-    const counts = ctx.quick ? [1, 10, 50, 100] : [1, 10, 50, 100, 200, 400, 800];
+    const counts = ctx.quick
+      ? [1, 10, 50, 100, 200, 400, 800]
+      : [1, 10, 50, 100, 200, 400, 800, 1600, 3200];
     const windowS = ctx.quick ? 5 : 15;
-    const brokerPid = findPid(ctx.broker.confFile);
-    const mw = await startMiddleware(
-      {
-        MQTT_URL: ctx.broker.url,
-        MQTT_CLIENT_ID: `bench-fleet-${process.pid}`,
-        INFLUX_URL: ctx.influx.url,
-        INFLUX_BUCKET: ctx.influx.bucket,
-        SPOOL_DIR: fs.mkdtempSync(path.join(ctx.logDir, 'spool-fleet-')),
-        FLUSH_INTERVAL_MS: String(FLUSH_MS),
-        THERMAL_WATCH: 'false',
-      },
-      path.join(ctx.logDir, 'fleet-middleware.log'),
+    const mosquitto = await ramp(
+      ctx,
+      { name: 'Mosquitto', tag: 'm', url: ctx.broker.url, pid: findPid(ctx.broker.confFile) },
+      counts,
+      windowS,
     );
-    const counter = await connectMqtt(ctx.broker.url, `bench-fleet-count-${process.pid}`);
-    let seen = 0;
-    let prefix = '';
-    counter.on('message', (topic) => {
-      if (topic.startsWith(`arm/${prefix}`)) seen++;
-    });
-    await counter.subscribeAsync('arm/+/status', { qos: 0 });
-    const steps: FleetStep[] = [];
+    const aedes = await startEmbeddedBroker(path.join(ctx.logDir, 'fleet-aedes.log'));
+    let embedded;
     try {
-      for (const arms of counts) {
-        prefix = `fleet${arms}-`;
-        ctx.log(`fleet: ${arms} arms at ${RATE_HZ} Hz`);
-        const before = await mw.metrics();
-        const agent = startAgent(
-          'fleet',
-          [ctx.broker.url, String(arms), String(RATE_HZ), prefix],
-          path.join(ctx.logDir, `fleet-sims-${arms}.log`),
-        );
-        try {
-          await agentResult<{ ready: number }>(agent, 60_000 + arms * 500);
-          await sleep(1000); // past the first announcements
-          const meters = [agent.pid, brokerPid ?? -1, mw.child.pid].map((p) => cpuMeter(p));
-          for (const m of meters) m.start();
-          const seen0 = seen;
-          await sleep(windowS * 1000);
-          const [sims, broker, middleware] = meters.map((m) => m.stop().share);
-          const rss = {
-            sims: round(rssMiB(agent.pid), 1),
-            broker: round(rssMiB(brokerPid), 1),
-            middleware: round(rssMiB(mw.child.pid), 1),
-          };
-          const seenInWindow = seen - seen0;
-          await agent.stop(10_000);
-          await sleep(FLUSH_MS + 500);
-          const after = await mw.metrics();
-          const produced = (after.points_produced_total ?? 0) - (before.points_produced_total ?? 0);
-          const msgs =
-            (after['messages_total{topic="status"}'] ?? 0) -
-            (before['messages_total{topic="status"}'] ?? 0);
-          const dropped = (after.points_dropped_total ?? 0) - (before.points_dropped_total ?? 0);
-          const { got } = await waitForCount(
-            () => storedPoints(ctx.influx.url, ctx.influx.db, prefix),
-            produced,
-            30_000,
-            5000,
-          );
-          const perArmHz = seenInWindow / arms / windowS;
-          const why =
-            got !== produced
-              ? `${produced - got} points missing`
-              : dropped > 0
-                ? `${dropped} points dropped`
-                : perArmHz < SIM_HELD * RATE_HZ
-                  ? `the simulators reached ${perArmHz.toFixed(1)} Hz an arm only`
-                  : '';
-          steps.push({
-            arms,
-            windowS,
-            perArmHz: round(perArmHz, 1),
-            seenMessages: seenInWindow,
-            middlewareMessages: msgs,
-            producedPoints: produced,
-            storedPoints: got,
-            dropped,
-            cpuShare: {
-              sims: round(sims ?? NaN, 3),
-              broker: round(broker ?? NaN, 3),
-              middleware: round(middleware ?? NaN, 3),
-            },
-            rssMiB: rss,
-            pass: why === '',
-            why,
-          });
-          ctx.log(`fleet: ${arms} arms → ${why || 'ok'}`);
-          if (why) break;
-        } finally {
-          await agent.stop(10_000);
-        }
-      }
+      embedded = await ramp(
+        ctx,
+        { name: 'the embedded broker', tag: 'a', url: aedes.url, pid: aedes.child.pid },
+        counts,
+        windowS,
+      );
     } finally {
-      await counter.endAsync().catch(() => {});
-      await mw.child.stop();
+      await aedes.child.stop();
     }
-    const passing = steps.filter((s) => s.pass);
-    const best = passing[passing.length - 1];
-    const one = steps[0];
-    const perArm = (s: FleetStep | undefined, k: keyof FleetStep['cpuShare']) =>
-      s ? `${fmt((s.cpuShare[k] / s.arms) * 100, 2)} % of a core, ${fmt(s.rssMiB[k], 0)} MiB` : '—';
-    const rows: Row[] = [
-      {
-        figure: `arms at ${RATE_HZ} Hz through Mosquitto into the middleware, highest step held`,
-        value: best ? `${best.arms} (steps ${counts.join(', ')})` : 'none',
-        baseline: one ? `1 arm: ${one.perArmHz} Hz seen` : '—',
-        target: 'reported (skeleton; every point stored is checked per step)',
-        met: null,
-      },
-      ...(['sims', 'broker', 'middleware'] as const).map((k) => ({
-        figure: `${k} per arm at ${best?.arms ?? '—'} arms (CPU), resident memory in all`,
-        value: perArm(best, k),
-        baseline: `1 arm: ${perArm(one, k)}`,
-        target: 'reported',
-        met: null,
-      })),
-    ];
+    const skipPage = hudPrecheck();
+    const page = skipPage ? undefined : await fleetPageRows(ctx);
+    const pageRows: Row[] = page
+      ? page.rows
+      : [
+          {
+            figure: 'Fleet on the page',
+            value: `not run: ${skipPage}`,
+            baseline: '—',
+            target: '—',
+            met: null,
+          },
+        ];
     return {
-      rows,
+      rows: [
+        ...fleetRows('Mosquitto', mosquitto.steps, mosquitto.best, RATE_HZ),
+        ...fleetRows('the embedded broker', embedded.steps, embedded.best, RATE_HZ),
+        ...pageRows,
+      ],
       settings: {
         counts,
         windowS,
         rateHz: RATE_HZ,
         flushIntervalMs: FLUSH_MS,
-        broker: 'mosquitto',
+        cores: os.cpus().length,
+        brokers: ['mosquitto', 'embedded (armtwin broker, Aedes)'],
+        page: page?.settings ?? skipPage,
       },
-      data: { steps },
+      data: {
+        mosquitto: mosquitto.steps,
+        embedded: embedded.steps,
+        page: page?.data,
+        loadAverage: os.loadavg().map((v) => round(v, 2)),
+      },
     };
   },
 };

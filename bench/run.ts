@@ -71,7 +71,8 @@ const SECTIONS: Section[] = [
 ];
 /**
  * Sections left out of a run without `--only`: the soak (alone it takes `--soak-minutes`, 30
- * min), and the fleet while it is a skeleton (issue 34 item 3; up to 800 arms).
+ * min), and the fleet (issue 34 item 3: two brokers' ramps up to 1,600 arms, and the page's
+ * fleet runs again); a default run's table carries their newest run.
  */
 const NOT_BY_DEFAULT = new Set(['soak', 'fleet']);
 /** Broker settings for every section (recorded in the JSON): see BENCHMARKS.md on Nagle. */

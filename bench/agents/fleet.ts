@@ -1,29 +1,61 @@
 /**
- * The fleet load (issue 34 item 3): N simulated arms in ONE process, each the real simulator
- * (`startSim` of @armtwin/sim, its own MQTT connection, status at `rate` Hz), ids
- * `<prefix>1 … <prefix>N`. Prints `{"ready":N,"startS":…}` once every arm is online, runs until
- * SIGTERM, then stops every arm (each says offline) and exits.
- * Usage: fleet.ts <mqtt url> <arms> <rate Hz> <id prefix>
+ * The fleet load (issue 34 item 3): arms `<prefix><first> … <prefix><last>` in ONE process, each
+ * the real simulator (`startSim` of @armtwin/sim, its own MQTT connection, status at `rate` Hz).
+ * Prints one JSON line each:
+ * - `{"ready":N,"startS":…}` once every arm is started;
+ * - on SIGUSR2, `{"atMs":…,"samples":{arm: n},"payloads":{arm: n},"messages":n}`: the state
+ *   samples and state payloads each arm published so far, and the status messages of every kind
+ *   all of them did, in this process's clock;
+ * - on SIGTERM, after stopping every arm (each says offline),
+ *   `{"published":{arm:{"state","health","servos"}}}`, then exits.
+ * Usage: fleet.ts <mqtt url> <first> <last> <rate Hz> <id prefix>
  */
 import { pino } from 'pino';
 import { startSim, type Sim } from '@armtwin/sim';
 
-const [url = '', armsS = '1', rateS = '50', prefix = 'fleet-'] = process.argv.slice(2);
-const log = pino({ level: 'warn' });
+const [url = '', firstS = '1', lastS = '1', rateS = '50', prefix = 'fleet-'] =
+  process.argv.slice(2);
+// Logs go to stderr (the run's log file): stdout carries the JSON lines.
+const log = pino({ level: 'warn' }, pino.destination(2));
 const t0 = performance.now();
-const sims: Sim[] = [];
+const sims: { arm: string; sim: Sim }[] = [];
+const say = (o: unknown, then?: () => void) => process.stdout.write(`${JSON.stringify(o)}\n`, then);
 // In tens: a few hundred connections at once would be a connect storm, not the steady state.
-for (let i = 1; i <= Number(armsS); i += 10) {
-  const ids = Array.from({ length: Math.min(10, Number(armsS) - i + 1) }, (_, k) => i + k);
+for (let i = Number(firstS); i <= Number(lastS); i += 10) {
+  const ids = Array.from({ length: Math.min(10, Number(lastS) - i + 1) }, (_, k) => i + k);
   sims.push(
     ...(await Promise.all(
-      ids.map((k) => startSim({ mqttUrl: url, armId: `${prefix}${k}`, log, rate: Number(rateS) })),
+      ids.map(async (k) => {
+        const arm = `${prefix}${k}`;
+        const onFirst = (kind: string, message: string) => log.warn({ arm, kind }, message);
+        const sim = await startSim({ mqttUrl: url, armId: arm, log, rate: Number(rateS), onFirst });
+        return { arm, sim };
+      }),
     )),
   );
 }
-process.stdout.write(
-  `${JSON.stringify({ ready: sims.length, startS: (performance.now() - t0) / 1000 })}\n`,
-);
+say({ ready: sims.length, startS: (performance.now() - t0) / 1000 });
+process.on('SIGUSR2', () => {
+  const samples: Record<string, number> = {};
+  const payloads: Record<string, number> = {};
+  let messages = 0;
+  for (const { arm, sim } of sims) {
+    samples[arm] = sim.publishedSamples?.state ?? 0;
+    payloads[arm] = sim.published?.state ?? 0;
+    const p = sim.published;
+    messages += p ? p.state + p.health + p.reply : 0;
+  }
+  say({ atMs: performance.now(), samples, payloads, messages });
+});
 process.once('SIGTERM', () => {
-  void Promise.all(sims.map((s) => s.stop())).then(() => process.exit(0));
+  void Promise.all(sims.map(({ sim }) => sim.stop())).then(() => {
+    const published: Record<string, { state: number; health: number; servos: number }> = {};
+    for (const { arm, sim } of sims)
+      published[arm] = {
+        state: sim.publishedSamples?.state ?? 0,
+        health: sim.publishedSamples?.health ?? 0,
+        servos: sim.runner?.model.servos.count ?? 0,
+      };
+    say({ published }, () => process.exit(0));
+  });
 });

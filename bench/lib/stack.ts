@@ -49,6 +49,33 @@ export async function startSim(
   return child;
 }
 
+/** `armtwin broker` (the embedded Aedes broker) on a free port; resolves once it takes a client. */
+export async function startEmbeddedBroker(
+  logFile: string,
+): Promise<{ child: Child; port: number; url: string }> {
+  const port = await freePort();
+  const child = spawnChild(process.execPath, [ARMTWIN, 'broker', '--port', String(port)], {
+    cwd: REPO,
+    logFile,
+    env: { ...process.env, LOG_LEVEL: 'warn' },
+  });
+  const url = `mqtt://127.0.0.1:${port}`;
+  const up = await until(
+    async () => {
+      const c = await mqtt.connectAsync(url, { reconnectPeriod: 0 }).catch(() => null);
+      await c?.endAsync();
+      return c !== null;
+    },
+    30_000,
+    250,
+  );
+  if (!up) {
+    await child.stop();
+    throw new Error('armtwin broker did not start');
+  }
+  return { child, port, url };
+}
+
 /** Runs a bench agent script (`bench/agents/<name>.ts`) through tsx, stdout piped. */
 export function startAgent(name: string, args: string[], logFile: string): Child {
   return spawnChild(

@@ -60,6 +60,8 @@ export interface MqttSim {
   control: ControlArbiter;
   /** Status payloads handed to the client, by kind (queued ones included; not dropped ones). */
   published: Record<PayloadKind, number>;
+  /** The `$TIM` samples in those payloads, by kind (what a store should hold of this arm). */
+  publishedSamples: Record<PayloadKind, number>;
   /** The arm's summary on `arm/{id}/summary` (docs/protocol.md § Fleets). */
   summary: ArmSummaryOut;
   /** Publishes online `0` (retained), stops the loops, ends the client. */
@@ -85,14 +87,16 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
   const clock = options.clock ?? SYSTEM_CLOCK;
   let offlineDrops = 0;
   const published: Record<PayloadKind, number> = { state: 0, health: 0, reply: 0 };
+  const publishedSamples: Record<PayloadKind, number> = { state: 0, health: 0, reply: 0 };
   const summary = armSummary(client, options.armId, clock);
   const runner = new SimRunner(
     {
-      send(payload, kind) {
+      send(payload, kind, samples) {
         summary.note(payload);
         if (options.statusQos === 1) {
           client.publish(topics.status, payload, { qos: 1 }); // queued while offline
           published[kind]++;
+          publishedSamples[kind] += samples;
           return;
         }
         // QoS 0 and not queued while offline: a stale state stream is worse than a gap.
@@ -103,6 +107,7 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
         }
         client.publish(topics.status, payload, { qos: 0 });
         published[kind]++;
+        publishedSamples[kind] += samples;
       },
     },
     clock,
@@ -189,6 +194,7 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
     operator,
     control,
     published,
+    publishedSamples,
     summary,
     async stop() {
       operator.reset();

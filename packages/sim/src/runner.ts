@@ -22,8 +22,11 @@ import { TickLoop } from './tick-loop.ts';
 export type PayloadKind = 'state' | 'health' | 'reply';
 
 export interface SimTransport {
-  /** Sends one status payload; the runner does not reuse the buffer. */
-  send(payload: Buffer, kind: PayloadKind): void;
+  /**
+   * Sends one status payload; the runner does not reuse the buffer. `samples`: the `$TIM`
+   * samples in it (a state payload carries several when the loop caught up; others one).
+   */
+  send(payload: Buffer, kind: PayloadKind, samples: number): void;
 }
 
 export {
@@ -201,6 +204,7 @@ export class SimRunner {
     const w = this.writer.reset();
     const s = this.model.servos;
     const drop = this.faults.dropPercent;
+    const before = this.counters.stateSamples;
     for (let j = 0; j < n; j++) {
       const t = times[j]!;
       this.model.advance(t);
@@ -222,7 +226,7 @@ export class SimRunner {
     }
     if (w.length === 0) return;
     this.counters.statePayloads++;
-    this.out(w.take(), 'state');
+    this.out(w.take(), 'state', this.counters.stateSamples - before);
   }
 
   private healthTick(t: number): void {
@@ -237,12 +241,12 @@ export class SimRunner {
     this.out(w.take(), 'health');
   }
 
-  private out(payload: Buffer, kind: PayloadKind): void {
+  private out(payload: Buffer, kind: PayloadKind, samples = 1): void {
     const latency = this.faults.latencyMs;
-    if (latency <= 0) return this.transport.send(payload, kind);
+    if (latency <= 0) return this.transport.send(payload, kind, samples);
     const timer = this.clock.setTimeout(() => {
       this.pending.delete(timer);
-      this.transport.send(payload, kind);
+      this.transport.send(payload, kind, samples);
     }, latency);
     this.pending.add(timer);
   }

@@ -17,7 +17,7 @@ import { simWill, startMqttSim } from './mqtt-sim.ts';
 import type { ReportUnits } from './options.ts';
 import { DEFAULT_PROFILE, loadSimProfile, MODELS_DIR } from './profile.ts';
 import { followZones } from './zones-follow.ts';
-import { DEFAULT_SIM_RUNNER_OPTIONS, type SimRunner } from './runner.ts';
+import { DEFAULT_SIM_RUNNER_OPTIONS, type PayloadKind, type SimRunner } from './runner.ts';
 import { startSerialSim } from './serial-sim.ts';
 
 export interface SimOptions {
@@ -83,6 +83,9 @@ export interface Sim {
   runner?: SimRunner;
   /** The emulated servo bus (`bus` set). */
   bus?: BusSimCore;
+  /** On MQTT: the status payloads handed to the client so far, and their `$TIM` samples, by kind (mqtt-sim.ts). */
+  published?: Readonly<Record<PayloadKind, number>>;
+  publishedSamples?: Readonly<Record<PayloadKind, number>>;
   /** Resolves with the reason when the serial line closes under the sim; never on MQTT. */
   closed: Promise<string>;
   /** Stops the loops; on MQTT, says offline and disconnects. */
@@ -215,6 +218,8 @@ export async function startSim(
   );
   return {
     runner: sim.runner,
+    published: sim.published,
+    publishedSamples: sim.publishedSamples,
     closed: new Promise<string>(() => {}),
     async stop() {
       zones.stop();

@@ -15,9 +15,12 @@ import { FakeClock } from '@armtwin/protocol/fake-clock';
 
 function harness(options: ConstructorParameters<typeof SimRunner>[2] = {}) {
   const clock = new FakeClock();
-  const sent: { text: string; kind: PayloadKind; at: number }[] = [];
+  const sent: { text: string; kind: PayloadKind; at: number; samples: number }[] = [];
   const runner = new SimRunner(
-    { send: (p, kind) => sent.push({ text: p.toString('latin1'), kind, at: clock.now() }) },
+    {
+      send: (p, kind, n) =>
+        sent.push({ text: p.toString('latin1'), kind, at: clock.now(), samples: n }),
+    },
     clock,
     options,
   );
@@ -86,6 +89,18 @@ describe('SimRunner', () => {
     expect(sent.find((s) => s.kind === 'health')!.text).toMatch(
       /^\$TIM:\d+!\{(#00\dT\d{3}V\d{4}!){6}\}$/,
     );
+  });
+
+  test('each payload says how many samples it carries: several after a late wake-up', () => {
+    const { clock, sent, runner } = harness({ rate: 250 });
+    runner.start();
+    clock.advance(1000, 15); // every wake-up 15 ms late: payloads of several samples
+    const state = sent.filter((s) => s.kind === 'state');
+    const told = state.reduce((n, s) => n + s.samples, 0);
+    expect(told).toBe(samples(state.map((s) => s.text)).length);
+    expect(told).toBe(runner.counters.stateSamples);
+    expect(Math.max(...state.map((s) => s.samples))).toBeGreaterThan(1);
+    expect(sent.filter((s) => s.kind === 'health').every((s) => s.samples === 1)).toBe(true);
   });
 
   test('replies to one chunk leave in one stamped payload; junk gets $ERR and the sim goes on', () => {
