@@ -115,6 +115,15 @@ export function createInfluxWriter(opts: InfluxWriterOptions): InfluxWriter {
     headers: { 'content-type': 'text/plain; charset=utf-8', 'content-encoding': 'gzip' },
   };
   const level = opts.gzipLevel ?? 0;
+  // `send`, not `request`: request JSON-encodes a body that is not a string; send copies it with
+  // Buffer.from, which takes the gzipped bytes as they are. Status ≥ 300 comes as an HttpError.
+  const send = (body: string | Buffer, options: typeof plain) =>
+    new Promise<void>((resolve, reject) =>
+      influx.transport.send(path, body as string, options, {
+        error: reject,
+        complete: () => resolve(),
+      }),
+    );
 
   async function version(): Promise<string> {
     const res = await fetch(`${url}/ping`, {
@@ -128,8 +137,8 @@ export function createInfluxWriter(opts: InfluxWriterOptions): InfluxWriter {
     async write(body) {
       try {
         if (level > 0 && body.length >= GZIP_THRESHOLD_BYTES)
-          await influx.transport.request(path, await gzip(body, { level }), gzipped);
-        else await influx.transport.request(path, body, plain);
+          await send(await gzip(body, { level }), gzipped);
+        else await send(body, plain);
       } catch (err) {
         throw classifyWriteError(err);
       }
