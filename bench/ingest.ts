@@ -6,8 +6,8 @@
  * moves). Beside it, for reference, the old baseline: 1,000-line batches, one request at a time.
  * Then the middleware under a ramp of status rates, as fractions of the first ceiling
  * measurement, until a step fails (past the list, ×1.25 a step up to 4× the ceiling): with its
- * defaults (WRITE_CONCURRENCY 4, gzip) and, in a full run, with one write at a time and no gzip
- * (how it wrote before issue 19). A separate publisher process (bench/agents/publisher.ts) sends pre-built
+ * defaults (WRITE_CONCURRENCY 4, WRITE_GZIP=auto: plain to this loopback influxd) and, in a
+ * full run, with one write at a time and no gzip (how it wrote before issue 19). A separate publisher process (bench/agents/publisher.ts) sends pre-built
  * groups at R messages/s for D s, QoS 0 as an arm does; the step passes when every point is
  * in InfluxDB (counted per arm tag), /metrics says dropped = 0, the publisher kept the rate,
  * and the backlog was written
@@ -39,7 +39,7 @@ const FLUSH_MS = 5000;
  * (how it wrote before issue 19; the seal's fsync and the unlink are off the main thread in both).
  */
 const MIDDLEWARE_SHAPES: { name: string; env: Record<string, string> }[] = [
-  { name: 'defaults (4 writes in flight, gzip)', env: {} },
+  { name: 'defaults (4 writes in flight; WRITE_GZIP=auto: plain on loopback)', env: {} },
   {
     name: 'one write at a time, no gzip (WRITE_CONCURRENCY=1, WRITE_GZIP=false)',
     env: { WRITE_CONCURRENCY: '1', WRITE_GZIP: 'false' },

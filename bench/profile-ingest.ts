@@ -5,7 +5,10 @@
  * written at exit) and the functions by self time, as shares of the samples outside `(idle)`.
  * Shares, not rates: on a loaded machine the rates move, the shares much less.
  *
- *   npx tsx bench/profile-ingest.ts [rate=20000] [seconds=10] [top=25]
+ *   npx tsx bench/profile-ingest.ts [rate=20000] [seconds=10] [top=25] [NAME=value…]
+ *
+ * `NAME=value` arguments go to the middleware's environment over these settings (e.g.
+ * `WRITE_GZIP=false`), for a before/after of one setting on the same load.
  */
 import fs from 'node:fs';
 import os from 'node:os';
@@ -24,7 +27,13 @@ import {
   waitForCount,
 } from './lib/stack.ts';
 
-const [rateS = '20000', secondsS = '10', topS = '25'] = process.argv.slice(2);
+const args = process.argv.slice(2);
+const settings = Object.fromEntries(
+  args
+    .filter((a) => a.includes('='))
+    .map((a) => [a.slice(0, a.indexOf('=')), a.slice(a.indexOf('=') + 1)]),
+);
+const [rateS = '20000', secondsS = '10', topS = '25'] = args.filter((a) => !a.includes('='));
 const rate = Number(rateS);
 const seconds = Number(secondsS);
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-profile-'));
@@ -39,6 +48,7 @@ try {
       INFLUX_BUCKET: influx.bucket,
       SPOOL_DIR: path.join(dir, 'spool'),
       WRITE_MODE: 'batch',
+      ...settings,
     },
     path.join(dir, 'middleware.log'),
     ['--cpu-prof', `--cpu-prof-dir=${dir}`],
@@ -74,7 +84,7 @@ try {
   console.log(
     `${r.sent} groups in ${r.sendS.toFixed(1)} s (${Math.round(r.sent / r.sendS)}/s offered ${rate}), ` +
       `${got}/${r.sent * 6} points stored; middleware CPU ${((c.cpuS * 1e6) / Math.max(1, got)).toFixed(2)} ms per 1,000 points; ` +
-      `load ${load}; profile ${path.join(dir, file)}`,
+      `load ${load}; settings ${JSON.stringify(settings)}; profile ${path.join(dir, file)}`,
   );
   console.log(`self time, share of the busy samples (${busyMs.toFixed(0)} ms):`);
   for (const x of busy.slice(0, Number(topS)))

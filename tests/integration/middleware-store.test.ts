@@ -1,7 +1,8 @@
 /**
  * Storage on the real Mosquitto and influxd: N frames published with mosquitto_pub become
  * exactly N points with the right tags, fields and times; malformed input is counted in
- * /metrics, never written, and does not crash the middleware.
+ * /metrics, never written, and does not crash the middleware. The writes are gzipped here
+ * (`WRITE_GZIP=true`, level 1: what a remote InfluxDB gets by default; loopback goes plain).
  */
 import { beforeAll, describe, expect, test } from 'vitest';
 import { angleFromPwm } from '@armtwin/protocol';
@@ -23,7 +24,9 @@ const mws = useMiddlewares('mw-store', () => ({ mqttUrl: broker().url, influx: i
 let mw: MiddlewareProcess;
 
 beforeAll(async () => {
-  mw = await mws.spawn({ env: { FLUSH_INTERVAL_MS: '200', BATCH_SIZE: '500' } });
+  mw = await mws.spawn({
+    env: { FLUSH_INTERVAL_MS: '200', BATCH_SIZE: '500', WRITE_GZIP: 'true', WRITE_GZIP_LEVEL: '1' },
+  });
 });
 
 describe('middleware → InfluxDB', () => {

@@ -55,8 +55,13 @@ export interface MiddlewareConfig {
   influxQueryLanguage: QueryLanguage;
   /** WRITE_CONCURRENCY: spool batches written to InfluxDB at once (oldest first). */
   writeConcurrency: number;
-  /** WRITE_GZIP: gzip each write's body (`Content-Encoding: gzip`). */
-  writeGzip: boolean;
+  /**
+   * WRITE_GZIP: gzip each write's body (`Content-Encoding: gzip`); `auto` = only when InfluxDB is
+   * not on this machine (a loopback INFLUX_URL), where it saves no bandwidth and costs CPU.
+   */
+  writeGzip: 'auto' | boolean;
+  /** WRITE_GZIP_LEVEL: zlib level of that gzip, 1 (fastest) to 9 (smallest). */
+  writeGzipLevel: number;
   /** BATCH_SIZE: points per write. */
   batchSize: number;
   /** FLUSH_INTERVAL_MS: the longest a point waits before it is written. */
@@ -148,7 +153,8 @@ export const DEFAULT_MIDDLEWARE_CONFIG: MiddlewareConfig = {
   influxCreateBucket: true,
   influxQueryLanguage: 'influxql',
   writeConcurrency: 4,
-  writeGzip: true,
+  writeGzip: 'auto',
+  writeGzipLevel: 1,
   batchSize: 1000,
   flushIntervalMs: 5000,
   maxRetryDelayMs: 15000,
@@ -195,6 +201,7 @@ export const CONFIG_ENV: Record<keyof MiddlewareConfig, string> = {
   influxQueryLanguage: 'INFLUX_QUERY_LANGUAGE',
   writeConcurrency: 'WRITE_CONCURRENCY',
   writeGzip: 'WRITE_GZIP',
+  writeGzipLevel: 'WRITE_GZIP_LEVEL',
   batchSize: 'BATCH_SIZE',
   flushIntervalMs: 'FLUSH_INTERVAL_MS',
   maxRetryDelayMs: 'MAX_RETRY_DELAY_MS',
@@ -274,7 +281,10 @@ const SCHEMA = z.object({
     .transform((b) => b === 'true' || b === '1'),
   influxQueryLanguage: z.enum(QUERY_LANGUAGES),
   writeConcurrency: int(1, 64),
-  writeGzip: z.enum(['true', 'false', '1', '0']).transform((b) => b === 'true' || b === '1'),
+  writeGzip: z
+    .enum(['auto', 'true', 'false', '1', '0'])
+    .transform((b) => (b === 'auto' ? b : b === 'true' || b === '1')),
+  writeGzipLevel: int(1, 9),
   batchSize: int(1, 1_000_000),
   flushIntervalMs: int(1, 3_600_000),
   maxRetryDelayMs: int(1, 3_600_000),

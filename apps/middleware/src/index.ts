@@ -14,7 +14,7 @@ import { createHistoryHandler, type HistoryHandlerDeps } from './history/index.t
 import { historyReader } from './history/reader.ts';
 import { loadRecordingRobot } from './export/index.ts';
 import { apiService, createHttpHandler, type HealthReport, type HttpHandler } from './http.ts';
-import { createInfluxWriter, type InfluxWriter } from './influx.ts';
+import { createInfluxWriter, gzipLevelFor, type InfluxWriter } from './influx.ts';
 import { Ingest } from './ingest.ts';
 import { createLogger, LogOnce, type Logger } from './log.ts';
 import { Metrics } from './metrics.ts';
@@ -109,7 +109,7 @@ export async function startMiddleware(
         org: config.influxOrg,
         bucket: config.influxBucket,
         timeoutMs: 10_000,
-        gzip: config.writeGzip,
+        gzipLevel: gzipLevelFor(config.writeGzip, config.writeGzipLevel, config.influxUrl),
       });
     storage = new Storage(config, writer, metrics, log, once, clock);
     log.info(
@@ -119,6 +119,7 @@ export async function startMiddleware(
         mode: config.writeMode,
         batchSize: config.batchSize,
         flushIntervalMs: config.flushIntervalMs,
+        gzipLevel: gzipLevelFor(config.writeGzip, config.writeGzipLevel, config.influxUrl),
       },
       'storage: InfluxDB',
     );

@@ -6,6 +6,8 @@
  * on close() (RetryBuffer.close() returns the unsent count and they are logged, not kept).
  * Retrying is the shipper's job, against the durable spool.
  */
+import { promisify } from 'node:util';
+import zlib from 'node:zlib';
 import { HttpError, InfluxDB } from '@influxdata/influxdb-client';
 import { BucketsAPI, OrgsAPI } from '@influxdata/influxdb-client-apis';
 
@@ -26,12 +28,38 @@ export interface InfluxWriterOptions {
   bucket: string;
   /** Request timeout, ms. */
   timeoutMs: number;
-  /** gzip bodies (`Content-Encoding: gzip`, compressed off the main thread by zlib). */
-  gzip?: boolean;
+  /**
+   * gzip bodies at this zlib level (`Content-Encoding: gzip`, compressed off the main thread by
+   * zlib); 0 or absent = plain. The client's own gzip has no level (zlib's default, 6).
+   */
+  gzipLevel?: number;
 }
 
 /** Bodies shorter than this go uncompressed (gzip would not pay). */
 const GZIP_THRESHOLD_BYTES = 1000;
+
+const gzip = promisify(zlib.gzip);
+
+/** True for `localhost`, `127.x.x.x` and `[::1]`: InfluxDB on this machine. */
+export function isLoopbackUrl(url: string): boolean {
+  let host: string;
+  try {
+    host = new URL(url).hostname;
+  } catch {
+    return false;
+  }
+  return host === 'localhost' || host === '[::1]' || /^127\.\d+\.\d+\.\d+$/.test(host);
+}
+
+/**
+ * The gzip level writes use (0 = plain) for WRITE_GZIP and WRITE_GZIP_LEVEL: `auto` gzips only
+ * to an InfluxDB elsewhere. On loopback gzip saves no bandwidth, and its CPU (deflate here,
+ * inflate in influxd) was the largest single cost of the middleware's profile (BENCHMARKS.md §2).
+ */
+export function gzipLevelFor(setting: 'auto' | boolean, level: number, influxUrl: string): number {
+  const on = setting === 'auto' ? !isLoopbackUrl(influxUrl) : setting;
+  return on ? level : 0;
+}
 
 /** Why a write failed: `data` = InfluxDB refused the points themselves (do not retry them). */
 export class WriteError extends Error {
@@ -81,11 +109,21 @@ export function createInfluxWriter(opts: InfluxWriterOptions): InfluxWriter {
   const authHeader: Record<string, string> = opts.token
     ? { authorization: `Token ${opts.token}` }
     : {};
-  const sendOptions = {
+  const plain = { method: 'POST', headers: { 'content-type': 'text/plain; charset=utf-8' } };
+  const gzipped = {
     method: 'POST',
-    headers: { 'content-type': 'text/plain; charset=utf-8' },
-    ...(opts.gzip ? { gzipThreshold: GZIP_THRESHOLD_BYTES } : {}),
+    headers: { 'content-type': 'text/plain; charset=utf-8', 'content-encoding': 'gzip' },
   };
+  const level = opts.gzipLevel ?? 0;
+  // `send`, not `request`: request JSON-encodes a body that is not a string; send copies it with
+  // Buffer.from, which takes the gzipped bytes as they are. Status ≥ 300 comes as an HttpError.
+  const send = (body: string | Buffer, options: typeof plain) =>
+    new Promise<void>((resolve, reject) =>
+      influx.transport.send(path, body as string, options, {
+        error: reject,
+        complete: () => resolve(),
+      }),
+    );
 
   async function version(): Promise<string> {
     const res = await fetch(`${url}/ping`, {
@@ -98,7 +136,9 @@ export function createInfluxWriter(opts: InfluxWriterOptions): InfluxWriter {
   return {
     async write(body) {
       try {
-        await influx.transport.request(path, body, sendOptions);
+        if (level > 0 && body.length >= GZIP_THRESHOLD_BYTES)
+          await send(await gzip(body, { level }), gzipped);
+        else await send(body, plain);
       } catch (err) {
         throw classifyWriteError(err);
       }

@@ -15,12 +15,16 @@
  * SIGKILL loses nothing (the page cache survives), a power cut can lose the open batch and a
  * batch sealed in the last milliseconds whose fsync had not finished.
  *
+ * The next journal is created ahead, off the main thread (./journal-spares.ts): the first commit
+ * after a seal renames a ready empty file to `journal.lp`, and creates one only if none is ready.
+ *
  * `hold` takes a message's lines into memory, `commit` appends everything held in one write;
  * the MQTT edge acknowledges the messages of a commit only after it (src/mqtt.ts). `append` is
  * both at once.
  */
 import fs from 'node:fs';
 import path from 'node:path';
+import { JournalSpares } from './journal-spares.ts';
 
 export interface SpoolEntry {
   seq: number;
@@ -49,6 +53,7 @@ export class Spool {
   private readonly batchesDir: string;
   private readonly rejectedDir: string;
   private readonly journal: string;
+  private readonly spares: JournalSpares;
   private fd: number | null = null;
   private nextSeq = 1;
   /** The open batch's text (for the cache), and its tail not yet written to the journal. */
@@ -70,6 +75,11 @@ export class Spool {
     this.batchesDir = path.join(opts.dir, 'batches');
     this.rejectedDir = path.join(opts.dir, 'rejected');
     this.journal = path.join(opts.dir, 'journal.lp');
+    this.spares = new JournalSpares(opts.dir, {
+      started: () => this.pending++,
+      finished: () => this.done(),
+      onError: (err) => this.opts.onDiskError?.('prepare', err),
+    });
     this.cacheBytes = opts.cacheBytes ?? 16 * 1024 * 1024;
   }
 
@@ -96,6 +106,7 @@ export class Spool {
       if (points > 0) this.writeSealed(text, points);
       fs.rmSync(this.journal);
     }
+    this.spares.init();
     return { files: this.queue.length, points: this.sealedPoints };
   }
 
@@ -131,7 +142,7 @@ export class Spool {
     this.held = '';
     this.open += body;
     try {
-      this.fd ??= fs.openSync(this.journal, 'a');
+      this.fd ??= this.spares.take(this.journal) ?? fs.openSync(this.journal, 'a');
       fs.writeSync(this.fd, body, null, 'latin1');
     } catch (err) {
       this.opts.onDiskError?.('append', err as Error);
@@ -246,6 +257,7 @@ export class Spool {
 
   /** Closes the journal file (keeps it on disk: sealed again at the next init). */
   close(): void {
+    this.spares.close(); // first: the last commit creates no spare
     this.commit();
     this.closeJournal(false);
   }

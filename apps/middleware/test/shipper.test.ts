@@ -84,6 +84,7 @@ describe('Shipper', () => {
     expect(metrics).toMatchObject({ retries: 3, pointsWritten: 3, pointsDropped: 0 });
     expect(metrics.batches).toMatchObject({ ok: 3, failed: 3 });
     expect(spool.queue).toHaveLength(0);
+    await spool.settled(); // its disk work off the main thread (fsyncs, the next journals)
     fs.rmSync(dir, { recursive: true });
   });
 
@@ -97,6 +98,7 @@ describe('Shipper', () => {
     expect(writer.bodies).toEqual(['good 2\n']);
     expect(metrics.pointsRejected).toBe(1);
     expect(fs.readdirSync(path.join(dir, 'rejected'))).toHaveLength(2);
+    await spool.settled(); // its disk work off the main thread (fsyncs, the next journals)
     fs.rmSync(dir, { recursive: true });
   });
 });
@@ -147,6 +149,7 @@ describe('Shipper, concurrent writes', () => {
     expect(spool.queue).toHaveLength(0);
     expect(metrics).toMatchObject({ pointsWritten: 7, pointsDropped: 0 });
     await shipper.stop();
+    await spool.settled(); // its disk work off the main thread (fsyncs, the next journals)
     fs.rmSync(dir, { recursive: true });
   });
 });

@@ -43,6 +43,36 @@ describe('Spool', () => {
     expect(s.sealedPoints).toBe(2);
   });
 
+  test('after a seal the journal goes on in a spare made ahead; spares stay empty and go at restart', async () => {
+    const dir = tmp();
+    const spares = () => fs.readdirSync(dir).filter((f) => f.startsWith('journal.next.'));
+    const s1 = new Spool({ dir, maxBytes: 1 << 20 });
+    s1.init();
+    expect(spares()).toHaveLength(3); // made at start, before the first seal needs one
+    for (let k = 0; k < 5; k++) {
+      s1.append(lines(k * 10, 10));
+      s1.seal();
+      s1.append(lines(k * 10 + 10, 1)); // the next journal takes appends at once
+      expect(fs.readFileSync(path.join(dir, 'journal.lp'), 'utf8')).toBe(
+        lines(k * 10 + 10, 1)[0] + '\n',
+      );
+      s1.seal();
+    }
+    await s1.settled();
+    expect(spares().map((f) => fs.statSync(path.join(dir, f)).size)).toEqual([0, 0, 0]);
+    s1.append(lines(900, 2)); // SIGKILL: no close
+    const s2 = new Spool({ dir, maxBytes: 1 << 20, cacheBytes: 0 });
+    expect(s2.init()).toEqual({ files: 11, points: 57 });
+    expect(spares()).toHaveLength(3);
+    const stored: string[] = [];
+    for (let e = s2.peek(); e; e = s2.peek()) {
+      stored.push(s2.read(e));
+      s2.remove(e);
+    }
+    expect(stored.join('').trimEnd().split('\n').slice(-2)).toEqual(lines(900, 2));
+    await s2.settled();
+  });
+
   test('a restarted spool replays its batches in order, then the crashed journal (torn line cut)', async () => {
     const dir = tmp();
     const s1 = new Spool({ dir, maxBytes: 1 << 20 });
@@ -53,6 +83,7 @@ describe('Spool', () => {
     }
     s1.append(lines(500, 4));
     fs.appendFileSync(path.join(dir, 'journal.lp'), 'servo,arm=a,id=000 pwm=15'); // killed mid-write
+    await s1.settled(); // its fsyncs and spare journals done (a killed process leaves none running)
     // SIGKILL: no close
     const s2 = new Spool({ dir, maxBytes: 1 << 20, cacheBytes: 0 });
     expect(s2.init()).toEqual({ files: 13, points: 124 });
@@ -88,7 +119,7 @@ describe('Spool', () => {
     expect(s.full).toBe(false);
   });
 
-  test('a rejected batch moves to rejected/ with its reason and is not replayed', () => {
+  test('a rejected batch moves to rejected/ with its reason and is not replayed', async () => {
     const dir = tmp();
     const s = new Spool({ dir, maxBytes: 1 << 20 });
     s.init();
@@ -97,6 +128,7 @@ describe('Spool', () => {
     const where = s.reject(e, '400 partial write: field type conflict');
     expect(fs.readFileSync(where, 'utf8')).toBe(lines(0, 2).join('\n') + '\n');
     expect(fs.readFileSync(`${where}.err`, 'utf8')).toMatch(/field type conflict/);
+    await s.settled(); // the seal's fsync and the next spare journal, off the main thread
     const again = new Spool({ dir, maxBytes: 1 << 20 });
     expect(again.init().files).toBe(0);
   });
