@@ -46,6 +46,7 @@ import { ros2Section } from './ros2.ts';
 import { foxgloveSection } from './foxglove.ts';
 import { lerobotSection } from './lerobot.ts';
 import { fleetSection } from './fleet.ts';
+import { clusterSection } from './cluster.ts';
 import { datasetSection } from './dataset.ts';
 import { CHROMIUM_ARGS, GPU_CHROMIUM_ARGS } from '../tests/helpers/chromium.ts';
 
@@ -66,15 +67,17 @@ const SECTIONS: Section[] = [
   foxgloveSection,
   lerobotSection,
   fleetSection,
+  clusterSection,
   datasetSection,
   soakSection,
 ];
 /**
  * Sections left out of a run without `--only`: the soak (alone it takes `--soak-minutes`, 30
- * min), and the fleet (issue 34 item 3: two brokers' ramps up to 1,600 arms, and the page's
- * fleet runs again); a default run's table carries their newest run.
+ * min), the fleet (issue 34 item 3: two brokers' ramps up to 1,600 arms, and the page's
+ * fleet runs again) and the cluster (a 3-node NATS cluster per step, up to 100 arms through a
+ * node's kill: minutes); a default run's table carries their newest run.
  */
-const NOT_BY_DEFAULT = new Set(['soak', 'fleet']);
+const NOT_BY_DEFAULT = new Set(['soak', 'fleet', 'cluster']);
 /** Broker settings for every section (recorded in the JSON): see BENCHMARKS.md on Nagle. */
 const NEEDS_BROKER = new Set([
   'rtt',
@@ -91,7 +94,7 @@ const NEEDS_BROKER = new Set([
   'lerobot',
   'fleet',
 ]);
-const NEEDS_INFLUX = new Set(['ingest', 'cpu', 'telegraf', 'soak', 'fleet']);
+const NEEDS_INFLUX = new Set(['ingest', 'cpu', 'telegraf', 'soak', 'fleet', 'cluster']);
 
 const log = (m: string) => console.log(`[bench ${new Date().toISOString().slice(11, 19)}] ${m}`);
 

@@ -8,13 +8,19 @@
  *   all of them did, in this process's clock;
  * - on SIGTERM, after stopping every arm (each says offline),
  *   `{"published":{arm:{"state","health","servos"}}}`, then exits.
- * Usage: fleet.ts <mqtt url> <first> <last> <rate Hz> <id prefix>
+ * `<mqtt url>` may hold several broker lists separated by `;` (a cluster's nodes, each list
+ * starting at another node): arm k takes list (k − 1) mod their count. With `<counts file>`,
+ * the state samples each arm's runner made are also written there as JSON (`{"<id>": n, …}`)
+ * once stopped (bench/cluster.ts compares them with what was stored).
+ * Usage: fleet.ts <mqtt url> <first> <last> <rate Hz> <id prefix> [<counts file>]
  */
+import fs from 'node:fs';
 import { pino } from 'pino';
 import { startSim, type Sim } from '@armtwin/sim';
 
-const [url = '', firstS = '1', lastS = '1', rateS = '50', prefix = 'fleet-'] =
+const [url = '', firstS = '1', lastS = '1', rateS = '50', prefix = 'fleet-', countsFile] =
   process.argv.slice(2);
+const lists = url.split(';');
 // Logs go to stderr (the run's log file): stdout carries the JSON lines.
 const log = pino({ level: 'warn' }, pino.destination(2));
 const t0 = performance.now();
@@ -28,7 +34,13 @@ for (let i = Number(firstS); i <= Number(lastS); i += 10) {
       ids.map(async (k) => {
         const arm = `${prefix}${k}`;
         const onFirst = (kind: string, message: string) => log.warn({ arm, kind }, message);
-        const sim = await startSim({ mqttUrl: url, armId: arm, log, rate: Number(rateS), onFirst });
+        const sim = await startSim({
+          mqttUrl: lists[(k - 1) % lists.length]!,
+          armId: arm,
+          log,
+          rate: Number(rateS),
+          onFirst,
+        });
         return { arm, sim };
       }),
     )),
@@ -56,6 +68,10 @@ process.once('SIGTERM', () => {
         health: sim.publishedSamples?.health ?? 0,
         servos: sim.runner?.model.servos.count ?? 0,
       };
+    if (countsFile) {
+      const counts = sims.map(({ arm, sim }) => [arm, sim.runner?.counters.stateSamples ?? 0]);
+      fs.writeFileSync(countsFile, JSON.stringify(Object.fromEntries(counts)));
+    }
     say({ published }, () => process.exit(0));
   });
 });

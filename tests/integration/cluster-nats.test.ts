@@ -3,24 +3,27 @@
  * over WebSockets on every node, MQTT's streams with 3 replicas), six simulated arms spread over
  * its nodes (each given the three nodes as its broker list), a page-like client (mqtt.js over
  * WebSockets through @armtwin/link, as the HUD connects), and two middlewares sharing the stream
- * through one JetStream consumer (NATS_URL), into InfluxDB 1.8. A node (by default not the one
- * leading MQTT's message stream; CLUSTER_KILL=leader kills that one), which two arms, one
- * middleware, the page and the holder's client are on, is SIGKILLed mid-stream: the arms and the page move to other nodes, the holder's retained record is still
- * read there, and once the node is back and has rejoined, every state report each arm made is one
- * point in InfluxDB (counted per arm against the sim's own counter: nothing lost, nothing twice),
- * and both middlewares stored part of it. Only generous wait-for-condition timeouts, no timing
- * assertion (the times are printed).
+ * through one JetStream consumer (NATS_URL), into InfluxDB 1.8. The node leading MQTT's message
+ * stream (CLUSTER_KILL=other: the node after it), which two arms, one middleware, the page and
+ * the holder's client are on, is SIGKILLed mid-stream: the arms, the page and the holder move to
+ * other nodes, the holder's retained record is still read there, her jogs reach the arm before
+ * and after the kill (the page sees its servo follow) and her stop holds it; once the node is
+ * back and has rejoined, every state report each arm made is one point in InfluxDB (counted per
+ * arm against the sim's own counter: nothing lost, nothing twice), and both middlewares stored
+ * part of it. Only generous wait-for-condition timeouts, no timing assertion (the times are
+ * printed).
  */
 import fs from 'node:fs';
 import mqtt, { type MqttClient } from 'mqtt';
 import pino from 'pino';
 import { afterAll, expect, test } from 'vitest';
 import { connectBrokers, parseBrokerList, type BrokerClient } from '@armtwin/link';
-import { linkOptions } from '@armtwin/protocol';
+import { linkOptions, parseSummary } from '@armtwin/protocol';
 import { startSim, type Sim } from '@armtwin/sim';
 import { useInflux, useNatsCluster } from '../helpers/use-services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
 import { reportGaps, storedReports } from './stored-reports.ts';
+import { ReportedPose } from './reported-pose.ts';
 import { holdersOn } from './holders.ts';
 import type { MiddlewareProcess } from '../../apps/middleware/test/support/harness.ts';
 
@@ -57,17 +60,16 @@ test(
     const inf = { url: influx().url, db: influx().db };
     const stored = (arm: string) => storedReports(inf, arm);
 
-    // The first MQTT client makes MQTT's streams. The node to kill is the one after the node
-    // leading its message stream, or (CLUSTER_KILL=leader) that node itself: then every QoS 1
-    // store waits for a new leader, and in 3 of 9 runs 5 s of the reports of the arms on one
-    // surviving node were lost (docs/cluster.md § Found on the cluster: not fixed).
+    // The first MQTT client makes MQTT's streams. The node to kill is the node leading its
+    // message stream (every QoS 1 store then waits for a new leader, docs/cluster.md § Found on
+    // the cluster), or with CLUSTER_KILL=other the node after it.
     const first = await mqtt.connectAsync(c.nodes[0]!.mqttUrl, { clientId: 'first' });
     await until(async () => (await c.stream('$MQTT_msgs')) !== null, 30_000, 'a stream leader');
     await first.endAsync();
     const leader = (await c.stream('$MQTT_msgs'))?.leader;
     const leads = c.nodes.findIndex((n) => n.name === leader);
     expect(leads).toBeGreaterThanOrEqual(0);
-    const victim = process.env.CLUSTER_KILL === 'leader' ? leads : (leads + 1) % 3;
+    const victim = process.env.CLUSTER_KILL === 'other' ? (leads + 1) % 3 : leads;
     const victimNode = c.nodes[victim]!;
 
     // Two middlewares, one on the victim and one on the next node; one consumer between them.
@@ -118,31 +120,74 @@ test(
 
     // The page, on the victim over WebSockets, following cl1 (whose arm is on the victim too).
     let pageReports = 0;
+    const pose = new ReportedPose(0); // cl1's servo 0, as the page sees it
     const page: BrokerClient = connectBrokers(parseBrokerList(c.wsUrls(victim)), {
       clientId: 'page-cluster',
       ...linkOptions(),
     });
     clients.push(page);
     page.on('connect', () => void page.subscribe(['arm/cl1/status', 'arm/cl1/holder'], { qos: 1 }));
-    page.on('message', (t) => t === 'arm/cl1/status' && pageReports++);
+    page.on('message', (t, p) => {
+      if (t !== 'arm/cl1/status') return;
+      pageReports++;
+      pose.feed(p);
+    });
     await until(() => page.connected && pageReports > 10, 30_000, 'the page following cl1');
 
     // alice takes cl1 and cl2 (arms on the victim and on the next node) from the victim; she
-    // never beats, so the arms keep her as holder (docs/protocol.md § Control).
-    const alice = await mqtt.connectAsync(victimNode.mqttUrl, {
+    // never beats, so the arms keep her as holder (docs/protocol.md § Control). She has the
+    // nodes as her broker list, as a page has: she moves when her node goes.
+    const alice = connectBrokers(parseBrokerList(c.mqttUrls(victim)), {
       clientId: 'alice',
-      reconnectPeriod: 0,
+      ...linkOptions(),
     });
     clients.push(alice);
+    await until(() => alice.connected, 30_000, 'alice connected');
+    const jog = (pwm: number, ms: number) =>
+      alice.publishAsync('arm/cl1/control/alice', `#000P${pwm}T${ms}!`, { qos: 1 });
+    // A command that comes before the arm's subscription to it is made (the cluster makes one
+    // JetStream consumer per QoS 1 subscription, slowly while it recovers) reaches nobody: as a
+    // held jog's keep-alive does, alice sends her jog again each second until cl1 follows.
+    const jogs: number[] = [];
+    const jogUntil = async (pwm: number, what: string) => {
+      let sent = 0;
+      let last = 0;
+      await until(
+        async () => {
+          if (pose.at(pwm)) return true;
+          if (Date.now() - last > 1000) {
+            last = Date.now();
+            sent++;
+            await jog(pwm, 400);
+          }
+          return false;
+        },
+        60_000,
+        what,
+      );
+      jogs.push(sent);
+    };
     // A claim sent before an arm's claim subscription is made (a busy cluster makes one JetStream
-    // consumer per QoS 1 subscription) reaches nobody: alice asks until she holds both.
+    // consumer per QoS 1 subscription) reaches nobody: alice asks again while the arm's live
+    // summary (2 Hz), sent well after her last ask, still names nobody. Never once it names her:
+    // a second `take` from the holder is a beat, and 2.5 s without one would lose her the arm
+    // (docs/protocol.md § Control).
+    const held = new Map<string, { holder: string | null; at: number }>();
+    alice.on('message', (t, p) => {
+      const s = parseSummary(p);
+      if (s.ok) held.set(t.split('/')[1]!, { holder: s.summary.holder, at: Date.now() });
+    });
+    alice.subscribe(['arm/cl1/summary', 'arm/cl2/summary'], { qos: 0 }); // again at each connect
+    const asked = new Map<string, number>();
     await until(
       async () => {
-        const holders = await holdersOn(victimNode.mqttUrl, ['cl1', 'cl2']).catch(() => []);
-        for (const [i, arm] of ['cl1', 'cl2'].entries())
-          if (holders[i] !== 'alice')
-            await alice.publishAsync(`arm/${arm}/claim/alice`, 'take', { qos: 1 });
-        return holders.length === 2 && holders.every((h) => h === 'alice');
+        for (const arm of ['cl1', 'cl2']) {
+          const h = held.get(arm);
+          if (h?.holder === 'alice' || (h?.at ?? 0) < (asked.get(arm) ?? 0) + 1500) continue;
+          asked.set(arm, Date.now());
+          await alice.publishAsync(`arm/${arm}/claim/alice`, 'take', { qos: 1 });
+        }
+        return ['cl1', 'cl2'].every((arm) => held.get(arm)?.holder === 'alice');
       },
       60_000,
       'alice holding cl1 and cl2',
@@ -152,6 +197,8 @@ test(
       60_000,
       'every arm stored',
     );
+    // alice jogs cl1 before the kill: the page sees its servo follow.
+    await jogUntil(1800, "cl1 at alice's jog before the kill");
 
     // The node goes down mid-stream (a crash: nothing saved, no will published by it).
     const before = await Promise.all(ARMS.map(stored));
@@ -171,19 +218,6 @@ test(
       'a leader of the message stream on a running node',
     );
     const newLeaderMs = Date.now() - killedAt;
-    // The holder survived on the other nodes (cl2's arm never left its node: nobody republished
-    // it). A QoS 1 subscription may be refused while JetStream elects leaders: read until it is not.
-    const other = c.nodes[(victim + 1) % 3]!;
-    let holders: unknown[] = [];
-    await until(
-      async () => {
-        holders = await holdersOn(other.wsUrl, ['cl1', 'cl2']).catch(() => []);
-        return holders.length > 0;
-      },
-      30_000,
-      'the holders read on another node',
-    );
-    expect(holders).toEqual(['alice', 'alice']);
     // Every arm hears its control topic where it is now (its subscriptions were asked for while
     // the cluster recovered: @armtwin/link asks again for any refused): a ping is echoed.
     const echoes = connectBrokers(parseBrokerList(c.mqttUrls((victim + 1) % 3)), {
@@ -193,12 +227,21 @@ test(
     clients.push(echoes);
     const echoed = new Set<string>();
     const lastReport = new Map<string, number>();
-    echoes.on('message', (t, p) => {
+    const summaryHolder = new Map<string, string | null>();
+    echoes.on('message', (t, p, packet) => {
+      if (t.endsWith('/summary')) {
+        const s = parseSummary(p);
+        if (s.ok && !packet.retain) summaryHolder.set(t.split('/')[1]!, s.summary.holder);
+        return;
+      }
       lastReport.set(t, Date.now());
       const ping = /\$PNG:(\d+)!/.exec(p.toString());
       if (ping) echoed.add(`${t.split('/')[1]}:${ping[1]}`);
     });
-    echoes.on('connect', () => void echoes.subscribe('arm/+/status', { qos: 0 }));
+    echoes.on(
+      'connect',
+      () => void echoes.subscribe(['arm/+/status', 'arm/+/summary'], { qos: 0 }),
+    );
     for (const [i, arm] of ARMS.entries())
       await until(
         async () => {
@@ -222,6 +265,36 @@ test(
       60_000,
       'every arm stored after the kill',
     );
+    // The holder survived on the other nodes: a fresh client there reads alice as the retained
+    // holder of cl1 and cl2 (the arms republish it at every connect; cl2's arm may not have
+    // moved). A QoS 1 subscription may be refused while JetStream elects leaders: read until it
+    // is not. On a mismatch, the arms' own live summaries say whom their controllers hold.
+    const other = c.nodes[(victim + 1) % 3]!;
+    let holders: unknown[] = [];
+    await until(
+      async () => {
+        holders = await holdersOn(other.wsUrl, ['cl1', 'cl2']).catch(() => []);
+        return holders.length > 0;
+      },
+      30_000,
+      'the holders read on another node',
+    );
+    expect(
+      holders,
+      `retained on ${other.name}; the arms' summaries say ${JSON.stringify(Object.fromEntries(summaryHolder))}`,
+    ).toEqual(['alice', 'alice']);
+    // alice, moved to a surviving node, still holds cl1 (its arm moved too): her jog reaches it.
+    await jogUntil(1200, "cl1 at alice's jog after the kill");
+    // The stop works there: a slow move is cut short and the arm holds where it stopped.
+    await jog(2200, 9000);
+    await until(() => pose.latest > 1300, 30_000, 'cl1 under way to 2200');
+    await alice.publishAsync('arm/cl1/control/alice', '#255PDST!', { qos: 1 });
+    await until(() => pose.still(10), 30_000, 'cl1 stopped');
+    const stoppedAt = pose.latest;
+    const afterStop = pose.samples.length;
+    await until(() => pose.samples.length > afterStop + 50, 30_000, 'a second of reports');
+    expect(stoppedAt).toBeLessThan(2150);
+    expect(pose.samples.slice(afterStop).every((p) => Math.abs(p - stoppedAt) <= 2)).toBe(true);
 
     // The node comes back, rejoins (routes to both others, its copy of the stream current) and
     // the page goes back to it (it is first in its list).
@@ -307,7 +380,7 @@ test(
     console.log(
       `cluster: node ${victimNode.name} killed; page on another node after ${pageBackMs} ms, ` +
         `stream led by a running node after ${newLeaderMs} ms; status messages per middleware ${taken.join(', ')} ` +
-        `(${read - sent} read twice of ${sent}); ` +
+        `(${read - sent} read twice of ${sent}); alice's jogs sent before cl1 followed ${jogs.join(', ')}; ` +
         `stored = published per arm: ${JSON.stringify(counts)}`,
     );
   },

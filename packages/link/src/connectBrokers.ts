@@ -1,7 +1,8 @@
 /**
  * An mqtt.js client over an ordered list of brokers (docs/protocol.md § Several brokers), the
  * same in Node and in the page. It is ONE MqttClient: its handlers, its subscriptions and its
- * offline queue (QoS 1 messages published while disconnected, and those not yet acknowledged)
+ * offline queue (QoS 1 messages published while disconnected, those not yet acknowledged, and
+ * those mqtt.js would drop when a connection closes while it re-sends them: `./republish.ts`)
  * survive a move, because only the stream under it changes: at every (re)connect mqtt.js asks
  * the stream builder for a stream, and the builder asks the policy (`BrokerFailover`,
  * `./brokers.ts`) which broker that is. Each broker's own builder is mqtt.js's, made by
@@ -22,6 +23,7 @@ import {
   type BrokerMove,
 } from './brokers.ts';
 import { probeBroker, type ConnectFn, type ProbeConnected } from './probe.ts';
+import { republishDroppedPublishes } from './republish.ts';
 import { retryRefusedSubscriptions } from './resubscribe.ts';
 
 export interface BrokerLinkOptions extends BrokerListOptions {
@@ -66,6 +68,8 @@ export function connectBrokers(
     several ? { ...opts, manualConnect: true } : opts,
   ) as BrokerClient;
   client.brokers = failover;
+  // mqtt.js drops QoS 1 publishes made while it re-sends its store, if the connection closes then.
+  republishDroppedPublishes(client);
   if (several) {
     const builders = urls.map((url, i) =>
       i === 0
