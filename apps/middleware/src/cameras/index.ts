@@ -10,6 +10,7 @@ export { Recordings, DEFAULT_RECORDINGS_OPTIONS, type RecordingsOptions } from '
 export { RecordingCounters } from './recording-counters.ts';
 export {
   parseSegmentName,
+  segmentKind,
   segmentName,
   segmentsBetween,
   retentionPlan,
