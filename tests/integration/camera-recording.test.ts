@@ -5,20 +5,17 @@
  * `side`, which offers only MJPEG, in 2 s `.mjpeg` segments (its JPEGs as served). The camera
  * server is restarted, then the middleware: each leaves exactly one gap in each camera; every
  * segment decodes with ffmpeg, no `.part` is left, and no frame is recorded twice (the frame
- * times, read from the files' packets and names or the JPEG parts' stamps, only go forward). The HTTP API lists the segments and sends them
- * byte for byte; `/metrics` counts them; a middleware started with a smaller size bound deletes
- * the oldest segment first.
+ * times, read from the files' packets and names or the JPEG parts' stamps, only go forward).
+ * The HTTP API lists the segments and sends them byte for byte, or the one byte range asked for
+ * (206, fetched with undici); `/metrics` counts them; a middleware started with a smaller size
+ * bound deletes the oldest segment first.
  */
-import { execFileSync } from 'node:child_process';
+import { execFileSync, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { afterAll, describe, expect, test } from 'vitest';
-import {
-  createMultipartParser,
-  MJPEG_BOUNDARY,
-  serveCamera,
-  type ServedCameras,
-} from '@armtwin/camera';
+import { serveCamera, type ServedCameras } from '@armtwin/camera';
+import { readMjpegSegment } from '../helpers/mjpeg-segment.ts';
 import { freePort } from '../helpers/ports.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
@@ -74,25 +71,9 @@ async function segmentsAfter(port: number, afterMs: number, count: number): Prom
   }
 }
 
-/** Epoch ms of every JPEG of an `.mjpeg` segment: its parts' `X-Timestamp`. */
-function jpegTimes(file: string): number[] {
-  const times: number[] = [];
-  const parser = createMultipartParser({
-    boundary: MJPEG_BOUNDARY,
-    onPart: (p) => times.push(Number(p.headers['x-timestamp'])),
-    onError: (e) => {
-      throw new Error(`${file}: ${e.message}`);
-    },
-  });
-  parser.feed(fs.readFileSync(file));
-  parser.flush();
-  expect(parser.closed).toBe(true); // the closing boundary: the file is whole
-  return times;
-}
-
 /** Epoch ms of every frame of a segment: its name's start + each packet's time. */
 function frameTimes(file: string, startMs: number): number[] {
-  if (file.endsWith('.mjpeg')) return jpegTimes(file);
+  if (file.endsWith('.mjpeg')) return readMjpegSegment(file).times;
   const out = execFileSync('ffprobe', [
     ...['-v', 'error', '-select_streams', 'v', '-show_entries', 'packet=pts_time'],
     ...['-of', 'csv=p=0', file],
@@ -129,9 +110,18 @@ describe('recording a camera beside the history', () => {
     const segments = await listed(mw2.port);
     const sideSegments = await listed(mw2.port, 'side');
     const one = segments[segments.length - 1]!;
-    const sent = Buffer.from(
-      await (await fetch(`http://127.0.0.1:${mw2.port}${one.url}`)).arrayBuffer(),
-    );
+    const whole = await fetch(`http://127.0.0.1:${mw2.port}${one.url}`);
+    expect(whole.headers.get('accept-ranges')).toBe('bytes');
+    const sent = Buffer.from(await whole.arrayBuffer());
+    // a <video> seeks with byte ranges: one range is answered 206 with just those bytes
+    const ranged = async (range: string) => {
+      const res = await fetch(`http://127.0.0.1:${mw2.port}${one.url}`, { headers: { range } });
+      const body = Buffer.from(await res.arrayBuffer());
+      return { status: res.status, contentRange: res.headers.get('content-range'), body };
+    };
+    const middle = await ranged('bytes=100-1099');
+    const end = await ranged('bytes=-64');
+    const past = await ranged(`bytes=${one.bytes}-`);
     const metrics = await mw2.metrics();
     expect(await mw2.stop()).toBe(0);
     await camera.stop();
@@ -139,7 +129,19 @@ describe('recording a camera beside the history', () => {
     // What is on disk is what was listed (plus what the stop finished), all whole.
     const folder = path.join(dir, 'arm1', 'front');
     const files = fs.readdirSync(folder).sort();
-    expect(sent.equals(fs.readFileSync(path.join(folder, one.name)))).toBe(true);
+    const onDisk = fs.readFileSync(path.join(folder, one.name));
+    expect(sent.equals(onDisk)).toBe(true);
+    expect(middle).toEqual({
+      status: 206,
+      contentRange: `bytes 100-1099/${one.bytes}`,
+      body: onDisk.subarray(100, 1100),
+    });
+    expect(end).toEqual({
+      status: 206,
+      contentRange: `bytes ${one.bytes - 64}-${one.bytes - 1}/${one.bytes}`,
+      body: onDisk.subarray(-64),
+    });
+    expect([past.status, past.contentRange]).toEqual([416, `bytes */${one.bytes}`]);
     expect(metrics['camera_segments']).toBeGreaterThanOrEqual(4);
     expect(
       metrics['camera_recording_events_total{event="segments-written"}'],
@@ -156,16 +158,24 @@ describe('recording a camera beside the history', () => {
       const times: number[] = [];
       for (const f of names) {
         const file = path.join(dir, 'arm1', cam, f);
-        // ffmpeg decodes every frame without a word on stderr
-        const format = ext === '.mjpeg' ? ['-f', 'mpjpeg'] : [];
-        const decoded = execFileSync(
+        // ffmpeg decodes every frame without a word on stderr (an MJPEG segment: each of its
+        // JPEGs, after its parts read whole up to the closing boundary; rawvideo, as the null
+        // muxer warns of two frames in one of its own time slots)
+        let input = ['-i', file];
+        let stdin: Buffer | undefined;
+        if (ext === '.mjpeg') {
+          const m = readMjpegSegment(file);
+          expect([m.closed, m.errors], f).toEqual([true, []]);
+          [input, stdin] = [['-f', 'jpeg_pipe', '-i', '-'], m.jpegs];
+        }
+        const decoded = spawnSync(
           'ffmpeg',
-          ['-v', 'error', ...format, '-i', file, '-f', 'null', '-'],
+          ['-v', 'error', ...input, '-f', 'rawvideo', '-y', '/dev/null'],
           {
-            stdio: ['ignore', 'pipe', 'pipe'],
+            input: stdin,
           },
         );
-        expect(decoded.toString()).toBe('');
+        expect([decoded.status, decoded.stderr.toString()], f).toEqual([0, '']);
         times.push(...frameTimes(file, Number(f.split('-')[0])));
       }
       const steps = times.slice(1).map((t, i) => t - times[i]!);
