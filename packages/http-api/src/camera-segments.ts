@@ -3,7 +3,7 @@
  * `GET …/segments?from=&to=` (ISO times, both optional) lists those holding any frame of the
  * range, by time: `{ok, segments: [{name, start, end, bytes, url}]}`; `GET …/segments/{name}`
  * sends one (`video/mp4`, or the multipart JPEGs of an `.mjpeg` one; immutable: a finished
- * segment never changes). Anyone who may read the
+ * segment never changes), or the one byte range asked for (206), so a `<video>` can seek. Anyone who may read the
  * history may read them; without the middleware's recording the route answers 503.
  */
 import type http from 'node:http';
@@ -67,7 +67,9 @@ export function cameraSegmentsRoute(o: {
         if (!file) return answer(res, 404, { ok: false, errors: ['no such segment'] }, 'missing');
         counters.sent = (counters.sent ?? 0) + 1;
         const type = file.endsWith('.mjpeg') ? MJPEG_CONTENT_TYPE : 'video/mp4';
-        return sendFile(req, res, file, type, 'public, max-age=31536000, immutable');
+        return sendFile(req, res, file, type, 'public, max-age=31536000, immutable', {
+          ranges: true,
+        });
       }
       const range = timeRange(req);
       if (!range)
