@@ -5,6 +5,7 @@
  * (ui/panels/History/ReplayJpegs.ts) draws it in an <img>, as the MJPEG has no <video> codec.
  */
 import { createMultipartParser, MJPEG_BOUNDARY } from '@armtwin/camera/client';
+import { lastAtOrBefore } from './videoAt.ts';
 
 export interface JpegFrame {
   /** Epoch ms. */
@@ -33,15 +34,5 @@ export function readJpegFrames(bytes: Uint8Array): JpegFrame[] {
 
 /** Index of the frame shown at `t` (epoch ms): the last at or before it; -1 before the first. */
 export function jpegFrameAt(frames: readonly JpegFrame[], t: number): number {
-  let lo = 0;
-  let hi = frames.length - 1;
-  let found = -1;
-  while (lo <= hi) {
-    const mid = (lo + hi) >> 1;
-    if (frames[mid]!.atMs <= t) {
-      found = mid;
-      lo = mid + 1;
-    } else hi = mid - 1;
-  }
-  return found;
+  return lastAtOrBefore(frames, t, (f) => f.atMs);
 }
