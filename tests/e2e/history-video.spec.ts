@@ -7,10 +7,17 @@
  * plays the recorded video beside the amber arm: at a paused replay time T the <video>'s media
  * time + its segment's start is T within one frame while the replay's pose is the stored pose
  * of T; playing moves the video at the replay's speed; in the camera's gap "no recording" shows;
- * the History charts mark the replay's instant.
+ * the History charts mark the replay's instant. A second camera that offers only MJPEG (the
+ * first one's MJPEG stream, announced as it is) is recorded as its JPEGs (`.mjpeg` segments) and the replay shows, at T, the recorded JPEG of T
+ * (the last one at or before it) in an <img>.
  */
 import type { Page } from '@playwright/test';
-import { serveCamera, type ServedCameras } from '@armtwin/camera';
+import {
+  createMultipartParser,
+  MJPEG_BOUNDARY,
+  serveCamera,
+  type ServedCameras,
+} from '@armtwin/camera';
 import { angleFromPwm, pwmFromAngle } from '@armtwin/protocol';
 import { shot } from './fixtures.ts';
 import { expect, test, type StorageStack } from './history-fixtures.ts';
@@ -41,7 +48,16 @@ test.afterAll(async () => {
 
 async function startCamera(stack: StorageStack, armId: string, port: number) {
   const c = await serveCamera({
-    cameras: [{ armId, camId: 'front', label: 'Front', source: 'testsrc', kinds: ['h264-ws'] }],
+    cameras: [
+      { armId, camId: 'front', label: 'Front', source: 'testsrc', kinds: ['h264-ws', 'mjpeg'] },
+      // front's MJPEG stream announced as it is (no second ffmpeg): a camera offering only MJPEG
+      {
+        armId,
+        camId: 'side',
+        label: 'Side',
+        source: `http://127.0.0.1:${port}/camera/front.mjpeg`,
+      },
+    ],
     port,
     mqttUrl: stack.broker.url,
   });
@@ -50,11 +66,36 @@ async function startCamera(stack: StorageStack, armId: string, port: number) {
   return c;
 }
 
-async function segments(stack: StorageStack, armId: string): Promise<Listed[]> {
-  const res = await fetch(`${stack.apiUrl}/arms/${armId}/cameras/front/segments`);
+async function segments(stack: StorageStack, armId: string, cam = 'front'): Promise<Listed[]> {
+  const res = await fetch(`${stack.apiUrl}/arms/${armId}/cameras/${cam}/segments`);
   expect(res.status).toBe(200);
   return ((await res.json()) as { segments: Listed[] }).segments;
 }
+
+/** The time of the MJPEG camera's recorded JPEG shown at `t`: the last at or before it. */
+async function jpegAt(stack: StorageStack, armId: string, t: number): Promise<number> {
+  const s = (await segments(stack, armId, 'side')).find((x) => x.startMs <= t && t <= x.endMs)!;
+  const bytes = await (
+    await fetch(`${stack.apiUrl}/arms/${armId}/cameras/side/segments/${s.name}`)
+  ).arrayBuffer();
+  const times: number[] = [];
+  const parser = createMultipartParser({
+    boundary: MJPEG_BOUNDARY,
+    onPart: (p) => times.push(Number(p.headers['x-timestamp'])),
+  });
+  parser.feed(new Uint8Array(bytes));
+  return times.filter((x) => x <= t).at(-1)!;
+}
+
+/** The MJPEG camera's <img>: the time of the JPEG it shows, and whether it is hidden. */
+const jpegNow = (page: Page) =>
+  page
+    .getByTestId('replay-video-side')
+    .locator('img')
+    .evaluate((i: HTMLImageElement) => ({
+      frameAt: Number(i.dataset.frameAt),
+      shown: !i.hidden && i.complete && i.naturalWidth > 0,
+    }));
 
 const covered = (list: Listed[], t: number) => list.some((s) => s.startMs <= t && t <= s.endMs);
 
@@ -106,7 +147,9 @@ test('one timeline: the replay plays the recorded camera with the twin', async (
   await page.getByRole('slider', { name: 'Elbow', exact: true }).fill('45');
   const want = pwmFromAngle(45, 1);
   await until(() => arm.observer.pwm[2] === want, 10_000, `the sim's elbow at ${want} µs`);
-  await page.waitForTimeout(2500);
+  // long enough that the 2× play below, paused once the video plays, ends before the gap even
+  // on a loaded machine (it ended in the gap at load 22 with 2.5 s)
+  await page.waitForTimeout(3500);
   const at45 = Date.now() - 1000;
 
   // The camera server goes away for a few seconds: a gap in the recording.
@@ -132,6 +175,8 @@ test('one timeline: the replay plays the recorded camera with the twin', async (
   // Paused at T: the video shows T within a frame, the twin the stored pose of T.
   await scrubTo(page, at45);
   expect(await replayElbow(page)).toBeCloseTo(ELBOW_45, 3);
+  const sideAt45 = await jpegAt(stack, arm.id, at45);
+  await expect.poll(() => jpegNow(page)).toEqual({ frameAt: sideAt45, shown: true });
   await shot(page, testInfo, 'replay-video-45');
   await scrubTo(page, atHome);
   expect(await replayElbow(page)).toBeCloseTo(0, 1);
@@ -139,6 +184,7 @@ test('one timeline: the replay plays the recorded camera with the twin', async (
   // In the gap: no picture, "no recording".
   await page.getByRole('slider', { name: 'Replay position' }).fill(String(inGap));
   await expect(page.getByTestId('replay-video-front')).toContainText('Front: no recording');
+  await expect(page.getByTestId('replay-video-side')).toContainText('Side: no recording');
   expect((await videoNow(page)).hidden).toBe(true);
   await shot(page, testInfo, 'replay-video-gap');
 
@@ -146,17 +192,23 @@ test('one timeline: the replay plays the recorded camera with the twin', async (
   await scrubTo(page, atHome - 1000);
   await page.getByLabel('Replay speed').selectOption('2');
   await page.getByRole('button', { name: 'Play', exact: true }).click();
-  await expect.poll(async () => (await videoNow(page)).paused).toBe(false);
-  expect((await videoNow(page)).rate).toBe(2);
-  await expect.poll(async () => (await videoNow(page)).shownMs).toBeGreaterThan(atHome);
-  await page.getByRole('button', { name: 'Pause', exact: true }).click();
-  const t = await replayPosition(page);
+  // read together: at a segment boundary (every second at 2×) a new segment loads paused, at rate 1
   await expect
     .poll(async () => {
       const v = await videoNow(page);
-      return v.paused && Math.abs(v.shownMs - t) <= FRAME_MS;
+      return { paused: v.paused, rate: v.rate };
     })
-    .toBe(true);
+    .toEqual({ paused: false, rate: 2 });
+  // paused at once: on a loaded machine each further wait lets the 2× replay run towards the gap
+  await page.getByRole('button', { name: 'Pause', exact: true }).click();
+  const t = await replayPosition(page);
+  expect(t).toBeGreaterThan(atHome - 1000);
+  await expect
+    .poll(async () => {
+      const v = await videoNow(page);
+      return { paused: v.paused, withinFrame: Math.abs(v.shownMs - t) <= FRAME_MS };
+    })
+    .toMatchObject({ paused: true, withinFrame: true });
 
   // The charts (temperature, voltage, power, angle) mark the replay's instant on their time axis.
   await page.getByRole('tab', { name: 'Charts' }).click();

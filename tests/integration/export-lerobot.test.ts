@@ -8,9 +8,10 @@
  * duration × fps frames with its task, the SO follower's features and units, and every frame's
  * observation.state and action equal to the stored sample (resp. command) in force at its
  * timestamp, read back with InfluxQL. A camera server's test source (its frames carry the
- * wall clock in the time stripe) is announced for the arm and recorded by the middleware
- * (docs/cameras-recording.md); the export cuts its video, and each frame LeRobot decodes shows
- * the clock of its row's timestamp within one frame. Bad requests and flags are refused with a
+ * wall clock in the time stripe) is announced for the arm twice, as `front` (H.264) and as `side`
+ * (MJPEG only), and recorded by the middleware (docs/cameras-recording.md); the export cuts a
+ * video of each, and each frame LeRobot decodes shows the clock of its row's timestamp within
+ * one frame. Bad requests and flags are refused with a
  * clear error.
  */
 import type { EpisodeMark } from '@armtwin/api';
@@ -25,6 +26,7 @@ import { loadRecordingRobot } from '@armtwin/middleware/export';
 import { select, waitForValue } from '../../apps/middleware/test/support/harness.ts';
 import { REPO_ROOT } from '../helpers/files.ts';
 import { influxCliEnv } from '../helpers/influx.ts';
+import { readMjpegSegment } from '../helpers/mjpeg-segment.ts';
 import { runLerobotScript } from '../helpers/lerobot-python.ts';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
@@ -73,7 +75,8 @@ interface Checked {
   }[];
 }
 
-const CAMERA = 'observation.images.front';
+const CAMS = ['front', 'side'] as const;
+const KEYS = CAMS.map((c) => `observation.images.${c}`);
 const [W, H] = [640, 480];
 const BAND = timeStripeLayout(W, H).blockH;
 /** The epoch ms of the time stripe in a decoded frame's bottom rows. */
@@ -83,38 +86,49 @@ function stripeOf(band: Uint8Array | string): number | null {
   return readTimeStripe(luma, W, H);
 }
 
+/** Epoch ms of each frame of a segment: of an MP4 its name + each packet's time, of an MJPEG one its parts' stamps. */
+function segmentTimes(file: string, from: number): number[] {
+  if (file.endsWith('.mjpeg')) return readMjpegSegment(file).times;
+  return execFileSync('ffprobe', [
+    ...['-v', 'error', '-select_streams', 'v', '-show_entries', 'packet=pts_time'],
+    ...['-of', 'csv=p=0', file],
+  ])
+    .toString()
+    .trim()
+    .split('\n')
+    .map((t) => from + Number(t) * 1000);
+}
+
 /**
- * Every frame the middleware recorded around the episode: its time (the segment's name + the
- * packet's) and its clock (the time stripe, decoded by ffmpeg from the segment itself).
+ * Every frame the middleware recorded of a camera around the episode: its time and its clock
+ * (the time stripe, decoded by ffmpeg from the segment itself).
  */
-function recordedFrames(): { atMs: number; clock: number }[] {
-  const folder = path.join(cameraDir, ARM, 'front');
+function recordedFrames(cam: string): { atMs: number; clock: number }[] {
+  const folder = path.join(cameraDir, ARM, cam);
   const out: { atMs: number; clock: number }[] = [];
   for (const name of fs.readdirSync(folder).sort()) {
-    const [from, to] = name.replace('.mp4', '').split('-').map(Number) as [number, number];
+    const [from, to] = name
+      .replace(/\.\w+$/, '')
+      .split('-')
+      .map(Number) as [number, number];
     if (to < startMs - 1000 || from > stopMs + 1000) continue;
     const file = path.join(folder, name);
-    const pts = execFileSync('ffprobe', [
-      ...['-v', 'error', '-select_streams', 'v', '-show_entries', 'packet=pts_time'],
-      ...['-of', 'csv=p=0', file],
-    ])
-      .toString()
-      .trim()
-      .split('\n')
-      .map(Number);
+    const times = segmentTimes(file, from);
+    const mjpeg = name.endsWith('.mjpeg');
+    const input = mjpeg ? ['-f', 'jpeg_pipe', '-i', '-'] : ['-i', file];
     const bands = execFileSync(
       'ffmpeg',
       [
-        ...['-v', 'error', '-i', file, '-fps_mode', 'passthrough'],
+        ...['-v', 'error', ...input, '-fps_mode', 'passthrough'],
         ...['-vf', `crop=${W}:${BAND}:0:${H - BAND}`, '-f', 'rawvideo', '-pix_fmt', 'gray', '-'],
       ],
-      { maxBuffer: 256 * 1024 * 1024 },
+      { maxBuffer: 256 * 1024 * 1024, input: mjpeg ? readMjpegSegment(file).jpegs : undefined },
     );
-    expect(bands.length).toBe(pts.length * W * BAND);
-    pts.forEach((t, k) => {
+    expect(bands.length).toBe(times.length * W * BAND);
+    times.forEach((atMs, k) => {
       const clock = stripeOf(bands.subarray(k * W * BAND, (k + 1) * W * BAND));
       expect(clock, `${name} frame ${k}`).not.toBeNull();
-      out.push({ atMs: from + t * 1000, clock: clock! });
+      out.push({ atMs, clock: clock! });
     });
   }
   return out;
@@ -189,6 +203,7 @@ beforeAll(async () => {
   camera = await serveCamera({
     cameras: [
       { armId: ARM, camId: 'front', label: 'Front', source: 'testsrc', kinds: ['h264-ws'] },
+      { armId: ARM, camId: 'side', label: 'Side', source: 'testsrc', kinds: ['mjpeg'] },
     ],
     port: 0,
     mqttUrl: broker().url,
@@ -261,13 +276,18 @@ beforeAll(async () => {
     20_000,
   );
   // the whole episode recorded: a finished segment reaches past its end
-  const segments = async () =>
+  const segments = async (cam: string) =>
     (
-      (await (await fetch(`${api}/cameras/front/segments`)).json()) as {
+      (await (await fetch(`${api}/cameras/${cam}/segments`)).json()) as {
         segments: { endMs: number }[];
       }
     ).segments;
-  await waitForValue(async () => (await segments()).some((s) => s.endMs >= stopMs), true, 30_000);
+  for (const cam of CAMS)
+    await waitForValue(
+      async () => (await segments(cam)).some((s) => s.endMs >= stopMs),
+      true,
+      30_000,
+    );
   await camera.stop();
   const out = path.join(dir, 'ds');
   ({ stderr } = await exportTo(
@@ -319,9 +339,9 @@ describe('episodes marked through the HTTP API and `armtwin episode`', () => {
 });
 
 describe("armtwin export --format lerobot, loaded by LeRobot's own LeRobotDataset", () => {
-  test('one episode of duration × fps frames, its task, the SO follower and its camera', () => {
+  test('one episode of duration × fps frames, its task, the SO follower and its cameras', () => {
     expect(stderr).toContain(
-      `1 episode(s), ${frames} frames at ${FPS} fps, 1 task(s), video: ${CAMERA}`,
+      `1 episode(s), ${frames} frames at ${FPS} fps, 1 task(s), video: ${KEYS.join(', ')}`,
     );
     expect(checked.num_episodes).toBe(1); // the discarded one is left out
     expect(checked.num_frames).toBe(frames);
@@ -329,28 +349,31 @@ describe("armtwin export --format lerobot, loaded by LeRobot's own LeRobotDatase
     expect(checked.episode_lengths).toEqual([frames]);
     expect(checked.fps).toBe(FPS);
     expect(checked.robot_type).toBe('so101_follower');
-    expect(checked.camera_keys).toEqual([CAMERA]);
-    expect(checked.features[CAMERA]).toEqual({
-      dtype: 'video',
-      shape: [H, W, 3],
-      names: ['height', 'width', 'channels'],
-    });
-    // the pixel statistics lerobot-train normalises with: per channel, in 0–1
-    const mean = checked.stats_camera_mean[CAMERA]!;
-    expect(mean.map((c) => [c.length, c[0]!.length])).toEqual([
-      [1, 1],
-      [1, 1],
-      [1, 1],
-    ]);
-    for (const c of mean) {
-      expect(c[0]![0]).toBeGreaterThan(0);
-      expect(c[0]![0]).toBeLessThan(1);
+    expect(checked.camera_keys).toEqual(KEYS);
+    for (const key of KEYS) {
+      expect(checked.features[key]).toEqual({
+        dtype: 'video',
+        shape: [H, W, 3],
+        names: ['height', 'width', 'channels'],
+      });
+      // the pixel statistics lerobot-train normalises with: per channel, in 0–1
+      const mean = checked.stats_camera_mean[key]!;
+      expect(mean.map((c) => [c.length, c[0]!.length])).toEqual([
+        [1, 1],
+        [1, 1],
+        [1, 1],
+      ]);
+      for (const c of mean) {
+        expect(c[0]![0]).toBeGreaterThan(0);
+        expect(c[0]![0]).toBeLessThan(1);
+      }
+      // the MJPEG camera's JPEGs too are re-encoded to the dataset's codec
+      expect(checked.video_info[key]).toMatchObject({
+        'video.codec': 'h264',
+        'video.pix_fmt': 'yuv420p',
+        'video.fps': FPS,
+      });
     }
-    expect(checked.video_info[CAMERA]).toMatchObject({
-      'video.codec': 'h264',
-      'video.pix_fmt': 'yuv420p',
-      'video.fps': FPS,
-    });
     const names = profile.servos.map((s) => `${s.name}.pos`);
     expect(names).toEqual([
       ...['shoulder_pan.pos', 'shoulder_lift.pos', 'elbow_flex.pos'],
@@ -383,31 +406,35 @@ describe("armtwin export --format lerobot, loaded by LeRobot's own LeRobotDatase
     expect(checked.frames[0]!.state).not.toEqual(checked.frames.at(-1)!.state);
   });
 
-  test("each decoded video frame is the recorded one at its row's time: the test source's clock says so", () => {
-    const recorded = recordedFrames();
-    // ffmpeg's fps filter (round=near): a slot shows the last frame before its midpoint with the
-    // next slot, which is the nearest frame when they come at the camera's rate. A frame that
-    // came within 1 ms before that midpoint may fall on either side of it once its time is
-    // rounded to the recording's millisecond time base (fresh clone F3: frame 49).
-    const shown = (slot: number, slackMs = 0) =>
-      recorded.filter((f) => f.atMs < slot + 500 / FPS - slackMs).at(-1)!;
-    const lags: number[] = [];
-    for (const f of checked.frames) {
-      expect(f.images[CAMERA]!.shape).toEqual([3, H, W]);
-      const clock = stripeOf(f.images[CAMERA]!.band);
-      expect(clock, `frame ${f.frame_index}: no time stripe`).not.toBeNull();
-      const slot = startMs + (f.frame_index * 1000) / FPS;
-      const want = shown(slot);
-      const rounded = shown(slot, 1);
-      // the very frame the recording holds at the row's time (within half a frame of it, unless
-      // the camera sent nothing then): the export's alignment, exact
-      expect([want.clock, rounded.clock], `frame ${f.frame_index} at ${slot}`).toContain(clock);
-      lags.push(want.atMs - want.clock);
-    }
-    // Its clock is the camera's: the recording stamps a frame when the camera server has it, a
-    // few ms later (more on a loaded machine), never before.
-    expect(Math.min(...lags)).toBeGreaterThanOrEqual(0);
-  });
+  test.each(CAMS)(
+    "each decoded video frame of %s is the recorded one at its row's time: the test source's clock says so",
+    (cam) => {
+      const key = `observation.images.${cam}`;
+      const recorded = recordedFrames(cam);
+      // ffmpeg's fps filter (round=near): a slot shows the last frame before its midpoint with the
+      // next slot, which is the nearest frame when they come at the camera's rate. A frame that
+      // came within 1 ms before that midpoint may fall on either side of it once its time is
+      // rounded to the recording's millisecond time base (fresh clone F3: frame 49).
+      const shown = (slot: number, slackMs = 0) =>
+        recorded.filter((f) => f.atMs < slot + 500 / FPS - slackMs).at(-1)!;
+      const lags: number[] = [];
+      for (const f of checked.frames) {
+        expect(f.images[key]!.shape).toEqual([3, H, W]);
+        const clock = stripeOf(f.images[key]!.band);
+        expect(clock, `frame ${f.frame_index}: no time stripe`).not.toBeNull();
+        const slot = startMs + (f.frame_index * 1000) / FPS;
+        const want = shown(slot);
+        const rounded = shown(slot, 1);
+        // the very frame the recording holds at the row's time (within half a frame of it, unless
+        // the camera sent nothing then): the export's alignment, exact
+        expect([want.clock, rounded.clock], `frame ${f.frame_index} at ${slot}`).toContain(clock);
+        lags.push(want.atMs - want.clock);
+      }
+      // Its clock is the camera's: the recording stamps a frame when the camera server has it, a
+      // few ms later (more on a loaded machine), never before.
+      expect(Math.min(...lags)).toBeGreaterThanOrEqual(0);
+    },
+  );
 
   test('action is the commanded target held between commands (the state before the first)', async () => {
     const commands = await stored('command');

@@ -71,13 +71,17 @@ export async function startUpProcess(
   script: string[],
   args: string[],
   ports: { httpPort: number; mqttPort: number },
+  env: Record<string, string> = {},
 ): Promise<Child> {
-  const up = runNode([
-    ...script,
-    '--no-so101',
-    ...args,
-    ...['--port', String(ports.httpPort), '--mqtt-port', String(ports.mqttPort)],
-  ]);
+  const up = runNode(
+    [
+      ...script,
+      '--no-so101',
+      ...args,
+      ...['--port', String(ports.httpPort), '--mqtt-port', String(ports.mqttPort)],
+    ],
+    env,
+  );
   const deadline = Date.now() + 30_000;
   while (!up.output().includes('armtwin is running')) {
     if (Date.now() > deadline || up.proc.exitCode !== null)

@@ -1,10 +1,15 @@
 /**
- * `armtwin up --camera testsrc`: the demo camera on the up's own HTTP port (real ffmpeg), beside
- * MQTT over WebSockets at /mqtt on the same port. The camera is announced retained on the
- * embedded broker (PROTOCOL.md §7), its MJPEG stream gives changing JPEG pictures, and a clean
- * stop removes the announcement and ffmpeg.
+ * `armtwin up --camera testsrc --users deploy/users.example.json`: the demo camera on the up's
+ * own HTTP port (real ffmpeg), beside MQTT over WebSockets at /mqtt on the same port, with
+ * log-ins. The camera is announced retained on the embedded broker (PROTOCOL.md §7), its MJPEG
+ * stream gives changing JPEG pictures to a viewer's log-in and refuses anyone without one, the
+ * in-process middleware records it all the same (with the token the up minted for it:
+ * docs/cameras-recording.md), and a clean stop removes the announcement and ffmpeg.
  */
 import { spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
 import mqtt from 'mqtt';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import {
@@ -18,23 +23,37 @@ import { startUpProcess, StatusWatcher, type Child } from './sim-helpers.ts';
 let up: Child;
 let httpPort = 0;
 let mqttPort = 0;
+const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-up-camera-'));
+const VIEWER = { username: 'viewer', password: 'viewer-demo' };
+const viewerHeader = `Basic ${Buffer.from('viewer:viewer-demo').toString('base64')}`;
 
 beforeAll(async () => {
   [httpPort = 0, mqttPort = 0] = await freePorts(2);
   up = await startUpProcess(
     ['apps/cli/bin/armtwin.mjs', 'up'],
-    ['--no-middleware', '--no-web', '--camera', 'testsrc'],
+    ['--no-web', '--camera', 'testsrc', '--users', 'deploy/users.example.json'],
     { httpPort, mqttPort },
+    {
+      CAMERA_DIR: path.join(dir, 'cameras'),
+      CAMERA_SEGMENT_S: '1',
+      SPOOL_DIR: path.join(dir, 'spool'),
+      // nothing to store here: the points wait in the spool
+      INFLUX_URL: 'http://127.0.0.1:9',
+    },
   );
 });
 
 afterAll(async () => {
   await up?.stop('SIGKILL');
+  fs.rmSync(dir, { recursive: true, force: true });
 });
 
 /** The retained camera topics of arm1 and their payloads, as a new subscriber sees them. */
 async function retainedCameras(): Promise<Map<string, string>> {
-  const c = await mqtt.connectAsync(`mqtt://127.0.0.1:${mqttPort}`, { reconnectPeriod: 0 });
+  const c = await mqtt.connectAsync(`mqtt://127.0.0.1:${mqttPort}`, {
+    reconnectPeriod: 0,
+    ...VIEWER,
+  });
   const seen = new Map<string, string>();
   c.on('message', (topic, payload) => seen.set(topic, payload.toString()));
   await c.subscribeAsync('arm/arm1/camera/+', { qos: 1 });
@@ -45,7 +64,7 @@ async function retainedCameras(): Promise<Map<string, string>> {
 
 /** The first `n` JPEG parts of an MJPEG stream. */
 async function mjpegParts(url: string, n: number): Promise<Uint8Array[]> {
-  const res = await fetch(url);
+  const res = await fetch(url, { headers: { authorization: viewerHeader } });
   expect(res.status).toBe(200);
   expect(res.headers.get('content-type')).toMatch(/^multipart\/x-mixed-replace; ?boundary=/);
   const parts: Uint8Array[] = [];
@@ -85,9 +104,30 @@ describe('armtwin up --camera testsrc', () => {
       expect([p[0], p[1], p.at(-2), p.at(-1)]).toEqual([0xff, 0xd8, 0xff, 0xd9]);
     expect(new Set(parts.map((p) => Buffer.from(p).toString('base64'))).size).toBe(5);
 
-    const w = await StatusWatcher.connect(`ws://127.0.0.1:${httpPort}/mqtt`, 'arm1');
+    const w = await StatusWatcher.connect(`ws://127.0.0.1:${httpPort}/mqtt`, 'arm1', VIEWER);
     await w.until(() => (w.positions(0).length >= 3 ? true : undefined), 10_000, 'state over ws');
     await w.close();
+  });
+
+  test('refuses a viewer without a log-in, yet the in-process middleware records it', async () => {
+    const refused = await fetch(`http://127.0.0.1:${httpPort}/camera/demo.mjpeg`);
+    expect(refused.status).toBe(401);
+    await refused.body?.cancel();
+    const api = `http://127.0.0.1:${httpPort}/api/arms/arm1/cameras/demo/segments`;
+    expect((await fetch(api)).status).toBe(401);
+    const deadline = Date.now() + 20_000;
+    let segments: { name: string; bytes: number; url: string }[] = [];
+    while (segments.length < 2 && Date.now() < deadline) {
+      await new Promise((r) => setTimeout(r, 250));
+      const res = await fetch(api, { headers: { authorization: viewerHeader } });
+      segments = ((await res.json()) as { segments: typeof segments }).segments;
+    }
+    expect(segments.length).toBeGreaterThanOrEqual(2);
+    const one = await fetch(`http://127.0.0.1:${httpPort}${segments[0]!.url}`, {
+      headers: { authorization: viewerHeader },
+    });
+    expect(one.headers.get('content-type')).toBe('video/mp4'); // its H.264 stream, as served
+    expect((await one.arrayBuffer()).byteLength).toBe(segments[0]!.bytes);
   });
 
   test('a clean stop removes the announcement and ffmpeg', async () => {
@@ -98,7 +138,10 @@ describe('armtwin up --camera testsrc', () => {
     ]).stdout.toString();
     expect(ffmpegBefore.trim()).not.toBe('');
     // The broker is the up's own: watch the topic from outside while it stops.
-    const c = await mqtt.connectAsync(`mqtt://127.0.0.1:${mqttPort}`, { reconnectPeriod: 0 });
+    const c = await mqtt.connectAsync(`mqtt://127.0.0.1:${mqttPort}`, {
+      reconnectPeriod: 0,
+      ...VIEWER,
+    });
     const removed = new Promise<void>((resolve) =>
       c.on('message', (topic, payload) => {
         if (topic === 'arm/arm1/camera/demo' && payload.length === 0) resolve();

@@ -65,6 +65,12 @@ export interface MiddlewareDeps {
    * HTTP API's robot writes go and the MCAP export reads.
    */
   modelDirs?: readonly string[];
+  /**
+   * The `Authorization` header the camera recording sends to camera servers when the middleware
+   * has no MQTT log-in of its own to send (`armtwin up`'s in-process middleware: a token its
+   * camera server takes); MQTT_USERNAME/MQTT_PASSWORD, where set, are sent instead.
+   */
+  cameraAuthorization?: string;
 }
 
 export interface Middleware {
@@ -153,7 +159,7 @@ export async function startMiddleware(
   // Every announced camera recorded beside the history (docs/cameras-recording.md).
   const recordings =
     config.cameraRecord && !config.mqttShareGroup && !config.natsUrl
-      ? startRecordings(config, log, now)
+      ? startRecordings(config, log, now, deps.cameraAuthorization)
       : null;
   metrics.cameras = recordings?.counters ?? null;
 

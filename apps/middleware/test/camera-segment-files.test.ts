@@ -2,6 +2,7 @@ import { describe, expect, it } from 'vitest';
 import {
   parseSegmentName,
   retentionPlan,
+  segmentKind,
   segmentName,
   segmentsBetween,
 } from '../src/cameras/index.ts';
@@ -23,10 +24,18 @@ describe('camera segment files', () => {
       endMs: 1_795_777_868_085,
     });
     expect(segmentName(5, 9) < segmentName(1_000_000, 1_000_001)).toBe(true);
+    const jpegs = segmentName(1_795_777_865_099, 1_795_777_868_085, 'mjpeg');
+    expect(jpegs).toBe('1795777865099-1795777868085.mjpeg');
+    expect(parseSegmentName(jpegs)).toEqual({
+      startMs: 1_795_777_865_099,
+      endMs: 1_795_777_868_085,
+    });
+    expect([segmentKind(name), segmentKind(jpegs)]).toEqual(['h264', 'mjpeg']);
     for (const bad of [
       'x.mp4',
       '1795777865099-1795777868085.mp4.part',
       '0000000000009-0000000000005.mp4',
+      '1795777865099-1795777868085.jpg',
     ])
       expect(parseSegmentName(bad)).toBeNull();
     expect(() => segmentName(10, 5)).toThrow(RangeError);

@@ -22,6 +22,8 @@ export interface CameraPartOptions {
   broker: Broker;
   /** The API token that may watch too ('' = none). */
   apiToken: string;
+  /** This run's token of the in-process middleware, which records the camera. */
+  recorderToken: string;
   say: (msg: string) => void;
   onFirst: (kind: string, message: string) => void;
 }
@@ -51,7 +53,7 @@ export function createCameraPart(o: CameraPartOptions): CameraPart | null {
   }
   const server: CameraServer = createCameraServer({
     cameras: [{ armId: o.armId, source: o.source, ...DEMO_CAMERA }],
-    access: { logins: o.broker.logins, token: o.apiToken },
+    access: { logins: o.broker.logins, token: o.apiToken, recorderToken: o.recorderToken },
     onFirst: o.onFirst,
   });
   server.start();

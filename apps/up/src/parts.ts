@@ -57,6 +57,8 @@ export interface MiddlewareLink {
   connect: ConnectFn;
   /** The folders of robot profiles, searched in order (for the history API's MCAP export). */
   modelDirs: readonly string[];
+  /** What its camera recording sends the up's camera server (`Bearer <this run's token>`). */
+  cameraAuthorization: string;
 }
 
 export interface StartedMiddleware {
@@ -121,6 +123,7 @@ export async function startMiddlewarePart(
       listen: false,
       connect: link.connect,
       modelDirs: link.modelDirs,
+      cameraAuthorization: link.cameraAuthorization,
     });
     const storage = config.influxUrl
       ? `InfluxDB at ${config.influxUrl}${influx ? ` (local influxd, data in ${path.relative(REPO_ROOT, dataDir)})` : ''}`

@@ -13,6 +13,7 @@
  * needs a user's name and password (HTTP Basic) or, to read, the API token as a bearer token:
  * the API's one log-in step, on the broker's log-ins and throttle.
  */
+import { randomBytes } from 'node:crypto';
 import fs from 'node:fs';
 import http from 'node:http';
 import https from 'node:https';
@@ -172,12 +173,16 @@ export async function startUp(o: UpOptions): Promise<Up> {
     modelCopies: model.copies,
     onFirst: o.onFirst,
   });
+  // The in-process middleware has no password to send the camera server: a token of this run,
+  // never stored, lets its recording watch the camera as the middleware role may.
+  const recorderToken = randomBytes(32).toString('base64url');
   const camera = o.camera
     ? createCameraPart({
         source: o.camera,
         armId: armSpecs[0]!.id,
         broker,
         apiToken: o.apiToken,
+        recorderToken,
         say: o.say,
         onFirst: o.onFirst,
       })
@@ -298,6 +303,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
           connect: (_url, opts) =>
             broker.connectInProcess({ name: 'middleware', role: 'middleware' }, opts),
           modelDirs,
+          cameraAuthorization: `Bearer ${recorderToken}`,
         },
         o.influxUrl,
         o.env,

@@ -1,7 +1,8 @@
 /**
  * Who may watch a camera. With neither a users file nor a token, anyone (the local demo). With
  * either, a request needs a log-in whose role may read the arm — viewer, operator and the middleware
- * (which records them) any arm, a device only its own — or the token (any arm).
+ * (which records them) any arm, a device only its own — or the token, or the in-process
+ * recorder's token (any arm).
  *
  * Credentials, first found wins:
  * - `Authorization: Basic <base64 name:password>` or `Authorization: Bearer <token>` (any client);
@@ -19,6 +20,12 @@ export interface CameraAccess {
   logins: LoginThrottle | null;
   /** A bearer token that may watch every camera; '' = none. */
   token: string;
+  /**
+   * A bearer token of an in-process recorder: `armtwin up` mints one per run (never stored) for
+   * its own middleware, which reaches the broker without a log-in and so has no password to
+   * send. It may watch every camera, as the middleware role may.
+   */
+  recorderToken?: string;
 }
 
 export const OPEN_ACCESS: CameraAccess = { logins: null, token: '' };
@@ -75,6 +82,8 @@ export async function authorize(
   const creds = requestCredentials(request.authorization, request.url);
   if (!creds) return { ok: false, status: 401, message: 'log in to watch this camera' };
   if (creds.type === 'bearer') {
+    if (access.recorderToken && sameToken(creds.token, access.recorderToken))
+      return { ok: true, who: 'recorder' };
     return access.token && sameToken(creds.token, access.token)
       ? { ok: true, who: 'token' }
       : { ok: false, status: 401, message: 'wrong token' };

@@ -7,9 +7,8 @@
 import type { CameraKind } from './announcement.ts';
 import { Fanout, type FanoutStats, type FrameSink, type Viewer } from './fanout.ts';
 import { encodeH264Header, FLAG_REPLAY, H264_WS_HEADER_BYTES } from './wire.ts';
+import { MJPEG_BOUNDARY } from './multipart-parser.ts';
 
-/** The multipart boundary of the MJPEG responses. */
-export const MJPEG_BOUNDARY = 'armtwin-frame';
 export const MJPEG_CONTENT_TYPE = `multipart/x-mixed-replace; boundary=${MJPEG_BOUNDARY}`;
 
 export interface CameraFeedOptions {

@@ -8,6 +8,12 @@
  */
 import { ByteBuffer } from './byte-buffer.ts';
 
+/**
+ * The multipart boundary of armtwin's MJPEG responses (./camera-feed.ts) and of the recorded
+ * `.mjpeg` segments, which hold the same parts.
+ */
+export const MJPEG_BOUNDARY = 'armtwin-frame';
+
 export const MULTIPART_ERRORS = [
   'junk',
   'headers-too-large',

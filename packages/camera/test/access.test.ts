@@ -78,5 +78,12 @@ describe('who may watch a camera', () => {
       ok: false,
       status: 401,
     });
+    // `armtwin up`'s in-process middleware, with the token minted for this run
+    const withRecorder = { ...access, recorderToken: 'rec-123' };
+    expect(await authorize(withRecorder, req('Bearer rec-123'), 'arm2')).toEqual({
+      ok: true,
+      who: 'recorder',
+    });
+    expect(await authorize(access, req('Bearer rec-123'), 'arm2')).toMatchObject({ status: 401 });
   });
 });

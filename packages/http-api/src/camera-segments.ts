@@ -1,11 +1,13 @@
 /**
- * `/arms/{id}/cameras/{cam}/segments`: a camera's recorded MP4 segments (docs/cameras-recording.md).
+ * `/arms/{id}/cameras/{cam}/segments`: a camera's recorded segments (docs/cameras-recording.md).
  * `GET …/segments?from=&to=` (ISO times, both optional) lists those holding any frame of the
  * range, by time: `{ok, segments: [{name, start, end, bytes, url}]}`; `GET …/segments/{name}`
- * sends one (`video/mp4`, immutable: a finished segment never changes). Anyone who may read the
+ * sends one (`video/mp4`, or the multipart JPEGs of an `.mjpeg` one; immutable: a finished
+ * segment never changes), or the one byte range asked for (206), so a `<video>` can seek. Anyone who may read the
  * history may read them; without the middleware's recording the route answers 503.
  */
 import type http from 'node:http';
+import { MJPEG_CONTENT_TYPE } from '@armtwin/camera';
 import { isValidCamId } from '@armtwin/camera/announcement';
 import { isValidArmId } from '@armtwin/protocol';
 import {
@@ -64,7 +66,10 @@ export function cameraSegmentsRoute(o: {
         const file = cameras.file(p.id, p.cam, p.name);
         if (!file) return answer(res, 404, { ok: false, errors: ['no such segment'] }, 'missing');
         counters.sent = (counters.sent ?? 0) + 1;
-        return sendFile(req, res, file, 'video/mp4', 'public, max-age=31536000, immutable');
+        const type = file.endsWith('.mjpeg') ? MJPEG_CONTENT_TYPE : 'video/mp4';
+        return sendFile(req, res, file, type, 'public, max-age=31536000, immutable', {
+          ranges: true,
+        });
       }
       const range = timeRange(req);
       if (!range)

@@ -10,6 +10,7 @@ export { Recordings, DEFAULT_RECORDINGS_OPTIONS, type RecordingsOptions } from '
 export { RecordingCounters } from './recording-counters.ts';
 export {
   parseSegmentName,
+  segmentKind,
   segmentName,
   segmentsBetween,
   retentionPlan,
@@ -24,12 +25,18 @@ export const CAMERA_FILTER = 'arm/+/camera/+';
 
 /**
  * The recordings of a middleware: its MQTT log-in (HTTP Basic) opens the camera servers, whose
- * access lets the middleware role watch every arm's cameras.
+ * access lets the middleware role watch every arm's cameras; without one, `fallback` (the
+ * token `armtwin up` mints for its in-process middleware), if any.
  */
-export function startRecordings(config: MiddlewareConfig, log: Logger, now: () => number) {
+export function startRecordings(
+  config: MiddlewareConfig,
+  log: Logger,
+  now: () => number,
+  fallback = '',
+) {
   const authorization = config.mqttUsername
     ? `Basic ${Buffer.from(`${config.mqttUsername}:${config.mqttPassword}`).toString('base64')}`
-    : '';
+    : fallback;
   const recordings = new Recordings({
     dir: config.cameraDir,
     ffmpeg: config.ffmpeg,
@@ -48,7 +55,7 @@ export function startRecordings(config: MiddlewareConfig, log: Logger, now: () =
       retentionHours: config.cameraRetentionHours,
       retentionBytes: config.cameraRetentionBytes,
     },
-    'camera recording: every announced H.264 camera',
+    'camera recording: every announced camera',
   );
   return recordings;
 }

@@ -1,14 +1,14 @@
 /**
  * Every camera's recording (docs/cameras-recording.md): the cameras come from their retained
- * announcements (PROTOCOL.md §7, `arm/+/camera/+`), each with an `h264-ws` stream is recorded by
- * a ./camera-recorder.ts into `<dir>/<arm>/<cam>/`, retention (./segment-files.ts) runs after
+ * announcements (PROTOCOL.md §7, `arm/+/camera/+`), each is recorded (its `h264-ws` stream, or
+ * its MJPEG one when it has no other) by a ./camera-recorder.ts into `<dir>/<arm>/<cam>/`, retention (./segment-files.ts) runs after
  * each new segment and on a timer, and the HTTP API lists and serves the finished segments. At
  * start, `.part` files a crash left are deleted, and each camera's recording goes on after the
  * last frame already on disk.
  */
 import fs from 'node:fs';
 import path from 'node:path';
-import { cameraStreams, parseCameraMessage } from '@armtwin/camera/announcement';
+import { cameraStreams, parseCameraMessage, type CameraStream } from '@armtwin/camera/announcement';
 import { CameraRecorder } from './camera-recorder.ts';
 import { RecordingCounters } from './recording-counters.ts';
 import { readCameraFolders } from './segment-folder.ts';
@@ -52,6 +52,10 @@ export const DEFAULT_RECORDINGS_OPTIONS = {
 
 const key = (armId: string, camId: string) => `${armId}/${camId}`;
 
+/** The stream recorded: the camera's H.264 one if it has one (no re-encode, smaller), else MJPEG. */
+const recordedStream = (streams: CameraStream[]): CameraStream | undefined =>
+  streams.find((s) => s.kind === 'h264-ws') ?? streams.find((s) => s.kind === 'mjpeg');
+
 export class Recordings {
   readonly counters: RecordingCounters;
   private readonly o: RecordingsOptions;
@@ -75,23 +79,21 @@ export class Recordings {
     const m = parseCameraMessage(topic, payload);
     if (m.type === 'rejected') return this.counters.event(`announcements-rejected-${m.reason}`);
     const k = key(m.armId, m.camId);
-    const url =
-      m.type === 'camera'
-        ? cameraStreams(m.camera).find((s) => s.kind === 'h264-ws')?.url
-        : undefined;
+    const stream = m.type === 'camera' ? recordedStream(cameraStreams(m.camera)) : undefined;
+    const url = stream?.url;
     const current = this.recorders.get(k);
     if (current && current.url === url) return;
     if (current) {
       this.recorders.delete(k);
       void current.recorder.stop();
     }
-    if (m.type === 'camera' && !url) return this.counters.event('cameras-without-h264');
-    if (!url) return;
+    if (!stream || !url) return;
     const dir = path.join(this.o.dir, m.armId, m.camId);
     const recordedUntilMs = Math.max(0, ...(this.index.get(k) ?? []).map((s) => s.endMs));
     const recorder = new CameraRecorder({
       armId: m.armId,
       camId: m.camId,
+      kind: stream.kind === 'h264-ws' ? 'h264' : 'mjpeg',
       url,
       authorization: this.o.authorization,
       dir,
@@ -102,10 +104,11 @@ export class Recordings {
       backoff: this.o.backoff,
       recordedUntilMs,
       counters: this.counters,
+      now: this.o.now,
       onSegment: (s) => this.added(s),
     });
     this.recorders.set(k, { url, recorder });
-    this.counters.event('cameras-recorded');
+    this.counters.event(stream.kind === 'h264-ws' ? 'cameras-recorded' : 'cameras-recorded-mjpeg');
     recorder.start();
   }
 

@@ -1,16 +1,22 @@
 /**
- * The camera recordings' folder, pure: `<dir>/<armId>/<camId>/<startMs>-<endMs>.mp4`, each name
- * the epoch ms of its first frame and of the end of its last (so a folder listing is the time
- * line, sorted by name). A segment is written as `….part` and renamed when ffmpeg has closed
- * it; a `.part` left by a crash is never served and is removed at start. Which segments a time
+ * The camera recordings' folder, pure: `<dir>/<armId>/<camId>/<startMs>-<endMs>.mp4` (H.264) or
+ * `….mjpeg` (the JPEGs of an MJPEG-only camera as served: ./jpeg-segmenter.ts), each name the
+ * epoch ms of its first frame and of the end of its last (so a folder listing is the time line,
+ * sorted by name). A segment is written as `….part` and renamed once it is closed; a `.part` left by a crash is never served and is removed at start. Which segments a time
  * range needs, and which retention deletes (oldest first), are decided here.
  */
 
-export const SEGMENT_EXT = '.mp4';
+/** A segment's file type by what it holds: H.264 in MP4, or JPEGs in a multipart file. */
+export const SEGMENT_EXTS = { h264: '.mp4', mjpeg: '.mjpeg' } as const;
+export type SegmentKind = keyof typeof SEGMENT_EXTS;
 export const PART_EXT = '.part';
 /** Epoch ms are written with 13 digits (until the year 2286), so names sort as times. */
 const MS_DIGITS = 13;
-const NAME = /^(\d{13})-(\d{13})\.mp4$/;
+const NAME = /^(\d{13})-(\d{13})\.(mp4|mjpeg)$/;
+
+/** What a segment holds, by its name. */
+export const segmentKind = (name: string): SegmentKind =>
+  name.endsWith(SEGMENT_EXTS.mjpeg) ? 'mjpeg' : 'h264';
 
 export interface Segment {
   armId: string;
@@ -24,10 +30,10 @@ export interface Segment {
   bytes: number;
 }
 
-export function segmentName(startMs: number, endMs: number): string {
+export function segmentName(startMs: number, endMs: number, kind: SegmentKind = 'h264'): string {
   const pad = (ms: number) => String(Math.round(ms)).padStart(MS_DIGITS, '0');
   if (!(endMs >= startMs) || startMs < 0) throw new RangeError(`bad segment ${startMs}–${endMs}`);
-  return `${pad(startMs)}-${pad(endMs)}${SEGMENT_EXT}`;
+  return `${pad(startMs)}-${pad(endMs)}${SEGMENT_EXTS[kind]}`;
 }
 
 /** A finished segment's times from its name, or null for anything else (a `.part`, a stray). */

@@ -1,5 +1,5 @@
 /**
- * Which frames of a camera's H.264 feed go into which take (one continuous run of frames, one
+ * Which frames of a camera's H.264 (or MJPEG) feed go into which take (one continuous run of frames, one
  * ffmpeg, a run of segments), pure. A take starts at a key frame carrying its parameter sets and
  * ends when the feed drops, when the frames stop for longer than `maxGapMs` (the camera server's
  * encoder restarted, or its viewer queue skipped far ahead) or when the parameter sets change:
@@ -15,9 +15,21 @@ import { parameterSets, sameBytes } from '@armtwin/camera';
 export interface TakesOptions {
   /** A longer pause between two frames ends the take, ms. */
   maxGapMs: number;
+  /**
+   * What a frame that can start a take carries that the take's frames must share, or null for a
+   * frame that cannot start one: H.264's SPS of a key frame (the default); for MJPEG, where every
+   * frame stands alone, `anyFrame`.
+   */
+  parametersOf(au: Uint8Array, key: boolean): Uint8Array | null;
 }
 
-export const DEFAULT_TAKES_OPTIONS: TakesOptions = { maxGapMs: 2000 };
+const h264Parameters = (au: Uint8Array, key: boolean) =>
+  key ? (parameterSets(au)?.sps ?? null) : null;
+const NO_PARAMETERS = new Uint8Array(0);
+/** Every frame starts a take, and none changes its parameters (an MJPEG camera's JPEGs). */
+export const anyFrame = (): Uint8Array => NO_PARAMETERS;
+
+export const DEFAULT_TAKES_OPTIONS: TakesOptions = { maxGapMs: 2000, parametersOf: h264Parameters };
 
 /** What to do with one frame. */
 export type TakeStep =
@@ -39,12 +51,15 @@ export type DropReason = (typeof DROP_REASONS)[number];
 
 export class Takes {
   private take: { baseMs: number; lastMs: number; sps: Uint8Array } | null = null;
+  private readonly o: TakesOptions;
 
   constructor(
     /** Epoch ms up to which frames are on disk already. */
     public recordedUntilMs: number,
-    private readonly o: TakesOptions = DEFAULT_TAKES_OPTIONS,
-  ) {}
+    options: Partial<TakesOptions> = {},
+  ) {
+    this.o = { ...DEFAULT_TAKES_OPTIONS, ...options };
+  }
 
   /** The open take's first frame time (epoch ms: its time 0), or null. */
   get baseMs(): number | null {
@@ -60,16 +75,16 @@ export class Takes {
       bumped = true;
     }
     if (atMs <= this.recordedUntilMs) return { kind: 'drop', why: 'recorded-already', endTake };
-    const ps = key ? parameterSets(au) : null;
+    const sps = this.o.parametersOf(au, key);
     if (this.take) {
       if (atMs - this.take.lastMs > this.o.maxGapMs) endTake = 'gap';
-      else if (ps && !sameBytes(ps.sps, this.take.sps)) endTake = 'parameters';
+      else if (sps && !sameBytes(sps, this.take.sps)) endTake = 'parameters';
       if (endTake) this.take = null;
     }
     let startTake = false;
     if (!this.take) {
-      if (!ps) return { kind: 'drop', why: 'before-key-frame', endTake };
-      this.take = { baseMs: Math.round(atMs), lastMs: atMs, sps: ps.sps };
+      if (!sps) return { kind: 'drop', why: 'before-key-frame', endTake };
+      this.take = { baseMs: Math.round(atMs), lastMs: atMs, sps };
       startTake = true;
     }
     const at = atMs - this.take.baseMs;

@@ -4,7 +4,8 @@
  * the other, each episode at exactly the dataset's fps with frame k at k/fps from its start, so
  * LeRobot's decoders (torchcodec, PyAV) find each frame at the timestamp of its row.
  *
- * Per episode, ffmpeg reads the segments through the concat demuxer with each segment placed at
+ * Per episode, ffmpeg reads the segments (an MJPEG camera's: each of their JPEGs, placed at its
+ * stamp, ./jpeg-frames.ts) through the concat demuxer with each segment placed at
  * its own start time (`duration` = the time to the next segment, so a gap in the recording stays
  * a gap), the episode's start is moved to time 0, and the `fps` filter (`round=near`) shows in each
  * frame slot the last recorded frame before the slot's midpoint with the next (the nearest frame
@@ -17,6 +18,7 @@ import { execFile } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { promisify } from 'node:util';
+import { jpegPieces } from './jpeg-frames.ts';
 import { videoStats } from './video-stats.ts';
 
 const run = promisify(execFile);
@@ -48,6 +50,8 @@ export function concatList(
   const lines = ['ffconcat version 1.0'];
   used.forEach((s, i) => {
     lines.push(`file ${quote(path.resolve(s.file))}`);
+    // a picture's own time base is 1/25 s: 1 ms, so each JPEG lands at its stamp
+    if (s.file.endsWith('.jpg')) lines.push('option framerate 1000');
     const next = used[i + 1];
     if (next) lines.push(`duration ${((next.startMs - s.startMs) / 1000).toFixed(3)}`);
   });
@@ -114,7 +118,13 @@ export async function writeCameraVideo(o: {
   let at = 0;
   for (const [e, ep] of o.episodes.entries()) {
     const stopMs = ep.startMs + (ep.frames * 1000) / o.fps;
-    const list = concatList(o.segments, ep.startMs, stopMs);
+    // up to a second past the end: the episode's last frame then has a next one that ends it
+    // (the fps filter would take the stream's end at the last JPEG for that frame's end)
+    const toMs = stopMs + 1000;
+    const used = o.segments.filter((s) => s.endMs >= ep.startMs && s.startMs <= toMs);
+    if (used.some((s) => s.file.endsWith('.mjpeg')) && used.some((s) => s.file.endsWith('.mp4')))
+      throw new Error(`camera ${o.camId} was recorded as both H.264 and MJPEG in episode ${e}`);
+    const list = concatList(jpegPieces(used, o.work), ep.startMs, toMs);
     if (!list) throw new Error(`camera ${o.camId} has no recording of episode ${e}`);
     const listFile = path.join(o.work, `${o.camId}-${e}.ffconcat`);
     fs.writeFileSync(listFile, list.text);

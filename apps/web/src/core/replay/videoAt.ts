@@ -12,23 +12,28 @@ export interface RecordedSegment {
   endMs: number;
 }
 
+/** In `list`, sorted by `at`: the index of the last item at or before `t`; -1 if none is. */
+export function lastAtOrBefore<T>(list: readonly T[], t: number, at: (item: T) => number): number {
+  let lo = 0;
+  let hi = list.length - 1;
+  let found = -1;
+  while (lo <= hi) {
+    const mid = (lo + hi) >> 1;
+    if (at(list[mid]!) <= t) {
+      found = mid;
+      lo = mid + 1;
+    } else hi = mid - 1;
+  }
+  return found;
+}
+
 /** The segment covering `t` (epoch ms) and the media time of `t` in it (s); null in a gap. */
 export function videoAt<S extends RecordedSegment>(
   segments: readonly S[],
   t: number,
 ): { segment: S; offsetS: number } | null {
   // Sorted by time (the API lists them so): the last one starting at or before t.
-  let lo = 0;
-  let hi = segments.length - 1;
-  let found = -1;
-  while (lo <= hi) {
-    const mid = (lo + hi) >> 1;
-    if (segments[mid]!.startMs <= t) {
-      found = mid;
-      lo = mid + 1;
-    } else hi = mid - 1;
-  }
-  const segment = found >= 0 ? segments[found]! : undefined;
+  const segment = segments[lastAtOrBefore(segments, t, (s) => s.startMs)];
   if (!segment || t > segment.endMs) return null;
   return { segment, offsetS: (t - segment.startMs) / 1000 };
 }

@@ -4,13 +4,17 @@
  * replay's instant t, each camera's <video> shows the segment covering t at media time
  * t − segment start (core/replay/videoAt.ts), kept in step with the replay clock on every
  * animation frame: played and paused with it, at its speed, moved when it is scrubbed; a gap in
- * the recording shows "no recording". The cameras are those the arm announces (the camera hub).
+ * the recording shows "no recording". An MJPEG camera's `.mjpeg` segments are shown frame by
+ * frame in an <img> instead (./ReplayJpegs.ts). The cameras are those the arm announces (the
+ * camera hub).
  */
 import { useEffect, useMemo, useRef, useState } from 'react';
 import { useCameras } from '../../hud/HudParts.ts';
 import { useSampled } from '../../hud/useSampled.ts';
 import type { ReplayPlayer } from '../../../core/replay/ReplayPlayer.ts';
 import { needsSeek, videoAt, type RecordedSegment } from '../../../core/replay/videoAt.ts';
+import { isJpegSegment } from '../../../core/replay/jpegFrames.ts';
+import { JpegReplay } from './ReplayJpegs.ts';
 import { fetchSegment, listSegments } from './cameraSegmentsApi.ts';
 import type { Loaded } from './loaded.ts';
 import { ViewError } from './ViewHeader.tsx';
@@ -31,11 +35,15 @@ export function CameraReplay(props: {
 }) {
   const { player, segments, load } = props;
   const video = useRef<HTMLVideoElement>(null);
+  const img = useRef<HTMLImageElement>(null);
   const [gap, setGap] = useState(true);
+  const [jpeg, setJpeg] = useState(false);
   const [failed, setFailed] = useState<string | null>(null);
   useEffect(() => {
     let raf = 0;
     let shownGap: boolean | null = null;
+    let shownJpeg = false;
+    const jpegs = new JpegReplay(load, setFailed);
     /** The segment asked for, and the blob: URL of the one in the <video>. */
     let wanted = '';
     let objectUrl = '';
@@ -64,6 +72,13 @@ export function CameraReplay(props: {
         if (!v.paused) v.pause();
         return;
       }
+      const isJpeg = isJpegSegment(at.segment.name);
+      if (isJpeg !== shownJpeg) setJpeg((shownJpeg = isJpeg));
+      if (isJpeg) {
+        if (!v.paused) v.pause();
+        if (img.current) jpegs.step(img.current, at.segment, clock.position);
+        return;
+      }
       if (wanted !== at.segment.name) show(at.segment.name, at.segment.startMs);
       if (v.dataset.segmentStart !== String(at.segment.startMs)) return; // still loading
       if (v.readyState < HTMLMediaElement.HAVE_METADATA) return;
@@ -76,6 +91,7 @@ export function CameraReplay(props: {
     raf = requestAnimationFrame(step);
     return () => {
       cancelAnimationFrame(raf);
+      jpegs.dispose();
       wanted = '';
       if (objectUrl) URL.revokeObjectURL(objectUrl);
     };
@@ -91,8 +107,9 @@ export function CameraReplay(props: {
         aria-label={`Recorded video of ${props.label}`}
         playsInline
         preload="auto"
-        hidden={gap}
+        hidden={gap || jpeg}
       />
+      <img ref={img} alt={`Recorded pictures of ${props.label}`} hidden={gap || !jpeg} />
       {gap && <p className="replay-video-gap dim">{props.label}: no recording</p>}
       {failed && <ViewError error={failed} />}
       <figcaption className="dim small-print">{props.label}</figcaption>
