@@ -151,7 +151,7 @@ test('a dataset written by LeRobot plays on the twin with the file’s joint val
       'Episode 1 ("wave twice as far") loaded on the replay: 45 frames',
     );
     // The arm's own (recorded) cameras are its history's, not the episode's: no line about them.
-    await expect(page.getByText(/No camera announced/)).toHaveCount(0);
+    await expect(page.getByText(/: joints only\./)).toHaveCount(0);
 
     // Frame by frame: the file's values (float32), in armtwin's servo degrees, on the sibling.
     const file = EPISODES[1]!.state;
