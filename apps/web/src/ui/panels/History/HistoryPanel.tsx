@@ -23,9 +23,10 @@ import { resolveRange, toLocalInput, type RangeChoice, type TimeRange } from './
 import { EpisodesApi } from './episodesApi.ts';
 import { EpisodesView } from './EpisodesView.tsx';
 import { ExportButton } from './ExportButton.tsx';
-import { loadReplay } from './replayLoad.ts';
+import { loadReplay, seekReplay } from './replayLoad.ts';
 import { RangePicker } from './RangePicker.tsx';
 import { ReplayControls } from './ReplayControls.tsx';
+import { ReplayStrip } from './ReplayScrubber.tsx';
 import { TablesView } from './TablesView.tsx';
 import { clockTime, tableTime } from './format.ts';
 import './history.css';
@@ -82,7 +83,11 @@ export function HistoryPanel() {
     () => ({ base: apiBase, headers: authHeaders({ username, password }) }),
     [apiBase, username, password],
   );
-  const replayAt = useCallback(() => (replay.record ? replay.clock.position : null), [replay]);
+  // An imported dataset's episode runs on its own time, not the arm's history: not marked.
+  const replayAt = useCallback(
+    () => (replay.record && replay.record.dataset === undefined ? replay.clock.position : null),
+    [replay],
+  );
   const [choice, setChoice] = useState(initialChoice);
   const [tab, setTab] = useState<Tab>('charts');
   const [joint, setJoint] = useState(servoId(0));
@@ -215,7 +220,20 @@ export function HistoryPanel() {
           />
         )}
         {overview && tab === 'tables' && (
-          <TablesView arm={arm} overview={overview} servoName={servoName} />
+          <>
+            <ReplayStrip player={replay} />
+            <TablesView
+              arm={arm}
+              overview={overview}
+              servoName={servoName}
+              replayAt={replayAt}
+              seek={(t) =>
+                void seekReplay(api, arm, overview.range, replay, t).then(
+                  (e) => e && setRangeError(e),
+                )
+              }
+            />
+          </>
         )}
         {tab === 'replay' && (
           <ReplayControls

@@ -1,6 +1,6 @@
 /**
  * Replay of the recorded pose over the selected range: load it (`/history/pose`), then play,
- * pause, pick a speed (0.25×–8×) and scrub. The amber sibling arm beside the live one follows;
+ * pause, pick a speed (0.25×–8×) and scrub (./ReplayScrubber.tsx). The amber sibling arm beside the live one follows;
  * its pose is read by the 3D view's frame loop from the ReplayPlayer, and this panel only
  * samples the position ten times a second. Every camera of the arm plays its recorded video on
  * the same time axis (./ReplayVideo.tsx). A LeRobot dataset's episode plays the same way
@@ -10,7 +10,7 @@ import { useState } from 'react';
 import { useSampled } from '../../hud/useSampled.ts';
 import type { ReplayPlayer } from '../../../core/replay/ReplayPlayer.ts';
 import { REPLAY_SPEEDS, type ReplaySpeed } from '../../../core/replay/ReplayClock.ts';
-import { clockTime, fixed } from './format.ts';
+import { fixed } from './format.ts';
 import type { HistoryApi } from './historyApi.ts';
 import type { TimeRange } from './range.ts';
 import { ViewError } from './ViewHeader.tsx';
@@ -18,6 +18,7 @@ import { MakePlan } from './MakePlan.tsx';
 import { loadReplay } from './replayLoad.ts';
 import { DatasetImport } from './DatasetImport.tsx';
 import { ReplayVideos, type SegmentSource } from './ReplayVideo.tsx';
+import { ReplayScrubber } from './ReplayScrubber.tsx';
 
 const SCRUB_SAMPLE_MS = 100;
 
@@ -54,9 +55,6 @@ export function ReplayControls(props: {
       loaded: player.record !== null,
       dataset: player.record?.dataset !== undefined,
       playing: player.clock.playing,
-      position: player.clock.position,
-      start: player.clock.start,
-      stop: player.clock.stop,
       speed: player.clock.speed,
       angles: Array.from(player.angles, (a, i) => jointWords(props.joints[i], a)),
     }),
@@ -114,23 +112,7 @@ export function ReplayControls(props: {
       </div>
       {error && <ViewError error={error} />}
       {frames === 0 && <p className="dim">No pose recorded in this range.</p>}
-      <input
-        type="range"
-        className="replay-scrubber"
-        aria-label="Replay position"
-        aria-valuetext={s.loaded ? clockTime(s.position) : 'no record loaded'}
-        min={s.start}
-        max={s.stop}
-        step={1}
-        value={s.position}
-        disabled={!s.loaded}
-        onChange={(e) => player.seek(Number(e.currentTarget.value))}
-      />
-      <div className="replay-times dim">
-        <span>{s.loaded ? clockTime(s.start) : '—'}</span>
-        <span data-testid="replay-position">{s.loaded ? clockTime(s.position) : '—'}</span>
-        <span>{s.loaded ? clockTime(s.stop) : '—'}</span>
-      </div>
+      <ReplayScrubber player={player} />
       {s.loaded && (
         <p className="replay-angles" data-testid="replay-angles">
           {props.joints.map((j, i) => `${j.name} ${s.angles[i]}`).join(' · ')}
