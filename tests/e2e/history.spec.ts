@@ -49,6 +49,9 @@ const chart = (page: Page, name: string) =>
     name,
   );
 
+const replayPosition = (page: Page) =>
+  page.evaluate(() => (window as unknown as HistoryHook).__armtwin!.replay.clock.position);
+
 const replayAngle = (page: Page, i: number) =>
   page.evaluate((k) => (window as unknown as HistoryHook).__armtwin!.replay.angles[k]!, i);
 
@@ -226,8 +229,34 @@ test('history: the control log shows who took and released control, and download
   await openHistory(page);
   await page.getByRole('tab', { name: 'Tracking, alarms & control' }).click();
   const log = page.getByTestId('control-log');
-  await expect(log.locator('tbody tr')).toHaveCount(2);
-  await expect(log.locator('tbody tr').first()).toContainText('alice');
+  const rows = log.locator('tbody tr');
+  await expect(rows).toHaveCount(2);
+  await expect(rows.first()).toContainText('alice');
+
+  // One timeline, both ways: a row's time moves the replay there (loading it), and the row at
+  // the replay's instant — the last at or before it — is marked as the replay is scrubbed.
+  const [taken, released] = (
+    await historyGet<{ events: { at: number }[] }>(stack, 'audit', { arm: arm.id, start: '-5m' })
+  ).events.map((e) => e.at);
+  const marked = () =>
+    rows.evaluateAll((trs) => trs.map((tr) => tr.getAttribute('aria-current') === 'time'));
+  await expect(page.getByTestId('tables-replay-hint')).toBeVisible();
+  expect(await marked()).toEqual([false, false]);
+  await rows.nth(1).getByRole('button').click();
+  await expect.poll(() => replayPosition(page)).toBe(released);
+  await expect.poll(marked).toEqual([false, true]);
+  await rows.nth(0).getByRole('button').click();
+  await expect.poll(() => replayPosition(page)).toBe(taken);
+  await expect.poll(marked).toEqual([true, false]);
+  const scrubber = page.getByRole('slider', { name: 'Replay position' });
+  await scrubber.fill(String(released!));
+  await expect.poll(marked).toEqual([false, true]);
+  await scrubber.fill(String(taken! - 1000)); // before the first event: no row
+  await expect.poll(marked).toEqual([false, false]);
+  await expect(scrubber).toBeFocused(); // the marker never takes the focus
+  await scrubber.fill(String(taken!));
+  await expect.poll(marked).toEqual([true, false]);
+  await shot(page, testInfo, 'history-control-log-replay');
   const download = page.waitForEvent('download');
   await page.getByRole('button', { name: 'Download control log CSV' }).click();
   const csv = fs.readFileSync(await (await download).path(), 'utf8');
