@@ -9,6 +9,7 @@
  * MP4) shows that frame's picture under the scrubber, paused and at 4×; "Make plan from this
  * range" turns it into a plan.
  */
+import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -48,6 +49,28 @@ test.beforeAll(async ({}) => {
     'lerobot, numpy',
   );
 });
+
+/**
+ * A copy of the dataset whose camera is MPEG-4 Part 2 (ffmpeg's `mpeg4`), a codec no Chromium
+ * decodes, and said so in info.json; the frames and meta/episodes are the original's.
+ */
+function undecodableCopy(): string {
+  const copy = path.join(path.dirname(root), 'so101-mpeg4');
+  fs.cpSync(root, copy, { recursive: true });
+  const key = `observation.images.${CAMERA.key}`;
+  const infoPath = path.join(copy, 'meta/info.json');
+  const info = JSON.parse(fs.readFileSync(infoPath, 'utf8')) as {
+    features: Record<string, { info: Record<string, unknown> }>;
+  };
+  info.features[key]!.info['video.codec'] = 'mpeg4';
+  fs.writeFileSync(infoPath, JSON.stringify(info));
+  const size = `${CAMERA.width}x${CAMERA.height}`;
+  execFileSync('ffmpeg', [
+    ...['-y', '-loglevel', 'error', '-f', 'lavfi', '-i', `testsrc=size=${size}:rate=${FPS}`],
+    ...['-t', '4', '-c:v', 'mpeg4', path.join(copy, `videos/${key}/chunk-000/file-000.mp4`)],
+  ]);
+  return copy;
+}
 
 test.afterAll(() => {
   if (root) fs.rmSync(path.dirname(root), { recursive: true, force: true });
@@ -191,6 +214,19 @@ test('a dataset written by LeRobot plays on the twin with the file’s joint val
     // Played as a recording: a plan from it, to rehearse in Model mode and run.
     await page.getByRole('button', { name: 'Make plan from this range' }).click();
     await expect(page.getByTestId('teach-note')).toContainText('Plan made:');
+
+    // A camera in a codec the browser cannot decode: said in place of the picture, not blank.
+    await page.getByLabel('LeRobot dataset folder').setInputFiles(undecodableCopy());
+    await expect(note).toHaveText(
+      'so101-mpeg4: LeRobot v3.0, 2 episode(s) at 30 fps, so101_follower.',
+    );
+    await page.getByRole('button', { name: 'Play episode' }).click();
+    const camera = page.getByTestId('replay-video-dataset-front');
+    await expect(camera.getByRole('alert')).toContainText(
+      'front (dataset): this browser cannot decode its mpeg4 video, so no picture is shown',
+    );
+    await expect(camera.locator('video')).toBeHidden();
+    await shot(page, testInfo, 'dataset-import-undecodable');
   } finally {
     await arm.stop();
   }

@@ -29,7 +29,13 @@ export interface VideoInfo {
   fps?: number;
   chunks_size?: number;
   video_path?: string | null;
-  features?: Record<string, { dtype?: string }>;
+  features?: Record<string, { dtype?: string; info?: Record<string, unknown> | null }>;
+}
+
+/** The codec info.json names for a video feature (`info["video.codec"]`, e.g. `av1`), or null. */
+export function videoCodec(info: VideoInfo, key: string): string | null {
+  const codec = info.features?.[key]?.info?.['video.codec'];
+  return typeof codec === 'string' && codec !== '' ? codec : null;
 }
 
 /** The features LeRobot stores as video, in info.json's order. */

@@ -13,6 +13,7 @@ import {
   v21Clip,
   v3Clip,
   v3Columns,
+  videoCodec,
   videoKeys,
   type EpisodeClip,
   type VideoInfo,
@@ -33,6 +34,8 @@ export interface EpisodeVideo {
   clip: EpisodeClip | string;
   /** Null where the folder lacks the clip's file. */
   file: DatasetFile | null;
+  /** The codec info.json names for it (`av1`, `h264`…), or null. */
+  codec: string | null;
 }
 
 export interface DatasetEpisode {
@@ -130,7 +133,7 @@ function episodeVideos(
         ? v21Clip(info, key, ep.index, ep.timestamps.length)
         : v3Clip(info, key, rows.get(ep.index) ?? { episode_index: ep.index });
     const file = typeof clip === 'string' ? null : (byPath.get(clip.path) ?? null);
-    return { key, clip, file };
+    return { key, clip, file, codec: videoCodec(info, key) };
   });
 }
 
@@ -141,7 +144,10 @@ export async function readLerobotDataset(files: readonly DatasetFile[]): Promise
     codebase_version?: string;
     fps?: number;
     robot_type?: string | null;
-    features?: Record<string, { names?: unknown; dtype?: string }>;
+    features?: Record<
+      string,
+      { names?: unknown; dtype?: string; info?: Record<string, unknown> | null }
+    >;
   };
   const version = String(info.codebase_version ?? '');
   if (!(SUPPORTED_VERSIONS as readonly string[]).includes(version))

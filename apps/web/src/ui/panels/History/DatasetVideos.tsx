@@ -46,6 +46,7 @@ function DatasetCamera(props: {
       label={`${cam} (dataset)`}
       segments={segments}
       load={load}
+      codec={video.codec}
     />
   );
 }

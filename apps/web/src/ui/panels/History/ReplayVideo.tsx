@@ -4,7 +4,8 @@
  * replay's instant t, each camera's <video> shows the segment covering t at media time
  * t − segment start (core/replay/videoAt.ts), kept in step with the replay clock on every
  * animation frame: played and paused with it, at its speed, moved when it is scrubbed; a gap in
- * the recording shows "no recording". An MJPEG camera's `.mjpeg` segments are shown frame by
+ * the recording shows "no recording"; a video the browser cannot decode (its codec) says so in
+ * its place (`undecodableWords`). An MJPEG camera's `.mjpeg` segments are shown frame by
  * frame in an <img> instead (./ReplayJpegs.ts). The cameras are those the arm announces (the
  * camera hub).
  */
@@ -32,6 +33,8 @@ export function CameraReplay(props: {
   segments: readonly RecordedSegment[];
   /** One segment's MP4 (fetched whole: see ./cameraSegmentsApi.ts). */
   load: (name: string) => Promise<Blob>;
+  /** The video's codec where it is known (a dataset's info.json), named if it cannot be decoded. */
+  codec?: string | null;
 }) {
   const { player, segments, load } = props;
   const video = useRef<HTMLVideoElement>(null);
@@ -39,6 +42,7 @@ export function CameraReplay(props: {
   const [gap, setGap] = useState(true);
   const [jpeg, setJpeg] = useState(false);
   const [failed, setFailed] = useState<string | null>(null);
+  const [undecodable, setUndecodable] = useState<string | null>(null);
   useEffect(() => {
     let raf = 0;
     let shownGap: boolean | null = null;
@@ -57,6 +61,7 @@ export function CameraReplay(props: {
           video.current.dataset.segmentStart = String(startMs);
           video.current.src = objectUrl;
           setFailed(null);
+          setUndecodable(null);
         },
         (err: unknown) => wanted === name && setFailed(String(err)),
       );
@@ -107,14 +112,39 @@ export function CameraReplay(props: {
         aria-label={`Recorded video of ${props.label}`}
         playsInline
         preload="auto"
-        hidden={gap || jpeg}
+        hidden={gap || jpeg || undecodable !== null}
+        onError={(e) => {
+          const words = undecodableWords(props.label, props.codec ?? null, e.currentTarget.error);
+          if (words) setUndecodable(words);
+        }}
       />
       <img ref={img} alt={`Recorded pictures of ${props.label}`} hidden={gap || !jpeg} />
       {gap && <p className="replay-video-gap dim">{props.label}: no recording</p>}
       {failed && <ViewError error={failed} />}
+      {undecodable && !gap && !jpeg && <ViewError error={undecodable} />}
       <figcaption className="dim small-print">{props.label}</figcaption>
     </figure>
   );
+}
+
+/**
+ * What stands in place of a video the browser cannot decode (its codec, or a file it cannot
+ * read as video); null for other media errors (a load aborted by the next segment).
+ */
+export function undecodableWords(
+  label: string,
+  codec: string | null,
+  error: MediaError | null,
+): string | null {
+  if (!error) return null;
+  if (
+    error.code !== MediaError.MEDIA_ERR_SRC_NOT_SUPPORTED &&
+    error.code !== MediaError.MEDIA_ERR_DECODE
+  )
+    return null;
+  const what = codec ? `its ${codec} video` : 'its video';
+  const detail = error.message ? ` (${error.message})` : '';
+  return `${label}: this browser cannot decode ${what}, so no picture is shown; the joints replay without it${detail}.`;
 }
 
 export function ReplayVideos(props: { player: ReplayPlayer; arm: string; source: SegmentSource }) {
