@@ -81,6 +81,7 @@ interface ImportHook {
     ready: boolean;
     replay: {
       angles: Float64Array;
+      actionAngles: Float64Array;
       version: number;
       record: { times: number[]; start: number; stop: number } | null;
       seek(t: number): void;
@@ -102,9 +103,10 @@ async function atFrame(page: Page, k: number) {
     (v) => (window as unknown as ImportHook).__armtwin!.replay.version > v,
     seen,
   );
-  return page.evaluate(() => ({
-    angles: Array.from((window as unknown as ImportHook).__armtwin!.replay.angles),
-  }));
+  return page.evaluate(() => {
+    const replay = (window as unknown as ImportHook).__armtwin!.replay;
+    return { angles: Array.from(replay.angles), actions: Array.from(replay.actionAngles) };
+  });
 }
 
 /** The dataset camera's picture as the user sees it: the number its eight bars draw. */
@@ -182,6 +184,14 @@ test('a dataset written by LeRobot plays on the twin with the file’s joint val
       const want = SO101.servos.map((s, i) => degreesFromLerobot(s, Math.fround(file[k]![i]!)));
       const seen = await atFrame(page, k);
       seen.angles.forEach((a, i) => expect(a, `servo ${i}, frame ${k}`).toBeCloseTo(want[i]!, 3));
+      // Its action (the commanded targets) beside it, from the file's own column.
+      const action = EPISODES[1]!.action[k]!;
+      seen.actions.forEach((a, i) =>
+        expect(a, `action ${i}, frame ${k}`).toBeCloseTo(
+          degreesFromLerobot(SO101.servos[i]!, Math.fround(action[i]!)),
+          3,
+        ),
+      );
       // The drawn model's joints (URDF degrees: the servo angle at polarity 1, offset 0), once
       // the frame after the seek is drawn (the version is bumped before the model is posed).
       await expect
@@ -195,6 +205,12 @@ test('a dataset written by LeRobot plays on the twin with the file’s joint val
         .poll(() => shownNumber(page), { message: `the dataset video at frame ${k}` })
         .toBe(64 + k);
     }
+    // Written beside each joint's state.
+    await expect(page.getByTestId('replay-angles')).toHaveText(
+      new RegExp(
+        SO101.servos.map((s) => `${s.name} -?[\\d.]+° \\(action -?[\\d.]+°\\)`).join(' · '),
+      ),
+    );
     const video = page.getByTestId('replay-video-dataset-front').locator('video');
     expect(await video.evaluate((v) => (v as HTMLVideoElement).paused)).toBe(true);
     expect(await atFrame(page, 44).then((s) => s.angles[5])).toBeCloseTo(

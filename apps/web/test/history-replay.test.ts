@@ -140,6 +140,25 @@ describe('ReplayPlayer', () => {
     expect(p.update(2)).toBe(false);
   });
 
+  it("a dataset's action is replayed beside its state, with the same polarity", () => {
+    const p = new ReplayPlayer([1, 1, -1, 1, 1, 1]);
+    p.load({
+      ...record,
+      action: [
+        [2, 5],
+        [22, 50],
+      ],
+    });
+    p.seek(2000);
+    p.update(0);
+    expect(p.actionAngles[0]).toBeCloseTo(12);
+    expect(p.actionAngles[2]).toBeCloseTo(-27.5);
+    expect(p.angles[2]).toBeCloseTo(-22.5);
+    p.load(record); // a record without one: none shown
+    p.update(1);
+    expect(p.actionAngles[2]).toBeNaN();
+  });
+
   it('configure: sized for another robot (7 servos, track6) whose record replays; the old record closes', () => {
     const p = new ReplayPlayer([1, 1, -1, 1, 1, 1]);
     p.load(record);

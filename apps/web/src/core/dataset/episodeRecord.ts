@@ -2,7 +2,8 @@
  * An imported LeRobot episode (./lerobotDataset.ts) as the History replay's record: each frame's
  * `observation.state` in LeRobot's units back to armtwin's servo angles (`degreesFromLerobot`,
  * the export's own conversion in @armtwin/robot), matched to the active robot's servos by motor
- * name (`shoulder_pan.pos` ↔ servo `shoulder_pan`), on a clock that starts at `startMs`. The
+ * name (`shoulder_pan.pos` ↔ servo `shoulder_pan`), on a clock that starts at `startMs`; its
+ * `action` the same way, shown beside the state (where every frame has one). The
  * replay then plays it on the sibling arm, and "Make plan from this range" turns it into a plan
  * (rehearsed in Model mode, run through the controller's limits and zones). Pure.
  */
@@ -29,9 +30,12 @@ export function recordFromEpisode(
   if (episode.timestamps.length === 0)
     return { ok: false, error: `episode ${episode.index} has no frame` };
   const times = episode.timestamps.map((t) => startMs + t * 1000);
-  const angles = episode.state.map((row) =>
-    servos.map((s, i) => degreesFromLerobot(s, row[columns[i]!]!)),
-  );
+  const toServos = (row: readonly number[]) =>
+    servos.map((s, i) => degreesFromLerobot(s, row[columns[i]!]!));
+  const angles = episode.state.map(toServos);
+  const hasAction =
+    episode.action.length === times.length &&
+    episode.action.every((row) => columns.every((c) => Number.isFinite(row[c])));
   return {
     ok: true,
     record: {
@@ -41,6 +45,7 @@ export function recordFromEpisode(
       start: times[0]!,
       stop: Math.max(times.at(-1)!, times[0]! + 1),
       dataset: `episode ${episode.index}`,
+      ...(hasAction ? { action: episode.action.map(toServos) } : {}),
     },
   };
 }

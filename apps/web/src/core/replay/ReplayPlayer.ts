@@ -14,6 +14,11 @@ export interface ReplayRecord extends PoseRecord {
   stop: number;
   /** An imported dataset's episode (its own time, not the arm's history), by its name. */
   dataset?: string;
+  /**
+   * A dataset's `action` (the commanded targets), frame by frame like `angles` (same `ids` and
+   * `times`, store degrees at k = 1), shown beside the replayed state.
+   */
+  action?: PoseRecord['angles'];
 }
 
 export class ReplayPlayer {
@@ -23,6 +28,8 @@ export class ReplayPlayer {
    * for that servo yet). Replaced by `configure` (read it through the player each time).
    */
   angles: Float64Array;
+  /** The record's `action` at the instant, as `angles` (all NaN when the record has none). */
+  actionAngles: Float64Array;
   record: ReplayRecord | null = null;
   /** Whether the sibling arm is shown. */
   active = false;
@@ -41,6 +48,7 @@ export class ReplayPlayer {
   /** As `configure`'s (none until the active robot is known). */
   constructor(polarities: readonly number[] = [], servoIds?: readonly number[]) {
     this.angles = new Float64Array(polarities.length).fill(NaN);
+    this.actionAngles = new Float64Array(polarities.length).fill(NaN);
     this.polarities = [...polarities];
     this.servoIds = servoIds ?? polarities.map((_, i) => i);
   }
@@ -56,6 +64,7 @@ export class ReplayPlayer {
     this.polarities = [...polarities];
     this.servoIds = servoIds ?? polarities.map((_, i) => i);
     this.angles = new Float64Array(polarities.length).fill(NaN);
+    this.actionAngles = new Float64Array(polarities.length).fill(NaN);
   }
 
   /** Shows the sibling at the record's start, paused. */
@@ -63,6 +72,7 @@ export class ReplayPlayer {
     this.record = record;
     this.slots = slotsFor(record.ids, this.servoIds);
     this.angles.fill(NaN);
+    this.actionAngles.fill(NaN);
     this.clock.load(record.start, record.stop);
     this.active = true;
     this.dirty = true;
@@ -106,8 +116,14 @@ export class ReplayPlayer {
     this.dirty = false;
     this.drawnAt = t;
     this.frame = poseAt(rec, this.slots, t, this.angles);
+    if (rec.action)
+      poseAt({ times: rec.times, angles: rec.action }, this.slots, t, this.actionAngles);
     const a = this.angles;
-    for (let i = 0; i < a.length; i++) a[i]! *= this.polarities[i] ?? 1;
+    const c = this.actionAngles;
+    for (let i = 0; i < a.length; i++) {
+      a[i]! *= this.polarities[i] ?? 1;
+      c[i]! *= this.polarities[i] ?? 1;
+    }
     this.version++;
     return true;
   }

@@ -1,10 +1,11 @@
 /**
  * Replay of the recorded pose over the selected range: load it (`/history/pose`), then play,
- * pause, pick a speed (0.25×–8×) and scrub (./ReplayScrubber.tsx). The amber sibling arm beside the live one follows;
- * its pose is read by the 3D view's frame loop from the ReplayPlayer, and this panel only
+ * pause, pick a speed (0.25×–8×) and scrub (./ReplayScrubber.tsx). The amber sibling arm
+ * beside the live one follows; its pose is read by the 3D view's frame loop from the
+ * ReplayPlayer, and this panel only
  * samples the position ten times a second. Every camera of the arm plays its recorded video on
  * the same time axis (./ReplayVideo.tsx). A LeRobot dataset's episode plays the same way
- * (./DatasetImport.tsx).
+ * (./DatasetImport.tsx), its `action` written beside each joint.
  */
 import { useState } from 'react';
 import { useSampled } from '../../hud/useSampled.ts';
@@ -57,6 +58,10 @@ export function ReplayControls(props: {
       playing: player.clock.playing,
       speed: player.clock.speed,
       angles: Array.from(player.angles, (a, i) => jointWords(props.joints[i], a)),
+      // A dataset's commanded targets at the instant, beside its state.
+      actions: player.record?.action
+        ? Array.from(player.actionAngles, (a, i) => jointWords(props.joints[i], a))
+        : null,
     }),
     SCRUB_SAMPLE_MS,
   );
@@ -115,7 +120,11 @@ export function ReplayControls(props: {
       <ReplayScrubber player={player} />
       {s.loaded && (
         <p className="replay-angles" data-testid="replay-angles">
-          {props.joints.map((j, i) => `${j.name} ${s.angles[i]}`).join(' · ')}
+          {props.joints
+            .map(
+              (j, i) => `${j.name} ${s.angles[i]}${s.actions ? ` (action ${s.actions[i]})` : ''}`,
+            )
+            .join(' · ')}
         </p>
       )}
       {/* the arm's recorded cameras belong to its history, not to an imported episode */}
