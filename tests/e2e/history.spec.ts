@@ -212,20 +212,19 @@ test('history: the control log shows who took and released control, and download
   const { page } = hud;
   // The demo has no users file: alice's name is her own claim (SECURITY.md). The simulated arm
   // publishes the events; the middleware stores them.
+  const stored = async () =>
+    (
+      await historyGet<{ events: { kind: string; by: string }[] }>(stack, 'audit', {
+        arm: arm.id,
+        start: '-5m',
+      })
+    ).events.map((e) => `${e.kind} ${e.by}`);
   await arm.observer.client.publishAsync(`arm/${arm.id}/claim/alice`, 'take', { qos: 1 });
+  // Released once the take is stored: the two events have distinct times (rows to tell apart
+  // on the replay's time axis below).
+  await expect.poll(stored, { timeout: 30_000 }).toEqual(['taken alice']);
   await arm.observer.client.publishAsync(`arm/${arm.id}/claim/alice`, 'release', { qos: 1 });
-  await expect
-    .poll(
-      async () =>
-        (
-          await historyGet<{ events: { kind: string; by: string }[] }>(stack, 'audit', {
-            arm: arm.id,
-            start: '-5m',
-          })
-        ).events.map((e) => `${e.kind} ${e.by}`),
-      { timeout: 30_000 },
-    )
-    .toEqual(['taken alice', 'released alice']);
+  await expect.poll(stored, { timeout: 30_000 }).toEqual(['taken alice', 'released alice']);
   await openHistory(page);
   await page.getByRole('tab', { name: 'Tracking, alarms & control' }).click();
   const log = page.getByTestId('control-log');
