@@ -3,7 +3,8 @@
  * announced retained on `arm/arm1/camera/front`; the MJPEG stream gives JPEGs that change and
  * carry a readable time stripe; the WebSocket gives H.264 access units that start with a key
  * frame and that ffmpeg decodes; both kinds' frames are stamped with their capture time, the
- * clock drawn in them, and a re-served MJPEG URL's with the wall clock of their reading; a killed
+ * clock drawn in them, and a re-served MJPEG URL's with the wall clock of their reading (a source
+ * whose times are not the wall clock gets arrival times, counted); a killed
  * ffmpeg is restarted and the open streams resume; with
  * a users file, an anonymous viewer is refused and a viewer's log-in is let in; a clean stop
  * removes the announcement, and so does the last will of a server that is killed (whose ffmpeg
@@ -13,6 +14,7 @@
 import { spawn, type ChildProcess } from 'node:child_process';
 import { createHash } from 'node:crypto';
 import fs from 'node:fs';
+import os from 'node:os';
 import path from 'node:path';
 import mqtt, { type MqttClient } from 'mqtt';
 import WebSocket from 'ws';
@@ -341,6 +343,46 @@ describe('camera server with the test source', () => {
     };
     expect(metrics.cameras[0]!.errors).toEqual({});
     await again.stop();
+  });
+
+  test('frame times that are not the wall clock: each frame is stamped when it comes, and counted', async () => {
+    // ffmpeg as with a source whose times start at 0: the test source's frames numbered 33 ms
+    // apart instead of stamped with the clock
+    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-camera-'));
+    const wrapper = path.join(dir, 'ffmpeg');
+    fs.writeFileSync(
+      wrapper,
+      '#!/usr/bin/env bash\nexec ffmpeg "${@//setpts=RTCTIME\\/1000/setpts=N*33}"\n',
+      { mode: 0o755 },
+    );
+    const before = Date.now();
+    const plain = await start({
+      ffmpeg: wrapper,
+      cameras: [{ armId: 'arm1', camId: 'plain', label: 'Plain', source: 'testsrc' }],
+    });
+    const m = await openMjpeg(`${plain.url}/camera/plain.mjpeg`);
+    const v = await openH264(`${plain.url.replace('http', 'ws')}/camera/plain.h264`);
+    await until('pictures in both kinds', () => m.parts.length >= 3 && v.messages.length >= 3);
+    await m.stop();
+    v.close();
+    const metrics = (await (await fetch(`${plain.url}/camera/metrics`)).json()) as {
+      cameras: { errors: Record<string, number> }[];
+    };
+    await plain.stop();
+    fs.rmSync(dir, { recursive: true, force: true });
+    const drawn = readTimeStripe((await gray(m.parts[0]!.body)).out, W, H);
+    expect(drawn).toBeLessThan(60_000); // ffmpeg's times: not the clock
+    const stamps = [
+      ...m.parts.map((p) => [Number(p.headers['x-timestamp']), p.at]),
+      ...v.messages.map((h) => [h.timestampMs, h.at]),
+    ];
+    for (const [stamp, at] of stamps) {
+      expect(stamp).toBeGreaterThanOrEqual(before);
+      expect(stamp).toBeLessThanOrEqual(at!);
+    }
+    const { errors } = metrics.cameras[0]!;
+    expect(errors['jpeg:frame-times-arrival']).toBeGreaterThanOrEqual(3);
+    expect(errors['h264:frame-times-arrival']).toBeGreaterThanOrEqual(3);
   });
 
   test('a clean stop removes the announcement and ends ffmpeg', async () => {

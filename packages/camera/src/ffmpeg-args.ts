@@ -179,16 +179,17 @@ function inputArgs(s: CameraSource, o: EncoderOptions): string[] {
 export function filterChain(s: CameraSource, o: EncoderOptions): string {
   const { width: w, height: h } = o;
   const steps: string[] = [];
-  // the wall clock as each picture is decoded (in ms; see the top of this file)
-  if (s.type === 'mjpeg-url') steps.push(...WALL_CLOCK_PTS);
+  const stripe = o.timeStripe === true || (o.timeStripe === 'auto' && s.type === 'testsrc');
+  // the wall clock as each picture is made or decoded, in ms (the stripe sets it itself): the
+  // test source's own times start at 0, an MJPEG URL has none (see the top of this file)
+  if (!stripe && (s.type === 'testsrc' || s.type === 'mjpeg-url')) steps.push(...WALL_CLOCK_PTS);
   if (s.type !== 'testsrc')
     steps.push(
       `scale=${w}:${h}:force_original_aspect_ratio=decrease`,
       `pad=${w}:${h}:(ow-iw)/2:(oh-ih)/2`,
     );
   steps.push('format=yuv420p');
-  if (o.timeStripe === true || (o.timeStripe === 'auto' && s.type === 'testsrc'))
-    steps.push(timeStripeFilter(w, h));
+  if (stripe) steps.push(timeStripeFilter(w, h));
   return steps.join(',');
 }
 

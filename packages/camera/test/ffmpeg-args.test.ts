@@ -74,9 +74,18 @@ describe('ffmpeg command line', () => {
     };
     expect(input('/dev/video0')).toContain('-ts mono2abs'); // the kernel's capture time
     expect(input('rtsp://cam/s')).toContain('-use_wallclock_as_timestamps 1');
-    // an MJPEG URL's frames carry no time: stamped as ffmpeg decodes them, in ms
+    // an MJPEG URL's frames carry no time: stamped as ffmpeg decodes them, in ms; the test
+    // source's as it makes them, stripe or not
+    const wallClock = /^settb=1\/1000,setpts=RTCTIME\/1000,/;
     expect(filterChain(parseSource('http://cam/v.mjpg'), DEFAULT_ENCODER_OPTIONS)).toMatch(
-      /^settb=1\/1000,setpts=RTCTIME\/1000,scale=/,
+      wallClock,
+    );
+    const plain = { ...DEFAULT_ENCODER_OPTIONS, timeStripe: false };
+    expect(filterChain(parseSource('testsrc'), plain)).toBe(
+      'settb=1/1000,setpts=RTCTIME/1000,format=yuv420p',
+    );
+    expect(filterChain(parseSource('testsrc'), DEFAULT_ENCODER_OPTIONS)).toContain(
+      'format=yuv420p,settb=1/1000,setpts=RTCTIME/1000,drawbox',
     );
   });
 });
