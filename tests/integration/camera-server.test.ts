@@ -2,7 +2,10 @@
  * The camera server against real ffmpeg (Debian's) and real Mosquitto: the test source is
  * announced retained on `arm/arm1/camera/front`; the MJPEG stream gives JPEGs that change and
  * carry a readable time stripe; the WebSocket gives H.264 access units that start with a key
- * frame and that ffmpeg decodes; a killed ffmpeg is restarted and the open streams resume; with
+ * frame and that ffmpeg decodes; both kinds' frames are stamped with their capture time, the
+ * clock drawn in them, and a re-served MJPEG URL's with the wall clock of their reading (a source
+ * whose times are not the wall clock gets arrival times, counted); a killed
+ * ffmpeg is restarted and the open streams resume; with
  * a users file, an anonymous viewer is refused and a viewer's log-in is let in; a clean stop
  * removes the announcement, and so does the last will of a server that is killed (whose ffmpeg
  * then dies too): the last two through the `armtwin camera` command. Every server and ffmpeg
@@ -11,6 +14,7 @@
 import { spawn, type ChildProcess } from 'node:child_process';
 import { createHash } from 'node:crypto';
 import fs from 'node:fs';
+import os from 'node:os';
 import path from 'node:path';
 import mqtt, { type MqttClient } from 'mqtt';
 import WebSocket from 'ws';
@@ -202,7 +206,7 @@ describe('camera server with the test source', () => {
     expect(streams.map((s) => s.url)).toEqual([mjpegUrl, h264Url]);
   });
 
-  test('MJPEG: JPEG parts with Content-Length and X-Timestamp whose bytes change; the stripe reads the clock', async () => {
+  test('MJPEG: JPEG parts with Content-Length and X-Timestamp whose bytes change; the stamp is the clock drawn in the frame', async () => {
     const s = await openMjpeg(mjpegUrl);
     expect(s.res.status).toBe(200);
     expect(s.res.headers.get('content-type')).toMatch(/^multipart\/x-mixed-replace; *boundary=/);
@@ -230,12 +234,12 @@ describe('camera server with the test source', () => {
     const burned = readTimeStripe(out, W, H);
     const served = Number(p.headers['x-timestamp']);
     expect(burned).not.toBeNull();
-    // made by ffmpeg before the server had it, and not long before
-    expect(served - burned!).toBeGreaterThanOrEqual(0);
-    expect(served - burned!).toBeLessThan(1000);
+    // the frame's capture time (ffmpeg's own time stamp, the instant it drew the clock), not
+    // when the server had it
+    expect(served).toBe(burned);
   });
 
-  test('h264-ws: a key frame with SPS and PPS first, then access units ffmpeg decodes', async () => {
+  test('h264-ws: a key frame with SPS and PPS first, then access units ffmpeg decodes, stamped with the clock drawn in them', async () => {
     const v = await openH264(h264Url);
     expect(v.opened).toBe(101);
     await until('40 access units', () => v.messages.length >= 40);
@@ -262,8 +266,9 @@ describe('camera server with the test source', () => {
     expect(err).toBe('');
     expect(code).toBe(0);
     expect(out.length).toBe(v.messages.length * W * H);
-    // the last decoded picture carries the stripe too
-    expect(readTimeStripe(out.subarray(out.length - W * H), W, H)).not.toBeNull();
+    // each picture's header stamp is its capture time: the clock ffmpeg drew in it
+    const drawn = v.messages.map((_, k) => readTimeStripe(out.subarray(k * W * H), W, H));
+    expect(drawn).toEqual(v.messages.map((m) => m.timestampMs));
   });
 
   test('killing ffmpeg: the server says why, restarts it, and open streams resume', async () => {
@@ -325,7 +330,59 @@ describe('camera server with the test source', () => {
     expect(v.messages[0]!.key).toBe(true);
     await m.stop();
     v.close();
+    // stamped when the re-serving ffmpeg read each picture (wall clock, kept by -copyts): after
+    // the first server drew its clock in it, before this viewer had it
+    const p = m.parts.at(-1)!;
+    const stamp = Number(p.headers['x-timestamp']);
+    const drawn = readTimeStripe((await gray(p.body)).out, W, H)!;
+    expect(stamp).toBeGreaterThanOrEqual(drawn);
+    expect(stamp).toBeLessThanOrEqual(p.at);
+    for (const h of v.messages) expect(h.timestampMs).toBeLessThanOrEqual(h.at);
+    const metrics = (await (await fetch(`${again.url}/camera/metrics`)).json()) as {
+      cameras: { errors: Record<string, number> }[];
+    };
+    expect(metrics.cameras[0]!.errors).toEqual({});
     await again.stop();
+  });
+
+  test('frame times that are not the wall clock: each frame is stamped when it comes, and counted', async () => {
+    // ffmpeg as with a source whose times start at 0: the test source's frames numbered 33 ms
+    // apart instead of stamped with the clock
+    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-camera-'));
+    const wrapper = path.join(dir, 'ffmpeg');
+    fs.writeFileSync(
+      wrapper,
+      '#!/usr/bin/env bash\nexec ffmpeg "${@//setpts=RTCTIME\\/1000/setpts=N*33}"\n',
+      { mode: 0o755 },
+    );
+    const before = Date.now();
+    const plain = await start({
+      ffmpeg: wrapper,
+      cameras: [{ armId: 'arm1', camId: 'plain', label: 'Plain', source: 'testsrc' }],
+    });
+    const m = await openMjpeg(`${plain.url}/camera/plain.mjpeg`);
+    const v = await openH264(`${plain.url.replace('http', 'ws')}/camera/plain.h264`);
+    await until('pictures in both kinds', () => m.parts.length >= 3 && v.messages.length >= 3);
+    await m.stop();
+    v.close();
+    const metrics = (await (await fetch(`${plain.url}/camera/metrics`)).json()) as {
+      cameras: { errors: Record<string, number> }[];
+    };
+    await plain.stop();
+    fs.rmSync(dir, { recursive: true, force: true });
+    const drawn = readTimeStripe((await gray(m.parts[0]!.body)).out, W, H);
+    expect(drawn).toBeLessThan(60_000); // ffmpeg's times: not the clock
+    const stamps = [
+      ...m.parts.map((p) => [Number(p.headers['x-timestamp']), p.at]),
+      ...v.messages.map((h) => [h.timestampMs, h.at]),
+    ];
+    for (const [stamp, at] of stamps) {
+      expect(stamp).toBeGreaterThanOrEqual(before);
+      expect(stamp).toBeLessThanOrEqual(at!);
+    }
+    const { errors } = metrics.cameras[0]!;
+    expect(errors['jpeg:frame-times-arrival']).toBeGreaterThanOrEqual(3);
+    expect(errors['h264:frame-times-arrival']).toBeGreaterThanOrEqual(3);
   });
 
   test('a clean stop removes the announcement and ends ffmpeg', async () => {

@@ -9,10 +9,10 @@
  * observation.state and action equal to the stored sample (resp. command) in force at its
  * timestamp, read back with InfluxQL. A camera server's test source (its frames carry the
  * wall clock in the time stripe) is announced for the arm twice, as `front` (H.264) and as `side`
- * (MJPEG only), and recorded by the middleware (docs/cameras-recording.md); the export cuts a
- * video of each, and each frame LeRobot decodes shows the clock of its row's timestamp within
- * one frame. Bad requests and flags are refused with a
- * clear error.
+ * (MJPEG only), and recorded by the middleware (docs/cameras-recording.md) with each frame's
+ * capture time (the clock drawn in it, to 1 ms); the export cuts a video of each, and each frame
+ * LeRobot decodes is the recorded one nearest its row's timestamp, so its clock matches that
+ * timestamp within one frame. Bad requests and flags are refused with a clear error.
  */
 import type { EpisodeMark } from '@armtwin/api';
 import { execFile, execFileSync } from 'node:child_process';
@@ -417,7 +417,6 @@ describe("armtwin export --format lerobot, loaded by LeRobot's own LeRobotDatase
       // rounded to the recording's millisecond time base (fresh clone F3: frame 49).
       const shown = (slot: number, slackMs = 0) =>
         recorded.filter((f) => f.atMs < slot + 500 / FPS - slackMs).at(-1)!;
-      const lags: number[] = [];
       for (const f of checked.frames) {
         expect(f.images[key]!.shape).toEqual([3, H, W]);
         const clock = stripeOf(f.images[key]!.band);
@@ -428,11 +427,15 @@ describe("armtwin export --format lerobot, loaded by LeRobot's own LeRobotDatase
         // the very frame the recording holds at the row's time (within half a frame of it, unless
         // the camera sent nothing then): the export's alignment, exact
         expect([want.clock, rounded.clock], `frame ${f.frame_index} at ${slot}`).toContain(clock);
-        lags.push(want.atMs - want.clock);
       }
-      // Its clock is the camera's: the recording stamps a frame when the camera server has it, a
-      // few ms later (more on a loaded machine), never before.
-      expect(Math.min(...lags)).toBeGreaterThanOrEqual(0);
+      // Each frame's recorded time is its capture time, the clock the test source drew in it (to
+      // the recording's 1 ms): well within one camera frame (1000/30 ms), so the frame a row
+      // shows is the one taken nearest its timestamp. Stamped on arrival at the camera server
+      // (before), nearly every frame failed here: H.264 2 / 7 / 689 ms late (min / median /
+      // max), MJPEG 1 / 5 / 168 ms, at a load of 15 on 2 cores.
+      const late = recorded.filter((f) => Math.abs(f.atMs - f.clock) > 1);
+      expect(late.slice(0, 3), `${late.length} of ${recorded.length} frames`).toEqual([]);
+      expect(recorded.length).toBeGreaterThan(frames);
     },
   );
 

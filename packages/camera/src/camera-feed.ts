@@ -31,7 +31,7 @@ export const DEFAULT_CAMERA_FEED_OPTIONS: CameraFeedOptions = {
 
 export interface KindStats extends FanoutStats {
   bytesIn: number;
-  /** Epoch ms of the last frame from the encoder, or null. */
+  /** Capture time (epoch ms) of the last frame from the encoder, or null. */
   lastFrameAt: number | null;
 }
 

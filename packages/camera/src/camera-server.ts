@@ -4,7 +4,7 @@
  * can mount on its one HTTP port. Routes (`{camId}` = `[a-z0-9-]{1,32}`):
  *
  * - `GET /camera/{camId}.mjpeg`: `multipart/x-mixed-replace`, one JPEG per part with its
- *   `Content-Length`, `X-Timestamp` (epoch ms the server had it) and `X-Sequence`;
+ *   `Content-Length`, `X-Timestamp` (the frame's capture time, epoch ms) and `X-Sequence`;
  * - `GET /camera/{camId}.jpg`: the latest JPEG alone;
  * - WebSocket `/camera/{camId}.h264`: `h264-ws` (./wire.ts);
  * - `GET /camera/metrics`: the counters, JSON (`CameraServerStats`).

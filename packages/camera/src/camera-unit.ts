@@ -22,7 +22,8 @@ import {
 } from './ffmpeg-args.ts';
 import { FfmpegRunner, type BackoffOptions, type FfmpegRunnerStats } from './ffmpeg-runner.ts';
 import { createFlvH264Reader, type FlvH264Reader } from './flv-h264.ts';
-import { createJpegSplitter, type JpegSplitter } from './jpeg-splitter.ts';
+import { createSmjpegParser, type SmjpegParser } from './smjpeg-parser.ts';
+import { captureTime } from './capture-time.ts';
 
 /** What to serve: one camera of one arm. */
 export interface CameraSpec {
@@ -81,7 +82,7 @@ export class CameraUnit {
   readonly runner: FfmpegRunner | null;
   readonly topic: string;
   private readonly errors: Record<string, number> = {};
-  private readonly jpeg: JpegSplitter;
+  private readonly jpeg: SmjpegParser;
   private readonly h264: FlvH264Reader;
 
   constructor(
@@ -101,17 +102,17 @@ export class CameraUnit {
     encodeAnnouncement(this.announcement('http://127.0.0.1')); // label, pose, fov: checked now
     this.feed = new CameraFeed(ctx.feed);
     const now = ctx.now;
-    this.jpeg = createJpegSplitter({
+    this.jpeg = createSmjpegParser({
       onFrame: (f) => {
         this.runner?.frame();
-        this.feed.jpeg(f, now());
+        this.feed.jpeg(f.jpeg, this.frameTime('jpeg', f.timestampMs));
       },
       onError: (e) => this.count(`jpeg:${e.kind}`, e.message),
     });
     this.h264 = createFlvH264Reader({
       onAccessUnit: (au) => {
         this.runner?.frame();
-        this.feed.accessUnit(au.data, au.key, now());
+        this.feed.accessUnit(au.data, au.key, this.frameTime('h264', au.timestampMs));
       },
       onError: (e) => this.count(`h264:${e.kind}`, e.message),
     });
@@ -149,6 +150,21 @@ export class CameraUnit {
 
   serves(kind: CameraKind): boolean {
     return this.kinds.includes(kind);
+  }
+
+  /**
+   * A frame's time: its capture time from ffmpeg's stamp (./capture-time.ts), or, when that is
+   * not the wall clock, the time the frame came out of ffmpeg, counted (`<kind>:frame-times-arrival`).
+   */
+  private frameTime(kind: 'jpeg' | 'h264', stamp: number): number {
+    const now = this.ctx.now();
+    const captured = captureTime(stamp, now);
+    if (captured !== null) return captured;
+    this.count(
+      `${kind}:frame-times-arrival`,
+      `ffmpeg's frame times are not the wall clock (${kind} stamp ${stamp}): frames are stamped when they come out of ffmpeg`,
+    );
+    return now;
   }
 
   /** Counts a problem; the first of each kind is also told to `onFirst`. */

@@ -1,7 +1,7 @@
 /**
  * What ffmpeg is told to do, pure: a camera source (the test source, a V4L2 device, an RTSP
- * URL, an MJPEG-over-HTTP URL) → one ffmpeg command line that writes JPEGs on one pipe and
- * H.264 in FLV on another, from one decode of the source.
+ * URL, an MJPEG-over-HTTP URL) → one ffmpeg command line that writes JPEGs in SMJPEG on one
+ * pipe and H.264 in FLV on another, from one decode of the source.
  *
  * Encoder settings (`DEFAULT_ENCODER_OPTIONS`), chosen for latency first:
  * - MJPEG: `-q:v 5` (about 20 KB a frame at 640×480), every frame stands alone; one thread,
@@ -15,8 +15,20 @@
  *   `-enc_time_base 1:1000`: time stamps in ms, so two frames a little closer than 1/fps apart
  *   (clock jitter) do not round to one time stamp, which the encoder refuses ("Invalid pts").
  * - `-flush_packets 1`: each frame leaves ffmpeg's pipe buffer as soon as it is encoded.
+ *
+ * Frame times are capture times on the wall clock (epoch ms), carried to the server in the
+ * containers on the pipes (FLV for H.264, SMJPEG for the JPEGs: each frame with its time stamp;
+ * ./capture-time.ts puts back the high bits they drop). Per source: the test source's
+ * `setpts=RTCTIME` (./time-stripe.ts, the instant the frame is drawn); a V4L2 device's kernel
+ * buffer time (when the driver had the frame), made wall clock by `-ts mono2abs` (the kernel's
+ * is `CLOCK_MONOTONIC`; mono2abs rather than `abs`, which stops ffmpeg on a device whose times
+ * it cannot place, v4l2loopback's for one); an RTSP camera's `-use_wallclock_as_timestamps 1`
+ * (when ffmpeg read the frame: RTP's own times start at a random offset); an MJPEG URL's
+ * `setpts=RTCTIME` (when ffmpeg decoded it: that demuxer has no times, and its 1/25 s time
+ * base would round a read time to 40 ms). `-copyts` keeps them: by default ffmpeg shifts every
+ * stream to start at 0.
  */
-import { timeStripeFilter } from './time-stripe.ts';
+import { timeStripeFilter, WALL_CLOCK_PTS } from './time-stripe.ts';
 
 export type CameraSource =
   | { type: 'testsrc' }
@@ -124,8 +136,7 @@ function inputArgs(s: CameraSource, o: EncoderOptions): string[] {
       return ['-re', '-f', 'lavfi', '-i', `testsrc2=size=${o.width}x${o.height}:rate=${o.fps}`];
     case 'v4l2':
       return [
-        '-f',
-        'v4l2',
+        ...['-f', 'v4l2', '-ts', 'mono2abs'],
         '-framerate',
         String(o.fps),
         '-video_size',
@@ -136,6 +147,7 @@ function inputArgs(s: CameraSource, o: EncoderOptions): string[] {
       ];
     case 'rtsp':
       return [
+        ...['-use_wallclock_as_timestamps', '1'],
         '-fflags',
         'nobuffer',
         '-flags',
@@ -167,14 +179,17 @@ function inputArgs(s: CameraSource, o: EncoderOptions): string[] {
 export function filterChain(s: CameraSource, o: EncoderOptions): string {
   const { width: w, height: h } = o;
   const steps: string[] = [];
+  const stripe = o.timeStripe === true || (o.timeStripe === 'auto' && s.type === 'testsrc');
+  // the wall clock as each picture is made or decoded, in ms (the stripe sets it itself): the
+  // test source's own times start at 0, an MJPEG URL has none (see the top of this file)
+  if (!stripe && (s.type === 'testsrc' || s.type === 'mjpeg-url')) steps.push(...WALL_CLOCK_PTS);
   if (s.type !== 'testsrc')
     steps.push(
       `scale=${w}:${h}:force_original_aspect_ratio=decrease`,
       `pad=${w}:${h}:(ow-iw)/2:(oh-ih)/2`,
     );
   steps.push('format=yuv420p');
-  if (o.timeStripe === true || (o.timeStripe === 'auto' && s.type === 'testsrc'))
-    steps.push(timeStripeFilter(w, h));
+  if (stripe) steps.push(timeStripeFilter(w, h));
   return steps.join(',');
 }
 
@@ -191,12 +206,12 @@ export function ffmpegArgs(
   const gop = o.gop > 0 ? o.gop : Math.round(o.fps);
   const graph = `[0:v]${filterChain(s, o)}${both ? ',split=2[m][h]' : out.mjpeg !== undefined ? '[m]' : '[h]'}`;
   const args = ['-hide_banner', '-nostdin', '-nostats', '-loglevel', 'error', ...inputArgs(s, o)];
-  args.push('-filter_complex', graph);
+  args.push('-copyts', '-filter_complex', graph);
   if (out.mjpeg !== undefined)
     args.push(
       ...['-map', '[m]', '-an', '-fps_mode', 'passthrough', '-enc_time_base', '1:1000'],
       ...['-c:v', 'mjpeg', '-q:v', String(o.mjpegQuality), '-threads', '1'],
-      ...['-flush_packets', '1', '-f', 'mjpeg', `pipe:${out.mjpeg}`],
+      ...['-flush_packets', '1', '-f', 'smjpeg', `pipe:${out.mjpeg}`],
     );
   if (out.h264 !== undefined)
     args.push(

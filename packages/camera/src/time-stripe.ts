@@ -15,6 +15,9 @@
 
 export const TIME_STRIPE_BITS = 44;
 
+/** Filters that stamp each frame with the wall clock as it passes, epoch ms in a 1 ms time base. */
+export const WALL_CLOCK_PTS = ['settb=1/1000', 'setpts=RTCTIME/1000'] as const;
+
 export interface TimeStripeLayout {
   bits: number;
   blockW: number;
@@ -49,12 +52,7 @@ export function timeStripeFilter(width: number, height: number): string {
   const l = timeStripeLayout(width, height);
   const box = (x: number, w: number, color: string) =>
     `drawbox=x=${x}:y=${l.y0}:w=${w}:h=${l.blockH}:color=${color}:t=fill`;
-  const filters = [
-    'settb=1/1000',
-    'setpts=RTCTIME/1000',
-    box(0, width, 'black'),
-    box(l.x0, l.blockW, 'white'),
-  ];
+  const filters = [...WALL_CLOCK_PTS, box(0, width, 'black'), box(l.x0, l.blockW, 'white')];
   for (let i = 0; i < l.bits; i++) {
     const weight = 2 ** (l.bits - 1 - i);
     // t is in s; +0.5 ms rounds away the float error of t*1000 before the bit is taken.

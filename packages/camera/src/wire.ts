@@ -8,9 +8,13 @@
  * | 0      | 1    | version, 1                                                             |
  * | 1      | 1    | flags: bit 0 key frame (IDR, with SPS+PPS), bit 1 replay (see below)   |
  * | 2      | 2    | header length in bytes, 16 (a reader skips what it does not know)     |
- * | 4      | 8    | time stamp, epoch ms, float64: when the server had the whole frame     |
+ * | 4      | 8    | time stamp, epoch ms, float64: the frame's capture time (see below)    |
  * | 12     | 4    | sequence number of the frame from its encoder (gaps = frames dropped) |
  * | 16     | …    | the access unit                                                        |
+ *
+ * The time stamp is when the frame was produced (ffmpeg's own frame time on the wall clock:
+ * ./capture-time.ts, ./ffmpeg-args.ts), not when the server had it; for a source whose times
+ * are not the wall clock, the time it came out of ffmpeg (counted by the server).
  *
  * The payload goes to WebCodecs as it is: `new EncodedVideoChunk({type: key ? 'key' : 'delta',
  * timestamp, data})` on a decoder configured with the codec string of the SPS (./nal.ts) and no
@@ -27,7 +31,7 @@ export const FLAG_REPLAY = 2;
 export interface H264Message {
   key: boolean;
   replay: boolean;
-  /** Epoch ms. */
+  /** Epoch ms: the frame's capture time. */
   timestampMs: number;
   seq: number;
   /** The access unit, Annex B. */

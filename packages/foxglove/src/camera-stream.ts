@@ -1,6 +1,6 @@
 /**
  * Reads one MJPEG camera stream (packages/camera: `multipart/x-mixed-replace`, one JPEG per
- * part, `X-Timestamp` = epoch ms at which the camera server had the frame) with the maintained
+ * part, `X-Timestamp` = the frame's capture time, epoch ms) with the maintained
  * `fetch` and armtwin's own multipart reader (@armtwin/camera/client), until stopped. A frame
  * without `X-Timestamp` is stamped on arrival; one that comes twice (the same `X-Sequence`: a
  * new viewer's first picture can come again live) is passed on once. Node.

@@ -3,12 +3,17 @@
  * access unit per message behind its header, `@armtwin/camera`'s wire) or an MJPEG
  * `multipart/x-mixed-replace` response read with fetch (one JPEG per part). Each frame is handed
  * on with its time: the `h264-ws` header's; for MJPEG the part's `X-Timestamp` (armtwin's camera
- * server stamps each part with the epoch ms it had the frame) when it is epoch ms within
- * `MAX_STAMP_SKEW_MS` of the clock, else the time it arrived (other cameras' stamps, ustreamer's
- * monotonic seconds for one, are no epoch ms).
+ * server stamps each frame with its capture time, epoch ms) when it is epoch ms within
+ * `MAX_STAMP_SKEW_MS` of the clock (`@armtwin/camera`'s `wallClockStamp`), else the time it
+ * arrived (other cameras' stamps, ustreamer's monotonic seconds for one, are no epoch ms).
  */
 import { WebSocket } from 'ws';
-import { createMultipartParser, decodeH264Message, multipartBoundary } from '@armtwin/camera';
+import {
+  createMultipartParser,
+  decodeH264Message,
+  multipartBoundary,
+  wallClockStamp,
+} from '@armtwin/camera';
 
 export interface FeedHandlers {
   /** The connection is open. */
@@ -24,9 +29,6 @@ export interface FeedHandlers {
 export interface Feed {
   close(): void;
 }
-
-/** A part stamp further than this from the clock is not taken as the frame's time, ms. */
-export const MAX_STAMP_SKEW_MS = 10_000;
 
 export function openH264Feed(url: string, authorization: string, h: FeedHandlers): Feed {
   const headers = authorization ? { authorization } : undefined;
@@ -47,7 +49,7 @@ export function openH264Feed(url: string, authorization: string, h: FeedHandlers
 /** The frame's time from its part's `X-Timestamp`, or the arrival time `nowMs`. */
 export function partTime(stamp: string | undefined, nowMs: number): number | null {
   const at = stamp !== undefined && /^\d{1,16}(\.\d+)?$/.test(stamp) ? Number(stamp) : NaN;
-  return Math.abs(at - nowMs) <= MAX_STAMP_SKEW_MS ? at : null;
+  return wallClockStamp(at, nowMs);
 }
 
 export function openMjpegFeed(
