@@ -7,6 +7,20 @@ import { ControlClaim, type ControlIdentity } from '../src/core/link/ControlClai
 import { encodeSummary } from '@armtwin/protocol';
 
 const enc = (s: string) => new TextEncoder().encode(s);
+/** The arm's summary at `t` naming `holder` (docs/protocol.md § Fleets). */
+const summaryOf = (t: number, holder: string | null) =>
+  enc(
+    encodeSummary({
+      t,
+      state: 'still',
+      why: '',
+      health: 'normal',
+      alarm: '',
+      holder,
+      joints: [],
+      error: null,
+    }),
+  );
 
 function setup(who: ControlIdentity) {
   const client = new FakeClient();
@@ -20,22 +34,7 @@ function setup(who: ControlIdentity) {
   const holder = (json: object) =>
     client.emit('message', 'arm/arm1/holder', enc(JSON.stringify(json)));
   const summary = (t: number, holder: string | null) =>
-    client.emit(
-      'message',
-      'arm/arm1/summary',
-      enc(
-        encodeSummary({
-          t,
-          state: 'still',
-          why: '',
-          health: 'normal',
-          alarm: '',
-          holder,
-          joints: [],
-          error: null,
-        }),
-      ),
-    );
+    client.emit('message', 'arm/arm1/summary', summaryOf(t, holder));
   const sent = () =>
     client.published
       .filter((p) => !p.payload.startsWith('$PNG'))
@@ -115,25 +114,12 @@ describe('ControlClaim in the page (docs/protocol.md § Control)', () => {
       sent.push(`${t} ${p}`);
       return true;
     });
-    const summary = (t: number, holder: string | null) =>
-      enc(
-        encodeSummary({
-          t,
-          state: 'still',
-          why: '',
-          health: 'normal',
-          alarm: '',
-          holder,
-          joints: [],
-          error: null,
-        }),
-      );
     c.onHolder(enc(JSON.stringify({ user: 'alice', requests: [] })));
-    c.onSummary(summary(1000, null));
+    c.onSummary(summaryOf(1000, null));
     expect(c.holding).toBe(true); // the record came: the summary says nothing
     c.moved();
     expect(c.holder).toBeNull();
-    c.onSummary(summary(5000, null)); // the arm let go of alice while the page moved
+    c.onSummary(summaryOf(5000, null)); // the arm let go of alice while the page moved
     expect(c.holder?.user).toBeNull();
     expect(c.mayMove).toBe(true);
     c.onHolder(enc(JSON.stringify({ user: null, requests: [] })));
