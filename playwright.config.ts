@@ -10,7 +10,7 @@ import { CHROMIUM_ARGS, CHROMIUM_PATH } from './tests/helpers/chromium.ts';
  * web server, arms have unique ids), most of their time spent waiting on the stack.
  * `alone`: specs that judge the page frame by frame or pixel by pixel, drive an emulated
  * servo bus within its protocol's timeouts, or load the machine themselves (50 arms, a
- * flood); scripts/test.sh runs them after `shared`, one at a time with nothing beside them.
+ * flood, a 3-node cluster); scripts/test.sh runs them after `shared`, one at a time with nothing beside them.
  * Run both (`npx playwright test`) and `alone` runs beside `shared`, on one worker.
  */
 const ALONE = [
@@ -26,6 +26,7 @@ const ALONE = [
   'flood',
   'ros2-hud',
   'history-video',
+  'cluster-hud',
 ].map((name) => `**/${name}.spec.ts`);
 
 export default defineConfig({

@@ -11,6 +11,7 @@ import { REPO_ROOT } from './files.ts';
 import { freePorts, LOOPBACK } from './ports.ts';
 import { ServiceProcess } from './process.ts';
 import { makeTempDir } from './files.ts';
+import { connect } from '@nats-io/transport-node';
 
 export const NATS_SERVER = path.join(REPO_ROOT, '.tools', 'bin', 'nats-server');
 
@@ -41,6 +42,11 @@ export interface NatsCluster {
    * copy of it is current (the leader first), as the leader's `/jsz` tells; null while nobody leads it.
    */
   stream(name: string): Promise<{ leader: string; current: string[] } | null>;
+  /**
+   * Has node `i` give up leading a stream (JetStream's leader step-down, as `nats stream cluster
+   * step-down` does) until another node leads it; nothing when it does not lead it.
+   */
+  leadAwayFrom(name: string, i: number): Promise<void>;
   /** Kills every node; with `keepLogs`, says where the logs were kept. */
   dispose(opts?: { keepLogs?: boolean }): Promise<string | undefined>;
 }
@@ -120,6 +126,21 @@ export async function startNatsCluster(): Promise<NatsCluster> {
     (key: 'mqttUrl' | 'wsUrl' | 'natsUrl') =>
     (first = 0) =>
       nodes.map((_, j) => nodes[(first + j) % nodes.length]![key]).join(',');
+  const stream = async (name: string) => {
+    for (const n of nodes.filter((x) => x.running)) {
+      const r = await fetch(`${n.monitorUrl}/jsz?accounts=true&streams=true`).catch(() => null);
+      if (!r?.ok) continue;
+      const jsz = (await r.json()) as Jsz;
+      const s = jsz.account_details
+        ?.flatMap((a) => a.stream_detail ?? [])
+        .find((d) => d.name === name);
+      // The leader's own view lists its followers and whether each is current.
+      if (s?.cluster?.leader !== n.name) continue;
+      const current = (s.cluster.replicas ?? []).filter((x) => x.current).map((x) => x.name);
+      return { leader: s.cluster.leader, current: [s.cluster.leader, ...current] };
+    }
+    return null;
+  };
   return {
     nodes,
     mqttUrls: list('mqttUrl'),
@@ -134,20 +155,20 @@ export async function startNatsCluster(): Promise<NatsCluster> {
       const { routes } = (await r.json()) as { routes?: { remote_id: string }[] };
       return new Set((routes ?? []).map((x) => x.remote_id)).size;
     },
-    async stream(name) {
-      for (const n of nodes.filter((x) => x.running)) {
-        const r = await fetch(`${n.monitorUrl}/jsz?accounts=true&streams=true`).catch(() => null);
-        if (!r?.ok) continue;
-        const jsz = (await r.json()) as Jsz;
-        const s = jsz.account_details
-          ?.flatMap((a) => a.stream_detail ?? [])
-          .find((d) => d.name === name);
-        // The leader's own view lists its followers and whether each is current.
-        if (s?.cluster?.leader !== n.name) continue;
-        const current = (s.cluster.replicas ?? []).filter((x) => x.current).map((x) => x.name);
-        return { leader: s.cluster.leader, current: [s.cluster.leader, ...current] };
+    stream,
+    async leadAwayFrom(name, i) {
+      const nc = await connect({ servers: nodes.filter((n) => n.running).map((n) => n.natsUrl) });
+      try {
+        for (let k = 0; k < 20; k++) {
+          const s = await stream(name);
+          if (s && s.leader !== nodes[i]!.name) return;
+          if (s) await nc.request(`$JS.API.STREAM.LEADER.STEPDOWN.${name}`, '').catch(() => {});
+          await new Promise((r) => setTimeout(r, 500));
+        }
+        throw new Error(`${nodes[i]!.name} still leads ${name}`);
+      } finally {
+        await nc.close();
       }
-      return null;
     },
     async dispose(opts = {}) {
       const kept = await Promise.all(nodes.map((n) => n.process.dispose(opts)));

@@ -8,9 +8,9 @@
  * the holder's client are on, is SIGKILLed mid-stream: the arms, the page and the holder move to
  * other nodes, the holder's retained record is still read there, her jogs reach the arm before
  * and after the kill (the page sees its servo follow) and her stop holds it; once the node is
- * back and has rejoined, every state report each arm made is one point in InfluxDB (counted per
- * arm against the sim's own counter: nothing lost, nothing twice), and both middlewares stored
- * part of it. Only generous wait-for-condition timeouts, no timing assertion (the times are
+ * back and has rejoined, every state and health report each arm made is one point in InfluxDB
+ * (counted per arm against the sim's own counters: nothing lost; no servo with two points a few
+ * µs apart: nothing twice), and both middlewares stored part of it. Only generous wait-for-condition timeouts, no timing assertion (the times are
  * printed).
  */
 import fs from 'node:fs';
@@ -22,7 +22,7 @@ import { linkOptions, parseSummary } from '@armtwin/protocol';
 import { startSim, type Sim } from '@armtwin/sim';
 import { useInflux, useNatsCluster } from '../helpers/use-services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
-import { reportGaps, storedReports } from './stored-reports.ts';
+import { reportGaps, storedReports, storedTwice } from './stored-reports.ts';
 import { ReportedPose } from './reported-pose.ts';
 import { holdersOn } from './holders.ts';
 import type { MiddlewareProcess } from '../../apps/middleware/test/support/harness.ts';
@@ -113,6 +113,9 @@ test(
           mqttUrl: c.mqttUrls((victim + i) % 3),
           armId: arm,
           rate: 50,
+          // Health at 10 Hz: every health report shares its ms with a state report, as a
+          // re-sent pair taken by two middlewares needs to show a report stored twice.
+          healthRate: 10,
           log,
           onFirst: (kind, message) => log.warn({ arm, kind }, message),
         }),
@@ -323,22 +326,42 @@ test(
 
     // Every state report each arm made is one point: nothing lost, nothing stored twice.
     const published = new Map<string, number>();
+    const healthSent = new Map<string, number>();
     for (const arm of ARMS) {
       const sim = sims.get(arm)!;
       await sim.stop();
       sims.delete(arm);
       published.set(arm, sim.runner!.counters.stateSamples);
+      healthSent.set(arm, sim.runner!.counters.healthPayloads);
     }
     const settled = () =>
-      Promise.all(ARMS.map(async (a) => (await stored(a)) === published.get(a)));
+      Promise.all(
+        ARMS.map(
+          async (a) =>
+            (await stored(a)) === published.get(a) &&
+            (await storedReports(inf, a, 'temp')) === healthSent.get(a),
+        ),
+      );
     await until(async () => (await settled()).every(Boolean), 60_000, 'every report stored').catch(
       () => {},
     );
     const counts = Object.fromEntries(
       await Promise.all(
-        ARMS.map(async (a) => [a, { published: published.get(a), stored: await stored(a) }]),
+        ARMS.map(async (a) => [
+          a,
+          {
+            published: published.get(a),
+            stored: await stored(a),
+            health: healthSent.get(a),
+            healthStored: await storedReports(inf, a, 'temp'),
+          },
+        ]),
       ),
     );
+    // No report stored twice: no servo has two points a few µs apart with a value in common (a
+    // copy of a report delivered again, moved off its first copy's time: points.ts SeriesClock).
+    const twice = (await Promise.all(ARMS.map((a) => storedTwice(inf, a)))).flat();
+    expect.soft(twice, `stored twice: ${JSON.stringify(twice.slice(0, 10))}`).toEqual([]);
     // On a failure, say where reports are missing: the stored times not 20 ms after the one before.
     if (ARMS.some((arm) => counts[arm].stored !== published.get(arm)))
       for (const k of [1, 2])
@@ -357,8 +380,10 @@ test(
             `${arm}: ${JSON.stringify(await reportGaps(inf, arm))}; killed at ${new Date(killedAt).toISOString()}`,
           )
           .toBe(published.get(arm));
-    for (const arm of ARMS)
+    for (const arm of ARMS) {
       expect(counts[arm].stored, JSON.stringify(counts)).toBe(published.get(arm));
+      expect(counts[arm].healthStored, JSON.stringify(counts)).toBe(healthSent.get(arm));
+    }
     // Both middlewares took part of the stream; together they read every status message, and
     // none twice but the few delivered again around the kill (an acknowledgement lost with the
     // node, or a publish the node stored but never acknowledged, sent again by the arm).

@@ -6,11 +6,18 @@
  */
 import { select, type InfluxTarget } from '../../apps/middleware/test/support/harness.ts';
 
-/** The state reports of `arm` stored (0 while the database is not there yet). */
-export async function storedReports(influx: InfluxTarget, arm: string): Promise<number> {
+/**
+ * The state reports of `arm` stored (0 while the database is not there yet); with `field` =
+ * 'temp', its health reports.
+ */
+export async function storedReports(
+  influx: InfluxTarget,
+  arm: string,
+  field: 'pwm' | 'temp' = 'pwm',
+): Promise<number> {
   const rows = await select(
     influx,
-    `SELECT count("pwm") FROM "servo" WHERE "arm" = '${arm}' AND "id" = '000'`,
+    `SELECT count("${field}") FROM "servo" WHERE "arm" = '${arm}' AND "id" = '000'`,
   ).catch(() => []);
   return Number(rows[0]?.[1] ?? 0);
 }
@@ -31,4 +38,43 @@ export async function reportGaps(
       ms: (t - times[i]!) / 1000,
     }))
     .filter((g) => Math.abs(g.ms - periodMs) > 5);
+}
+
+/** A point of a servo stored twice: the same field with the same value, a few µs apart. */
+export interface StoredTwice {
+  id: string;
+  /** The first copy's time (ISO) and how far after it the second is, µs. */
+  at: string;
+  us: number;
+  field: string;
+}
+
+const SERVO_FIELDS = ['pwm', 'angle', 'temp', 'volt'] as const;
+
+/**
+ * Every servo point of `arm` that repeats the one before it on its servo within `withinUs`
+ * (a field of both with one value): a report stored twice. An arm reporting at 50 Hz has no
+ * two points of one servo that close otherwise (a health point shares its state report's point).
+ */
+export async function storedTwice(
+  influx: InfluxTarget,
+  arm: string,
+  withinUs = 10,
+): Promise<StoredTwice[]> {
+  const rows = await select(
+    influx,
+    `SELECT "id", ${SERVO_FIELDS.map((f) => `"${f}"`).join(', ')} FROM "servo" WHERE "arm" = '${arm}'`,
+  );
+  const last = new Map<string, unknown[]>();
+  const twice: StoredTwice[] = [];
+  for (const row of rows) {
+    const id = String(row[1]);
+    const prev = last.get(id);
+    last.set(id, row);
+    const us = Number(row[0]) - Number(prev?.[0]);
+    if (!prev || us > withinUs) continue;
+    const field = SERVO_FIELDS.find((_, k) => row[k + 2] !== null && row[k + 2] === prev[k + 2]);
+    if (field) twice.push({ id, at: new Date(Number(prev[0]) / 1000).toISOString(), us, field });
+  }
+  return twice;
 }

@@ -41,6 +41,7 @@ import {
   healthFields,
   ikFields,
   ikSeries,
+  healthClock,
   positionFields,
   profileLine,
   servoSeries,
@@ -77,11 +78,13 @@ interface TopicInfo {
 
 /**
  * A reader, and the series names of its frames built once per servo id (the command series
- * with the author's tag): a message's points only add their fields and time.
+ * with the author's tag; the clock of each servo's health points): a message's points only add
+ * their fields and time.
  */
 interface ReaderEntry {
   reader: Reader;
   servo: string[];
+  health: string[];
   command: string[];
 }
 
@@ -225,7 +228,7 @@ export class Ingest {
           'too many (arm, topic) readers: forgetting the oldest',
         );
       }
-      r = { reader, servo: [], command: [] };
+      r = { reader, servo: [], health: [], command: [] };
       this.readers.set(key, r);
     }
     return r;
@@ -262,8 +265,11 @@ export class Ingest {
         return this.point(this.servo(names, f.id), ms, stamped, positionFields(f.pwm));
       case 'angle':
         return this.point(this.servo(names, f.id), ms, stamped, angleFields(f));
-      case 'health':
-        return this.point(this.servo(names, f.id), ms, stamped, healthFields(f));
+      case 'health': {
+        const series = this.servo(names, f.id);
+        const clock = (names.health[f.id] ??= healthClock(series));
+        return this.point(series, ms, stamped, healthFields(f), clock);
+      }
       case 'move':
         if (!executed) return void this.metrics.count(this.metrics.rejected, 'group-not-executed');
         return this.point(this.command(names, f.id), ms, stamped, commandFields(f));
@@ -305,13 +311,19 @@ export class Ingest {
   }
 
   /**
-   * One point of `series` with its `fields`, at the report's time `ms` as the series' clock
-   * places it. For a `stamped` report (its own `$TIM`) the point's text tells the clock the
-   * same report received again (points.ts SeriesClock).
+   * One point of `series` with its `fields`, at the report's time `ms` as its `clock` (the
+   * series', or its kind's: points.ts healthClock) places it. For a `stamped` report (its own
+   * `$TIM`) the point's text tells the clock the same report received again (SeriesClock).
    */
-  private point(series: string, ms: number, stamped: boolean, fields: string): void {
+  private point(
+    series: string,
+    ms: number,
+    stamped: boolean,
+    fields: string,
+    clock = series,
+  ): void {
     const head = `${series} ${fields}`;
-    this.out.push(`${head} ${this.clock.next(series, ms * 1000, stamped ? head : '')}`);
+    this.out.push(`${head} ${this.clock.next(clock, ms * 1000, stamped ? head : '')}`);
   }
 
   /** Writes an unanswered request alone (no code). */

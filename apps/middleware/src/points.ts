@@ -113,13 +113,27 @@ export function profileLine(series: string, name: string, title: string, t: Micr
 }
 
 /**
+ * The clock of a servo's health points (`temp`, `volt`), apart from its positions' (`pwm`,
+ * `angle`): the two kinds share no field, so a health point and a position of one time are
+ * one InfluxDB point with both, never an overwrite, and neither is moved for the other. A
+ * point's time then depends only on the history of its own kind: a position delivered again to
+ * another middleware, which took the health report of the same ms first, lands on its first
+ * copy (docs/cluster.md § Stored exactly once). Kinds that share a field (a position and an
+ * angle frame: `angle`) share a clock.
+ */
+export const healthClock = (series: string): string => `${series} health`;
+
+/**
  * Stamps within 1 ms of a series' last time are collisions, bumped; an older one is a late
  * arrival, kept at its own time (SeriesClock).
  */
 export const COLLISION_WINDOW_US: Micros = 1000;
 
 /**
- * A point's time in its series, so that InfluxDB never overwrites one report with another:
+ * A point's time in its series, so that InfluxDB never overwrites one report with another. The
+ * `series` given is the point's clock: its series, or for a kind of point whose fields no other
+ * kind of the series has, its own (healthClock).
+ *
  * - a time ≤ the series' last time, and within COLLISION_WINDOW_US of it, becomes last + 1 µs.
  *   A 1 kHz stream whose `$TIM` stamps collide (two payloads in one ms, or a stamp repeated)
  *   keeps every point; the bump is at most a few µs and never crosses into the next real stamp

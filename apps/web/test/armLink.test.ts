@@ -60,6 +60,7 @@ describe('ArmLink', () => {
     expect(client.subscribed).toEqual([
       'arm/arm1/status',
       'arm/arm1/online',
+      'arm/arm1/summary', // who holds the arm, until the holder record comes
       'arm/arm1/holder',
       'arm/arm1/audit',
       'arm/arm1/control/#',

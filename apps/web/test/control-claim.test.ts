@@ -3,9 +3,24 @@ import { ArmStore } from '../src/core/store/ArmStore.ts';
 import { ArmLink, UNCHECKED_PERMISSIONS } from '../src/core/link/ArmLink.ts';
 import { FakeMqttClient as FakeClient } from './support/FakeMqttClient.ts';
 import { defaultSettings } from '../src/core/config/settings.ts';
-import type { ControlIdentity } from '../src/core/link/ControlClaim.ts';
+import { ControlClaim, type ControlIdentity } from '../src/core/link/ControlClaim.ts';
+import { encodeSummary } from '@armtwin/protocol';
 
 const enc = (s: string) => new TextEncoder().encode(s);
+/** The arm's summary at `t` naming `holder` (docs/protocol.md § Fleets). */
+const summaryOf = (t: number, holder: string | null) =>
+  enc(
+    encodeSummary({
+      t,
+      state: 'still',
+      why: '',
+      health: 'normal',
+      alarm: '',
+      holder,
+      joints: [],
+      error: null,
+    }),
+  );
 
 function setup(who: ControlIdentity) {
   const client = new FakeClient();
@@ -18,11 +33,13 @@ function setup(who: ControlIdentity) {
   client.emit('connect');
   const holder = (json: object) =>
     client.emit('message', 'arm/arm1/holder', enc(JSON.stringify(json)));
+  const summary = (t: number, holder: string | null) =>
+    client.emit('message', 'arm/arm1/summary', summaryOf(t, holder));
   const sent = () =>
     client.published
       .filter((p) => !p.payload.startsWith('$PNG'))
       .map(({ topic, payload }) => ({ topic, payload }));
-  return { client, link, holder, sent };
+  return { client, link, holder, summary, sent };
 }
 
 describe('ControlClaim in the page (docs/protocol.md § Control)', () => {
@@ -68,5 +85,44 @@ describe('ControlClaim in the page (docs/protocol.md § Control)', () => {
     holder({ user: 'alice', role: 'operator', since: 1, requests: [] });
     link.control.take();
     expect(sent().at(-1)).toEqual({ topic: 'arm/arm1/override/root', payload: 'take' });
+  });
+
+  // docs/cluster.md § The HUD on the cluster: after a node was lost the retained record came
+  // through its QoS 1 subscription up to a minute late; the arm's summary (QoS 0) said at once.
+  it('until the holder record comes, the arm’s summary says who holds it; never a take by itself', () => {
+    const { client, link, holder, summary, sent } = setup({
+      name: 'alice',
+      enforced: true,
+      admin: false,
+    });
+    expect(client.subscribed).toContain('arm/arm1/summary');
+    summary(1000, null);
+    expect(link.control.holder?.user).toBeNull();
+    expect(sent()).toEqual([]); // the log-in's take waits for the record
+    summary(1500, 'bob');
+    expect(link.control.heldBy).toBe('bob');
+    summary(1200, null); // older than the last one taken: stale
+    expect(link.control.heldBy).toBe('bob');
+    holder({ user: 'alice', role: 'operator', since: 1, requests: [] });
+    summary(2000, 'bob'); // the record has come: summaries say nothing more
+    expect(link.control.holding).toBe(true);
+  });
+
+  it('after a move to another broker, the summary stands in again until that broker’s record', () => {
+    const sent: string[] = [];
+    const c = new ControlClaim('arm1', { name: 'alice', enforced: true, admin: false }, (t, p) => {
+      sent.push(`${t} ${p}`);
+      return true;
+    });
+    c.onHolder(enc(JSON.stringify({ user: 'alice', requests: [] })));
+    c.onSummary(summaryOf(1000, null));
+    expect(c.holding).toBe(true); // the record came: the summary says nothing
+    c.moved();
+    expect(c.holder).toBeNull();
+    c.onSummary(summaryOf(5000, null)); // the arm let go of alice while the page moved
+    expect(c.holder?.user).toBeNull();
+    expect(c.mayMove).toBe(true);
+    c.onHolder(enc(JSON.stringify({ user: null, requests: [] })));
+    expect(sent).toEqual([]); // never taken again on the page's behalf
   });
 });

@@ -7,13 +7,14 @@
  * does not parse leaves the arm stopped: every servo stops where it is and every move is
  * refused (`$ERR:zone: profile.json invalid!`) until a good file is written.
  */
-import fs from 'node:fs';
+import type { Stats } from 'node:fs';
 import path from 'node:path';
 import type { MqttClient } from 'mqtt';
 import { refuseEveryMove } from '@armtwin/controller';
 import { readRobotFolder } from '@armtwin/motion/robot-folder';
 import { EMERGENCY_STOP, topic } from '@armtwin/protocol';
 import { simProfile, type SimProfile } from './profile.ts';
+import { followFile } from './shared-file-watch.ts';
 import type { SimRunner } from './runner.ts';
 
 /** How often the profile file is looked at, ms (a stat; renames are seen too). */
@@ -65,9 +66,9 @@ export function followZones(o: ZonesFollowOptions): { stop(): void } {
       o.client.publish(topic(o.armId, 'profile'), next.announcement, { qos: 1, retain: true });
     o.onReload?.(true, `${next.profile.keepOut?.zones.length ?? 0} zone(s) in force`);
   };
-  const onChange = (now: fs.Stats, before: fs.Stats) => {
+  const onChange = (now: Stats, before: Stats) => {
     if (now.mtimeMs !== before.mtimeMs || now.ino !== before.ino) reload();
   };
-  fs.watchFile(file, { interval: o.pollMs ?? ZONES_POLL_MS, persistent: false }, onChange);
-  return { stop: () => fs.unwatchFile(file, onChange) };
+  // One watcher per file however many arms of one profile follow it (shared-file-watch.ts).
+  return { stop: followFile(file, o.pollMs ?? ZONES_POLL_MS, onChange) };
 }

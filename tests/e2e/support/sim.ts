@@ -75,7 +75,8 @@ export class ArmObserver {
     readonly armId: string,
   ) {}
 
-  static async connect(mqttUrl: string, armId: string): Promise<ArmObserver> {
+  /** `qos` of its subscriptions (0 on a NATS cluster: no JetStream consumer to lose to a kill). */
+  static async connect(mqttUrl: string, armId: string, qos: 0 | 1 = 1): Promise<ArmObserver> {
     const client = await mqtt.connectAsync(mqttUrl, {
       clientId: `e2e-observer-${armId}-${process.pid}`,
     });
@@ -87,7 +88,7 @@ export class ArmObserver {
       if (topic === t.status) o.reader.feed(text);
       if (topic === t.online) o.online = text;
     });
-    await client.subscribeAsync([t.control, t.status, t.online], { qos: 1 });
+    await client.subscribeAsync([t.control, t.status, t.online], { qos });
     return o;
   }
 

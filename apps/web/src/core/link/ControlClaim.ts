@@ -8,6 +8,7 @@
 import {
   parseAudit,
   parseHolder,
+  parseSummary,
   topic,
   userTopic,
   type AuditEvent,
@@ -40,6 +41,10 @@ export class ControlClaim {
   /** The latest control event about this page's user, said on the page ('' = none). */
   notice: AuditEvent | null = null;
   private autoTaken = false;
+  /** The retained record has come since the last connect or move (summaries then say nothing). */
+  private recordCame = false;
+  /** The time of the last summary taken (`t`, the arm's clock): an older one is stale. */
+  private summaryAt = -Infinity;
 
   constructor(
     private readonly armId: string,
@@ -91,6 +96,7 @@ export class ControlClaim {
     const h = parseHolder(payload);
     if (!h) return;
     this.holder = h;
+    this.recordCame = true;
     if (this.who.enforced && !this.autoTaken && h.user === null) {
       this.autoTaken = true; // control is taken on log-in when nobody holds it, once
       this.take();
@@ -105,7 +111,25 @@ export class ControlClaim {
   moved(): void {
     this.holder = null;
     this.notice = null;
+    this.recordCame = false;
+    this.summaryAt = -Infinity;
     this.autoTaken = true; // no automatic take after a move: the operator takes control again
+  }
+
+  /**
+   * The arm's summary (`arm/{id}/summary`, 2 Hz, docs/protocol.md § Fleets) names its holder:
+   * until the retained holder record has come (after a connect or a move), it stands in for it,
+   * with no requests. On a NATS cluster recovering from a lost node the record, read through a
+   * QoS 1 subscription, took up to a minute (docs/cluster.md); the summary is QoS 0. It never
+   * makes the log-in's automatic take: that waits for the record.
+   */
+  onSummary(payload: Uint8Array): void {
+    if (this.recordCame) return;
+    const r = parseSummary(payload);
+    if (!r.ok || r.summary.t <= this.summaryAt) return;
+    this.summaryAt = r.summary.t;
+    const user = r.summary.holder;
+    if (this.holder?.user !== user) this.holder = { user, requests: [] };
   }
 
   onAudit(payload: Uint8Array): void {

@@ -4,7 +4,7 @@
  * holder and audit into the page's claim on the arm, the model copy's topics to its side, the
  * arm's online flag, and the rest to the link's taps. A plain object ArmLink (./ArmLink.ts) owns.
  */
-import { auditTopic, holderTopic, type ArmTopics } from '@armtwin/protocol';
+import { auditTopic, holderTopic, topic, type ArmTopics } from '@armtwin/protocol';
 import type { ArmStore } from '../store/ArmStore.ts';
 import type { ControlClaim } from './ControlClaim.ts';
 import type { ModelCopySide } from './ModelCopySide.ts';
@@ -27,6 +27,7 @@ export class LinkInbox {
   private readonly taps: LinkTap[] = [];
   private readonly holderTopic: string;
   private readonly auditTopic: string;
+  private readonly summaryTopic: string;
 
   constructor(
     armId: string,
@@ -43,6 +44,7 @@ export class LinkInbox {
   ) {
     this.holderTopic = holderTopic(armId);
     this.auditTopic = auditTopic(armId);
+    this.summaryTopic = topic(armId, 'summary');
   }
 
   /**
@@ -50,7 +52,12 @@ export class LinkInbox {
    * holding its deadman with `deadman`); everyone's commands last.
    */
   subscribe(client: MqttLike, inModel: boolean, deadman: boolean): void {
-    client.subscribe([this.topics.status, this.topics.online], { qos: 0 }, this.onSubscribed);
+    // The summary names the holder until the holder record comes (ControlClaim.onSummary).
+    client.subscribe(
+      [this.topics.status, this.topics.online, this.summaryTopic],
+      { qos: 0 },
+      this.onSubscribed,
+    );
     client.subscribe([this.holderTopic, this.auditTopic], { qos: 1 }, this.onSubscribed);
     this.subscribeTaps(client);
     if (inModel) this.copy.enter(client, deadman);
@@ -83,6 +90,8 @@ export class LinkInbox {
       this.armClaim().onHolder(payload);
     } else if (topic === this.auditTopic) {
       this.armClaim().onAudit(payload);
+    } else if (topic === this.summaryTopic) {
+      this.armClaim().onSummary(payload);
     } else if (this.copy.onMessage(topic, payload)) {
       // the model copy's (Model mode)
     } else if (topic === this.topics.online) {
