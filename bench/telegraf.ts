@@ -326,7 +326,7 @@ export const telegrafSection: Section = {
     const seconds = ctx.quick ? 3 : 5;
     // Frames/s, for both shapes (a group carries 6).
     const rates = ctx.quick
-      ? [4000, 16_000, 32_000, 64_000, 96_000, 128_000]
+      ? [4000, 16_000, 32_000, 64_000, 128_000, 192_000, 256_000]
       : [10_000, 20_000, 40_000, 60_000, 80_000, 100_000, 150_000, 200_000, 300_000];
     const t0 = { ms: Date.now() };
     const results: Record<Shape, Record<string, Step[]>> = { frame: {}, group: {} };

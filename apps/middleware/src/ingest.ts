@@ -152,7 +152,13 @@ export class Ingest {
     this.out = [];
     const entry = (this.entry = this.reader(info.key));
     entry.reader.clearStamp();
-    entry.reader.feed(typeof payload === 'string' ? payload : latin1(payload));
+    entry.reader.feed(
+      typeof payload === 'string'
+        ? payload
+        : Buffer.isBuffer(payload) // mqtt.js's payloads: no second view of the bytes
+          ? payload.toString('latin1')
+          : latin1(payload),
+    );
     this.entry = null;
     if (this.statusFrames.length > 0) {
       this.onStatusFrames?.(info.arm, this.statusFrames);
@@ -306,12 +312,13 @@ export class Ingest {
 
   /**
    * One point of `series` with its `fields`, at the report's time `ms` as the series' clock
-   * places it. For a `stamped` report (its own `$TIM`) the point's text tells the clock the
-   * same report received again (points.ts SeriesClock).
+   * places it. For a `stamped` report (its own `$TIM`) the fields tell the clock the same
+   * report received again (points.ts SeriesClock: it keeps each series' points apart, so the
+   * fields alone say a repeat, and the line is built once).
    */
   private point(series: string, ms: number, stamped: boolean, fields: string): void {
-    const head = `${series} ${fields}`;
-    this.out.push(`${head} ${this.clock.next(series, ms * 1000, stamped ? head : '')}`);
+    const at = this.clock.next(series, ms * 1000, stamped ? fields : '');
+    this.out.push(`${series} ${fields} ${at}`);
   }
 
   /** Writes an unanswered request alone (no code). */
