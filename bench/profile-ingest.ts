@@ -76,11 +76,13 @@ try {
     path.join(dir, 'publisher.log'),
   );
   const r = await agentResult<{ sent: number; sendS: number }>(pub, seconds * 4000 + 30_000);
+  const published = performance.now();
   const { got } = await waitForCount(
     () => countPoints(influx.url, influx.db, 'servo', 'pwm', arm),
     r.sent * perMessage,
     60_000,
   );
+  const drainS = (performance.now() - published) / 1000;
   const c = cpu.stop();
   await mw.child.stop(20_000);
   const file = fs.readdirSync(dir).find((f) => f.endsWith('.cpuprofile'));
@@ -97,7 +99,7 @@ try {
     .join(' ');
   console.log(
     `${r.sent} ${shape}s in ${r.sendS.toFixed(1)} s (${Math.round(r.sent / r.sendS)}/s offered ${rate}), ` +
-      `${got}/${r.sent * perMessage} points stored; middleware CPU ${((c.cpuS * 1e6) / Math.max(1, got)).toFixed(2)} ms per 1,000 points; ` +
+      `${got}/${r.sent * perMessage} points stored (the last ${drainS.toFixed(1)} s after the publisher ended); middleware CPU ${((c.cpuS * 1e6) / Math.max(1, got)).toFixed(2)} ms per 1,000 points; ` +
       `load ${load}; settings ${JSON.stringify(settings)}; profile ${path.join(dir, file)}`,
   );
   console.log(`self time, share of the busy samples (${busyMs.toFixed(0)} ms):`);
