@@ -27,7 +27,7 @@ import {
 import { BEST_CLIENT, ceiling, SEQUENTIAL_CLIENT } from './lib/influx-ceiling.ts';
 import { cpuMeter, cpuSeconds, findPid } from './lib/proc.ts';
 import { round } from './lib/stats.ts';
-import { stepVerdict } from './lib/zero-loss.ts';
+import { boundedRatio, stepVerdict } from './lib/zero-loss.ts';
 import { barChartSvg } from './lib/svg.ts';
 import { fmt, type BenchContext, type Row, type Section, type SectionOutput } from './lib/types.ts';
 
@@ -230,6 +230,14 @@ export const ingestSection: Section = {
     const now = verdict(ramps[0]!.steps);
     const old = ramps[1] ? verdict(ramps[1].steps) : null;
     const share = now.bestRate / ceil.groupsPerS;
+    // A ramp that ended at the publisher (or passed every step) found no limit of the middleware:
+    // its share is a lower bound, which can meet the target but not miss it.
+    const atLimit = !!now.firstFail && !now.firstFail.why.startsWith('publisher');
+    const shareMet = boundedRatio(
+      { rate: now.bestRate, limit: atLimit },
+      { rate: ceil.groupsPerS, limit: true },
+      0.8,
+    ).met;
     const failText = (v: ReturnType<typeof verdict>) =>
       v.firstFail
         ? `; next step ${v.firstFail.offeredPerS.toLocaleString('en')}: ${v.firstFail.why}`
@@ -244,12 +252,12 @@ export const ingestSection: Section = {
       },
       {
         figure: "middleware zero-loss rate ÷ influxd best client's ceiling, same run",
-        value: `${fmt(share, 2)} (${now.bestRate.toLocaleString('en')} groups/s${failText(now)})`,
+        value: `${atLimit ? '' : '≥ '}${fmt(share, 2)} (${now.bestRate.toLocaleString('en')} groups/s${failText(now)})`,
         baseline: old
           ? `one write at a time, no gzip: ${fmt(old.bestRate / ceil.groupsPerS, 2)} (${old.bestRate.toLocaleString('en')} groups/s${failText(old)})`
           : 'one write at a time, no gzip: not run (--quick)',
         target: '≥ 0.8',
-        met: share >= 0.8,
+        met: shareMet,
       },
       {
         figure: `Middleware CPU per 1,000 frames (at ${now.bestRate.toLocaleString('en')}/s)`,

@@ -5,7 +5,10 @@
  * written at exit) and the functions by self time, as shares of the samples outside `(idle)`.
  * Shares, not rates: on a loaded machine the rates move, the shares much less.
  *
- *   npx tsx bench/profile-ingest.ts [rate=20000] [seconds=10] [top=25] [NAME=value…]
+ *   npx tsx bench/profile-ingest.ts [rate=20000] [seconds=10] [top=25] [group|frame] [NAME=value…]
+ *
+ * `frame`: one `$TIM`-stamped frame per message instead of a 6-servo group (the publisher's
+ * other shape, as Telegraf's section sends), `rate` then counts frames.
  *
  * `NAME=value` arguments go to the middleware's environment over these settings (e.g.
  * `WRITE_GZIP=false`), for a before/after of one setting on the same load.
@@ -33,7 +36,10 @@ const settings = Object.fromEntries(
     .filter((a) => a.includes('='))
     .map((a) => [a.slice(0, a.indexOf('=')), a.slice(a.indexOf('=') + 1)]),
 );
-const [rateS = '20000', secondsS = '10', topS = '25'] = args.filter((a) => !a.includes('='));
+const [rateS = '20000', secondsS = '10', topS = '25', shape = 'group'] = args.filter(
+  (a) => !a.includes('='),
+);
+const perMessage = shape === 'frame' ? 1 : 6;
 const rate = Number(rateS);
 const seconds = Number(secondsS);
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-profile-'));
@@ -58,15 +64,25 @@ try {
   cpu.start();
   const pub = startAgent(
     'publisher',
-    [broker.url, `arm/${arm}/status`, String(rate), String(seconds), String(Date.now()), '0'],
+    [
+      broker.url,
+      `arm/${arm}/status`,
+      String(rate),
+      String(seconds),
+      String(Date.now()),
+      '0',
+      shape,
+    ],
     path.join(dir, 'publisher.log'),
   );
   const r = await agentResult<{ sent: number; sendS: number }>(pub, seconds * 4000 + 30_000);
+  const published = performance.now();
   const { got } = await waitForCount(
     () => countPoints(influx.url, influx.db, 'servo', 'pwm', arm),
-    r.sent * 6,
+    r.sent * perMessage,
     60_000,
   );
+  const drainS = (performance.now() - published) / 1000;
   const c = cpu.stop();
   await mw.child.stop(20_000);
   const file = fs.readdirSync(dir).find((f) => f.endsWith('.cpuprofile'));
@@ -82,8 +98,8 @@ try {
     .map((l) => l.toFixed(1))
     .join(' ');
   console.log(
-    `${r.sent} groups in ${r.sendS.toFixed(1)} s (${Math.round(r.sent / r.sendS)}/s offered ${rate}), ` +
-      `${got}/${r.sent * 6} points stored; middleware CPU ${((c.cpuS * 1e6) / Math.max(1, got)).toFixed(2)} ms per 1,000 points; ` +
+    `${r.sent} ${shape}s in ${r.sendS.toFixed(1)} s (${Math.round(r.sent / r.sendS)}/s offered ${rate}), ` +
+      `${got}/${r.sent * perMessage} points stored (the last ${drainS.toFixed(1)} s after the publisher ended); middleware CPU ${((c.cpuS * 1e6) / Math.max(1, got)).toFixed(2)} ms per 1,000 points; ` +
       `load ${load}; settings ${JSON.stringify(settings)}; profile ${path.join(dir, file)}`,
   );
   console.log(`self time, share of the busy samples (${busyMs.toFixed(0)} ms):`);

@@ -12,7 +12,13 @@ import { parseMetrics } from '../../apps/middleware/test/support/harness.ts';
 
 export const REPO = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const ARMTWIN = path.join(REPO, 'apps', 'cli', 'bin', 'armtwin.mjs');
-const MIDDLEWARE = path.join(REPO, 'apps', 'middleware', 'src', 'main.ts');
+/**
+ * The middleware's entry; `BENCH_MIDDLEWARE_MAIN` names another (a copy of an older
+ * `apps/middleware/src` inside this checkout, e.g. under `.scratch/`, so that it finds the same
+ * node_modules), for a before/after in one run.
+ */
+const MIDDLEWARE =
+  process.env['BENCH_MIDDLEWARE_MAIN'] || path.join(REPO, 'apps', 'middleware', 'src', 'main.ts');
 export const AGENTS = path.join(REPO, 'bench', 'agents');
 /** The bench's Mosquitto settings (no Nagle, a deep queue for a subscriber behind). */
 export const BROKER_EXTRA = ['set_tcp_nodelay true', 'max_queued_messages 1000000'];

@@ -26,3 +26,22 @@ export function stepVerdict(f: StepFacts): string {
   if (f.drainS > f.drainLimitS) return `backlog took ${f.drainS.toFixed(1)} s to write`;
   return '';
 }
+
+/**
+ * The ratio of two consumers' highest zero-loss rates, `a ÷ b`, when a ramp may have ended at a
+ * consumer's own limit (`limit`: its last step failed on its own, missing points or a backlog)
+ * or not (the publisher's limit, the list's end: its rate is only a lower bound). Both at their
+ * limits: the ratio. Only `b` at its limit: a lower bound, `≥`. Only `a`: an upper bound, `≤`.
+ * Neither: no ratio. `met` says whether `target` is met, null when the bound cannot tell.
+ */
+export function boundedRatio(
+  a: { rate: number; limit: boolean },
+  b: { rate: number; limit: boolean },
+  target: number,
+): { ratio: number; kind: 'exact' | 'at least' | 'at most' | 'none'; met: boolean | null } {
+  const ratio = a.rate / b.rate;
+  if (!Number.isFinite(ratio) || (!a.limit && !b.limit)) return { ratio, kind: 'none', met: null };
+  if (a.limit && b.limit) return { ratio, kind: 'exact', met: ratio >= target };
+  if (b.limit) return { ratio, kind: 'at least', met: ratio >= target ? true : null };
+  return { ratio, kind: 'at most', met: ratio < target ? false : null };
+}

@@ -155,7 +155,13 @@ export class Ingest {
     this.out = [];
     const entry = (this.entry = this.reader(info.key));
     entry.reader.clearStamp();
-    entry.reader.feed(typeof payload === 'string' ? payload : latin1(payload));
+    entry.reader.feed(
+      typeof payload === 'string'
+        ? payload
+        : Buffer.isBuffer(payload) // mqtt.js's payloads: no second view of the bytes
+          ? payload.toString('latin1')
+          : latin1(payload),
+    );
     this.entry = null;
     if (this.statusFrames.length > 0) {
       this.onStatusFrames?.(info.arm, this.statusFrames);
@@ -312,8 +318,10 @@ export class Ingest {
 
   /**
    * One point of `series` with its `fields`, at the report's time `ms` as its `clock` (the
-   * series', or its kind's: points.ts healthClock) places it. For a `stamped` report (its own
-   * `$TIM`) the point's text tells the clock the same report received again (SeriesClock).
+   * series', or its kind's: points.ts healthClock, still one series a clock) places it. For a
+   * `stamped` report (its own `$TIM`) the fields tell the clock the same report received again
+   * (points.ts SeriesClock: it keeps each clock's points apart, so the fields alone say a repeat,
+   * and the line is built once).
    */
   private point(
     series: string,
@@ -322,8 +330,8 @@ export class Ingest {
     fields: string,
     clock = series,
   ): void {
-    const head = `${series} ${fields}`;
-    this.out.push(`${head} ${this.clock.next(clock, ms * 1000, stamped ? head : '')}`);
+    const at = this.clock.next(clock, ms * 1000, stamped ? fields : '');
+    this.out.push(`${series} ${fields} ${at}`);
   }
 
   /** Writes an unanswered request alone (no code). */

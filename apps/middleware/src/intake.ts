@@ -34,7 +34,8 @@ export function startIntake(config: MiddlewareConfig, p: IntakeParts): MqttEdge 
   const { ingest, storage, recordings, metrics, log, once, now } = p;
   const handlers: MqttHandlers = {
     onMessage: (topic, payload) => {
-      if (recordings && topicMatches(CAMERA_FILTER, topic))
+      // `includes` first: a cheap no for every arm's reports (arm/+/camera/+ has it)
+      if (recordings && topic.includes('/camera/') && topicMatches(CAMERA_FILTER, topic))
         return recordings.handle(topic, payload);
       const lines = ingest.handle(topic, payload, now());
       storage?.add(lines);

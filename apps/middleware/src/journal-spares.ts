@@ -40,13 +40,13 @@ export class JournalSpares {
       if (name.startsWith(PREFIX)) fs.rmSync(path.join(this.dir, name), { force: true });
     while (this.ready.length < SPARES) {
       const file = this.name();
-      this.ready.push({ file, fd: fs.openSync(file, 'a') });
+      this.ready.push({ file, fd: fs.openSync(file, 'w') });
     }
   }
 
   /**
-   * Renames a ready spare to `journal` and returns its descriptor (opened for appending); null
-   * when none is ready, or the rename failed.
+   * Renames a ready spare to `journal` and returns its descriptor (open for writing, not
+   * appending: the spool writes at positions); null when none is ready, or the rename failed.
    */
   take(journal: string): number | null {
     const spare = this.ready.shift();
@@ -77,7 +77,7 @@ export class JournalSpares {
       const file = this.name();
       this.opening++;
       this.hooks.started();
-      fs.open(file, 'a', (err, fd) => {
+      fs.open(file, 'w', (err, fd) => {
         this.opening--;
         if (err) this.hooks.onError(err);
         else if (this.closed) fs.closeSync(fd);

@@ -76,6 +76,8 @@ interface Corkable {
 
 export type ConnectFn = (url: string, opts: IClientOptions) => MqttClient;
 
+const noLog = (): void => {};
+
 /** The middleware's MQTT client(s): one per broker of its list. */
 export interface MqttEdge {
   /** The broker in use: the first of the list connected (the last one used while none is). */
@@ -105,6 +107,9 @@ export function startMqtt(
     ...linkOptions({ keepalive: o.keepaliveS, reconnectPeriod: o.reconnectMs }),
     protocolVersion: 4,
     ...(o.username ? { username: o.username, password: o.password } : {}),
+    // mqtt.js logs ~10 lines a packet through `debug`, each call asking whether it is enabled;
+    // unless DEBUG is set none prints, so give it a logger that does nothing at once.
+    ...(process.env['DEBUG'] ? {} : { log: noLog }),
   };
   const choice = (index: number): BrokerChoice => ({
     index,
@@ -159,9 +164,9 @@ export function startMqtt(
     const client = connectFn(url, options);
     client.handleMessage = (packet, done) => {
       const wait = h.gate();
+      if (!wait) return release(client, packet.qos, done); // no closure a message while open
       const go = () => release(client, packet.qos, done);
-      if (wait) void wait.then(go, go);
-      else go();
+      void wait.then(go, go);
     };
     client.on('message', (topic, payload) => h.onMessage(topic, payload));
     client.on('connect', () => {

@@ -49,7 +49,7 @@ export function targetKey(t: SpoolTarget): string {
   return `${slug(host)}.${slug(t.org)}.${slug(t.bucket)}.${hash}`;
 }
 
-/** Sealed batches in a spool folder: files and points (from the names). */
+/** What waits in a spool folder: files, and points (from the names, and the journal's lines). */
 function waiting(dir: string): { files: number; points: number } {
   let files = 0;
   let points = 0;
@@ -65,7 +65,13 @@ function waiting(dir: string): { files: number; points: number } {
     files++;
     points += Number(m[1]);
   }
-  if (fs.existsSync(path.join(dir, 'journal.lp'))) files++;
+  try {
+    const journal = fs.readFileSync(path.join(dir, 'journal.lp'), 'latin1');
+    files++;
+    for (let i = journal.indexOf('\n'); i >= 0; i = journal.indexOf('\n', i + 1)) points++;
+  } catch {
+    // no journal
+  }
   return { files, points };
 }
 

@@ -2,21 +2,27 @@
  * The durable spool: every point is on disk before its MQTT message is acknowledged, and
  * stays there until InfluxDB has it.
  *
- *   <dir>/journal.lp                 the open batch: one append (write(2)) per commit, i.e. per
- *                                    event-loop turn of MQTT messages (../README.md § Spool)
- *   <dir>/batches/<seq>-<n>.lp       sealed batches of n points, oldest = smallest seq
+ *   <dir>/journal.lp                 the open segment: sealed batches and the open one; one
+ *                                    write(2) per commit, i.e. per event-loop turn of MQTT
+ *                                    messages (../README.md § Spool)
+ *   <dir>/batches/<seq>-<n>.lp       full segments of n points, oldest = smallest seq
  *   <dir>/rejected/<seq>-<n>.lp(.err) batches InfluxDB refused as bad data, with the reason
  *
- * A batch is sealed (rename, then fsync off the main thread) at BATCH_SIZE points or
- * FLUSH_INTERVAL_MS; the shipper
- * writes sealed batches oldest-first and unlinks each once InfluxDB accepted it. On start, a
- * journal left by a crash is sealed first (a torn last line, never acknowledged, is cut), so
- * a restarted middleware replays everything. The appends are not fsync'd one by one: a
- * SIGKILL loses nothing (the page cache survives), a power cut can lose the open batch and a
- * batch sealed in the last milliseconds whose fsync had not finished.
+ * A batch is sealed at BATCH_SIZE points or FLUSH_INTERVAL_MS: it becomes a range of the open
+ * segment, fdatasync'd off the main thread (./spool-segment.ts). A segment holds up to
+ * `segmentBatches` batches or `segmentBytes`; then it is renamed into batches/ and the next
+ * commit starts another. The shipper writes sealed batches oldest-first; a full segment is
+ * unlinked once InfluxDB accepted every batch in it, the open one when it holds nothing unshipped
+ * (at a stop, or when every batch left and no point is open). On start, a journal left by a crash
+ * is sealed first (a torn last line, never acknowledged, is cut), so a restarted middleware
+ * replays everything: after a crash a segment is replayed whole, batches InfluxDB already had
+ * included (the same points at the same times, which InfluxDB keeps once). The appends are not
+ * fsync'd one by one: a SIGKILL loses nothing (the page cache survives), a power cut can lose
+ * the open batch and a batch sealed in the last milliseconds whose fsync had not finished.
  *
  * The next journal is created ahead, off the main thread (./journal-spares.ts): the first commit
- * after a seal renames a ready empty file to `journal.lp`, and creates one only if none is ready.
+ * after a segment is full renames a ready empty file to `journal.lp`, and creates one only if none
+ * is ready.
  *
  * `hold` takes a message's lines into memory, `commit` appends everything held in one write;
  * the MQTT edge acknowledges the messages of a commit only after it (src/mqtt.ts). `append` is
@@ -25,13 +31,16 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { JournalSpares } from './journal-spares.ts';
+import { Segment, type SegmentHooks } from './spool-segment.ts';
 
 export interface SpoolEntry {
   seq: number;
   points: number;
   bytes: number;
-  /** The file; null if the disk failed and the batch lives only in memory. */
-  file: string | null;
+  /** The file it is a range of; null if the disk failed and the batch lives only in memory. */
+  segment: Segment | null;
+  /** Where in that file it starts. */
+  offset: number;
   /** The body, when cached in memory. */
   body?: string;
 }
@@ -42,6 +51,10 @@ export interface SpoolOptions {
   maxBytes: number;
   /** Bodies of at most this many bytes in total are cached in memory (the rest re-read). */
   cacheBytes?: number;
+  /** Batches per spool file (default 32); 1 gives every batch a file of its own. */
+  segmentBatches?: number;
+  /** Bytes per spool file: a segment this big takes no further batch (default 8 MiB). */
+  segmentBytes?: number;
   /** Called on disk errors (counted and logged by the caller); the data stays in memory. */
   onDiskError?: (op: string, err: Error) => void;
 }
@@ -54,13 +67,18 @@ export class Spool {
   private readonly rejectedDir: string;
   private readonly journal: string;
   private readonly spares: JournalSpares;
-  private fd: number | null = null;
+  private readonly hooks: SegmentHooks;
+  /** The open segment (the journal); null until the first commit after a full one. */
+  private seg: Segment | null = null;
   private nextSeq = 1;
   /** The open batch's text (for the cache), and its tail not yet written to the journal. */
   private open = '';
   private held = '';
   private openPoints = 0;
   private openBytes = 0;
+  /** Where the open batch starts in the journal; whether one of its appends failed. */
+  private openStart = 0;
+  private openFailed = false;
   private cached = 0;
   /** Disk work off the main thread not finished yet (fsyncs, removals), and who waits for it. */
   private pending = 0;
@@ -75,9 +93,13 @@ export class Spool {
     this.batchesDir = path.join(opts.dir, 'batches');
     this.rejectedDir = path.join(opts.dir, 'rejected');
     this.journal = path.join(opts.dir, 'journal.lp');
-    this.spares = new JournalSpares(opts.dir, {
+    this.hooks = {
       started: () => this.pending++,
       finished: () => this.done(),
+      onError: (op, err) => this.opts.onDiskError?.(op, err),
+    };
+    this.spares = new JournalSpares(opts.dir, {
+      ...this.hooks,
       onError: (err) => this.opts.onDiskError?.('prepare', err),
     });
     this.cacheBytes = opts.cacheBytes ?? 16 * 1024 * 1024;
@@ -96,7 +118,7 @@ export class Spool {
       const m = NAME.exec(name);
       if (!m) continue;
       const file = path.join(this.batchesDir, name);
-      this.push({ seq: Number(m[1]), points: Number(m[2]), bytes: fs.statSync(file).size, file });
+      this.pushFile(file, Number(m[1]), Number(m[2]), fs.statSync(file).size);
     }
     if (fs.existsSync(this.journal)) {
       let text = fs.readFileSync(this.journal, 'latin1');
@@ -135,24 +157,32 @@ export class Spool {
     this.openBytes += body.length;
   }
 
-  /** Writes what `hold` took since the last commit to the journal, in one write. */
+  /**
+   * Writes what `hold` took since the last commit to the journal, in one write at the journal's
+   * end as this spool counts it (a positioned write: after a failed or short one, the next
+   * overwrites what it left).
+   */
   commit(): void {
     if (this.held === '') return;
     const body = this.held;
     this.held = '';
     this.open += body;
     try {
-      this.fd ??= this.spares.take(this.journal) ?? fs.openSync(this.journal, 'a');
-      fs.writeSync(this.fd, body, null, 'latin1');
+      const seg = (this.seg ??= this.startSegment());
+      const n = fs.writeSync(seg.fd!, body, seg.size, 'latin1');
+      if (n !== body.length) throw new Error(`short write: ${n} of ${body.length} bytes`);
+      seg.size += n;
     } catch (err) {
+      this.openFailed = true;
       this.opts.onDiskError?.('append', err as Error);
     }
   }
 
   /**
-   * Seals the open batch into the queue; null if it was empty. The journal is renamed into
-   * batches/ at once and fsync'd off the main thread (libuv's pool), so a seal never blocks
+   * Seals the open batch into the queue; null if it was empty. The batch stays where it is, a
+   * range of the journal, fsync'd off the main thread (libuv's pool), so a seal never blocks
    * intake on the disk; the batch can be shipped meanwhile (its bytes are in the page cache).
+   * A full segment is renamed into batches/ (its last sync and close off the main thread).
    */
   seal(): SpoolEntry | null {
     if (this.openPoints === 0) return null;
@@ -163,23 +193,24 @@ export class Spool {
     this.openPoints = 0;
     this.openBytes = 0;
     const seq = this.nextSeq++;
-    const file = path.join(this.batchesDir, `${pad(seq)}-${points}.lp`);
-    let entry: SpoolEntry = { seq, points, bytes: body.length, file: null, body };
-    try {
-      if (this.fd === null) throw new Error('journal not open');
-      const fd = this.fd;
-      this.fd = null;
-      fs.renameSync(this.journal, file);
-      entry = { ...entry, file };
-      this.pending++;
-      fs.fdatasync(fd, (err) => {
-        if (err) this.opts.onDiskError?.('seal', err);
-        fs.close(fd, () => this.done());
-      });
-    } catch (err) {
-      this.opts.onDiskError?.('seal', err as Error);
-      this.closeJournal(true);
-    }
+    const entry: SpoolEntry = { seq, points, bytes: body.length, segment: null, offset: 0, body };
+    const seg = this.seg;
+    if (seg && !this.openFailed) {
+      entry.segment = seg;
+      entry.offset = this.openStart;
+      seg.live++;
+      seg.batches++;
+      seg.points += points;
+      seg.lastSeq = seq;
+      if (
+        seg.batches >= (this.opts.segmentBatches ?? 32) ||
+        seg.size >= (this.opts.segmentBytes ?? 8 << 20)
+      )
+        this.rotate(seg);
+      else seg.sync();
+    } else if (seg) seg.size = this.openStart; // the batch lives in memory; its range is reused
+    this.openFailed = false;
+    this.openStart = this.seg?.size ?? 0;
     this.push(entry);
     return entry;
   }
@@ -197,11 +228,10 @@ export class Spool {
     if (--this.pending === 0) for (const f of this.waiting.splice(0)) f();
   }
 
-  /** Adds a whole batch as a sealed file (sync mode's failed writes). */
+  /** Adds a whole batch as a file of its own (sync mode's failed writes, a crashed journal). */
   writeSealed(body: string, points: number): SpoolEntry {
     const seq = this.nextSeq++;
     const file = path.join(this.batchesDir, `${pad(seq)}-${points}.lp`);
-    let entry: SpoolEntry = { seq, points, bytes: body.length, file: null, body };
     try {
       const tmp = `${file}.tmp`;
       const fd = fs.openSync(tmp, 'w');
@@ -209,10 +239,11 @@ export class Spool {
       fs.fsyncSync(fd);
       fs.closeSync(fd);
       fs.renameSync(tmp, file);
-      entry = { ...entry, file };
+      return this.pushFile(file, seq, points, body.length, body);
     } catch (err) {
       this.opts.onDiskError?.('write', err as Error);
     }
+    const entry: SpoolEntry = { seq, points, bytes: body.length, segment: null, offset: 0, body };
     this.push(entry);
     return entry;
   }
@@ -223,57 +254,117 @@ export class Spool {
   }
 
   read(entry: SpoolEntry): string {
-    return entry.body ?? fs.readFileSync(entry.file!, 'latin1');
+    if (entry.body !== undefined) return entry.body;
+    const fd = fs.openSync(entry.segment!.file, 'r');
+    try {
+      const buf = Buffer.allocUnsafe(entry.bytes);
+      let got = 0;
+      for (let n = 1; got < entry.bytes && n > 0; got += n)
+        n = fs.readSync(fd, buf, got, entry.bytes - got, entry.offset + got);
+      return buf.toString('latin1', 0, got);
+    } finally {
+      fs.closeSync(fd);
+    }
   }
 
   /**
-   * InfluxDB has it: forget it. The file goes off the main thread; were the process killed
-   * first, the batch would be written again at the next start, the same points at the same
-   * times, which InfluxDB keeps once.
+   * InfluxDB has it: forget it. Its file goes, off the main thread, with its last batch; were
+   * the process killed first, the file would be written again at the next start, the same
+   * points at the same times, which InfluxDB keeps once.
    */
   remove(entry: SpoolEntry): void {
     this.drop(entry);
-    if (!entry.file) return;
+    this.release(entry);
+  }
+
+  /** InfluxDB refused it as bad data: copy it to rejected/ with the reason. Returns where. */
+  reject(entry: SpoolEntry, reason: string): string {
+    const target = path.join(this.rejectedDir, `${pad(entry.seq)}-${entry.points}.lp`);
+    try {
+      fs.writeFileSync(target, this.read(entry), 'latin1');
+      fs.writeFileSync(`${target}.err`, reason + '\n');
+    } catch (err) {
+      this.opts.onDiskError?.('reject', err as Error);
+    }
+    this.remove(entry);
+    return target;
+  }
+
+  /**
+   * Closes the journal file: kept on disk (sealed again at the next init) if it holds a batch
+   * not shipped, removed if not.
+   */
+  close(): void {
+    this.spares.close(); // first: the last commit creates no spare
+    this.commit();
+    const seg = this.seg;
+    if (!seg) return;
+    this.seg = null;
+    try {
+      seg.closeSync();
+      if (seg.live === 0 && this.openPoints === 0) fs.rmSync(this.journal, { force: true });
+    } catch (err) {
+      this.opts.onDiskError?.('close', err as Error);
+    }
+  }
+
+  /** The journal for the next appends: a spare made ahead, else created here. */
+  private startSegment(): Segment {
+    const fd = this.spares.take(this.journal) ?? fs.openSync(this.journal, 'w');
+    this.openStart = 0;
+    return new Segment(this.journal, fd, this.hooks);
+  }
+
+  /** The open segment is full: into batches/ under its last batch's number (none reuses it). */
+  private rotate(seg: Segment): void {
+    const file = path.join(this.batchesDir, `${pad(seg.lastSeq)}-${seg.points}.lp`);
+    try {
+      fs.renameSync(this.journal, file);
+    } catch (err) {
+      this.opts.onDiskError?.('seal', err as Error);
+      return seg.sync(); // it stays the journal and takes the next batches
+    }
+    seg.file = file;
+    this.seg = null;
+    seg.retire();
+  }
+
+  /** One batch of a segment left: a full segment goes with its last one, the journal when idle. */
+  private release(entry: SpoolEntry): void {
+    const seg = entry.segment;
+    if (!seg || --seg.live > 0) return;
+    if (seg === this.seg) {
+      if (this.openPoints > 0 || this.held !== '') return;
+      // Nothing in it is needed: the next commit starts another journal. Removed here, not off
+      // the main thread, which could remove that next one (the same name) instead.
+      this.seg = null;
+      try {
+        seg.closeSync();
+        fs.rmSync(this.journal, { force: true });
+      } catch (err) {
+        this.opts.onDiskError?.('remove', err as Error);
+      }
+      return;
+    }
     this.pending++;
-    fs.unlink(entry.file, (err) => {
+    fs.unlink(seg.file, (err) => {
       if (err && err.code !== 'ENOENT') this.opts.onDiskError?.('remove', err);
       this.done();
     });
   }
 
-  /** InfluxDB refused it as bad data: move it to rejected/ with the reason. Returns where. */
-  reject(entry: SpoolEntry, reason: string): string {
-    this.drop(entry);
-    const target = path.join(this.rejectedDir, `${pad(entry.seq)}-${entry.points}.lp`);
-    try {
-      if (entry.file) fs.renameSync(entry.file, target);
-      else fs.writeFileSync(target, entry.body ?? '', 'latin1');
-      fs.writeFileSync(`${target}.err`, reason + '\n');
-    } catch (err) {
-      this.opts.onDiskError?.('reject', err as Error);
-    }
-    return target;
-  }
-
-  /** Closes the journal file (keeps it on disk: sealed again at the next init). */
-  close(): void {
-    this.spares.close(); // first: the last commit creates no spare
-    this.commit();
-    this.closeJournal(false);
-  }
-
-  private closeJournal(removeFile: boolean): void {
-    try {
-      if (this.fd !== null) fs.closeSync(this.fd);
-      if (removeFile) fs.rmSync(this.journal, { force: true });
-    } catch {
-      // already reported by the caller
-    }
-    this.fd = null;
+  /** A file of one batch, already on disk (a restart's, a rewritten crashed journal). */
+  private pushFile(file: string, seq: number, points: number, bytes: number, body?: string) {
+    const seg = new Segment(file, null, this.hooks);
+    Object.assign(seg, { size: bytes, batches: 1, points, lastSeq: seq, live: 1 });
+    const entry: SpoolEntry = { seq, points, bytes, segment: seg, offset: 0, body };
+    if (body === undefined) delete entry.body;
+    this.push(entry);
+    return entry;
   }
 
   private push(entry: SpoolEntry): void {
-    if (entry.body !== undefined && entry.file) {
+    if (entry.body !== undefined && entry.segment) {
       if (this.cached + entry.bytes > this.cacheBytes) delete entry.body;
       else this.cached += entry.bytes;
     }
@@ -287,6 +378,6 @@ export class Spool {
     if (i >= 0) this.queue.splice(i, 1);
     this.sealedBytes -= entry.bytes;
     this.sealedPoints -= entry.points;
-    if (entry.body !== undefined && entry.file) this.cached -= entry.bytes;
+    if (entry.body !== undefined && entry.segment) this.cached -= entry.bytes;
   }
 }

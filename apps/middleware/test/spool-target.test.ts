@@ -54,7 +54,7 @@ describe('per-destination spool folders', () => {
 
   test('a spool of the old layout (no record of its bucket) is adopted by the first run', () => {
     const root = tmp();
-    const old = new Spool({ dir: root, maxBytes: 1 << 20 });
+    const old = new Spool({ dir: root, maxBytes: 1 << 20, segmentBatches: 1 }); // as it was: a file a batch
     old.init();
     old.append(['servo,arm=a,id=000 pwm=1500i 1', 'servo,arm=a,id=000 pwm=1500i 2']);
     old.seal();
