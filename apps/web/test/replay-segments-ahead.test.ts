@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { SegmentsAhead } from '../src/core/replay/segmentsAhead.ts';
+import { fetchSegment } from '../src/ui/panels/History/cameraSegmentsApi.ts';
 
 const SEGMENTS = [
   { name: 'a', startMs: 1000, endMs: 3000 },
@@ -59,5 +60,24 @@ describe('SegmentsAhead: the replayed segment and the one after it', () => {
     await expect(new SegmentsAhead(m.load).get(SEGMENTS, 'a')).rejects.toThrow(
       'segment a: HTTP 503',
     );
+  });
+
+  it("fetches the segment ahead with the page's log-in, as the one asked for", async () => {
+    const asked: { url: string; headers: unknown }[] = [];
+    const source = {
+      base: '/api',
+      headers: { authorization: 'Basic eDp5' },
+      fetch: (url: string, init?: RequestInit) => {
+        asked.push({ url, headers: init?.headers });
+        return Promise.resolve(new Response(new Uint8Array([1, 2, 3])));
+      },
+    };
+    const ahead = new SegmentsAhead((name) => fetchSegment(source, 'arm1', 'front', name));
+    expect((await ahead.get(SEGMENTS, 'a')).size).toBe(3);
+    expect(asked.map((a) => a.url)).toEqual([
+      '/api/arms/arm1/cameras/front/segments/a',
+      '/api/arms/arm1/cameras/front/segments/b',
+    ]);
+    for (const a of asked) expect(a.headers).toMatchObject({ authorization: 'Basic eDp5' });
   });
 });
