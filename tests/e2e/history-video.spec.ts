@@ -7,7 +7,8 @@
  * plays the recorded video beside the amber arm: at a paused replay time T the <video>'s media
  * time + its segment's start is T within one frame while the replay's pose is the stored pose
  * of T; playing moves the video at the replay's speed; in the camera's gap "no recording" shows;
- * the History charts mark the replay's instant. A second camera that offers only MJPEG (the
+ * the segment after the one playing is fetched before the replay reaches it; the History charts
+ * mark the replay's instant. A second camera that offers only MJPEG (the
  * first one's MJPEG stream, announced as it is) is recorded as its JPEGs (`.mjpeg` segments) and the replay shows, at T, the recorded JPEG of T
  * (the last one at or before it) in an <img>.
  */
@@ -112,6 +113,44 @@ const videoNow = (page: Page) =>
       hidden: v.hidden,
     }));
 
+interface Crossing {
+  /** The page's clock (performance.now()) just before Play is pressed… */
+  armedAt?: number;
+  /** …when the replay first reached the segment… */
+  crossedAt?: number;
+  /** …and when the <video> first held that segment. */
+  shownAt?: number;
+}
+
+/** Notes, in the page, when the replay reaches the segment starting at `t` and when it shows. */
+const watchCrossing = (page: Page, t: number) =>
+  page.evaluate((at) => {
+    const w = window as unknown as ReplayHook & { __crossing: Crossing };
+    const c: Crossing = (w.__crossing = { armedAt: performance.now() });
+    const v = document.querySelector<HTMLVideoElement>('[data-testid="replay-video-front"] video')!;
+    const look = () => {
+      const now = performance.now();
+      if (c.crossedAt === undefined && w.__armtwin!.replay.clock.position >= at) c.crossedAt = now;
+      if (v.dataset.segmentStart === String(at)) c.shownAt = now;
+      else requestAnimationFrame(look);
+    };
+    requestAnimationFrame(look);
+  }, t);
+
+/** That crossing, with when the page's last fetch of segment `name` began and ended (its clock). */
+const crossingOf = (page: Page, name: string) =>
+  page.evaluate((n) => {
+    const fetches = performance
+      .getEntriesByType('resource')
+      .map((e) => e as PerformanceResourceTiming)
+      .filter((e) => e.name.endsWith(`/cameras/front/segments/${encodeURIComponent(n)}`));
+    return {
+      ...(window as unknown as { __crossing: Crossing }).__crossing,
+      fetchStart: fetches.at(-1)?.startTime ?? Infinity,
+      fetchedAt: fetches.at(-1)?.responseEnd ?? Infinity,
+    };
+  }, name);
+
 const replayElbow = (page: Page) =>
   page.evaluate(() => (window as unknown as ReplayHook).__armtwin!.replay.angles[2]!);
 const replayPosition = (page: Page) =>
@@ -189,7 +228,11 @@ test('one timeline: the replay plays the recorded camera with the twin', async (
   await shot(page, testInfo, 'replay-video-gap');
 
   // Played at 2×: the video plays at 2× with the replay; paused, they agree again.
-  await scrubTo(page, atHome - 1000);
+  // from just before the second segment: the boundary comes at once, the gap long after
+  const next = list[1]!;
+  expect(next.startMs).toBeLessThan(atHome);
+  await scrubTo(page, next.startMs - 300);
+  await watchCrossing(page, next.startMs);
   await page.getByLabel('Replay speed').selectOption('2');
   await page.getByRole('button', { name: 'Play', exact: true }).click();
   // read together: at a segment boundary (every second at 2×) a new segment loads paused, at rate 1
@@ -199,10 +242,22 @@ test('one timeline: the replay plays the recorded camera with the twin', async (
       return { paused: v.paused, rate: v.rate };
     })
     .toEqual({ paused: false, rate: 2 });
+  // The next segment was fetched while the one before was shown: its last fetch began before Play
+  // and had ended when the replay reached it (fetched only at the boundary, as before, it began
+  // after Play).
+  await expect
+    .poll(async () => (await crossingOf(page, next.name)).shownAt !== undefined, {
+      timeout: 10_000,
+      intervals: [100],
+    })
+    .toBe(true);
   // paused at once: on a loaded machine each further wait lets the 2× replay run towards the gap
   await page.getByRole('button', { name: 'Pause', exact: true }).click();
   const t = await replayPosition(page);
-  expect(t).toBeGreaterThan(atHome - 1000);
+  const crossing = await crossingOf(page, next.name);
+  expect(crossing.fetchStart).toBeLessThan(crossing.armedAt!);
+  expect(crossing.fetchedAt).toBeLessThan(crossing.crossedAt!);
+  expect(t).toBeGreaterThan(next.startMs);
   await expect
     .poll(async () => {
       const v = await videoNow(page);

@@ -2,8 +2,13 @@
  * `npm start` outside the local demo: with ARMTWIN_USERS and a TLS certificate the embedded
  * broker takes log-ins only, over MQTTS and WSS (/mqtt on the HTTPS port); the in-process
  * arm and middleware work with their roles; /api needs the API token or a user's password;
- * and without a users file `up` refuses to listen beyond loopback.
+ * the demo camera (`--camera testsrc`, real ffmpeg) is served over HTTPS/WSS and the in-process
+ * middleware records it, trusting the up's own certificate (its file holds the chain to the test
+ * CA, as a file for a private CA does); and without a users file `up` refuses to listen beyond
+ * loopback.
  */
+import fs from 'node:fs';
+import path from 'node:path';
 import https from 'node:https';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { freePorts } from '../helpers/services.ts';
@@ -31,16 +36,30 @@ async function waitFor(child: Child, text: string) {
 beforeAll(async () => {
   ca = makeTestCa();
   [httpPort = 0, mqttPort = 0] = await freePorts(2);
+  // the certificate with its chain: what the up's own camera recording trusts
+  const chain = path.join(ca.dir, 'chain.crt');
+  fs.writeFileSync(chain, Buffer.concat([ca.cert, ca.ca]));
   up = runNode(
-    ['scripts/start.mjs', '--no-web', '--port', String(httpPort), '--mqtt-port', String(mqttPort)],
+    [
+      'scripts/start.mjs',
+      '--no-web',
+      '--camera',
+      'testsrc',
+      '--port',
+      String(httpPort),
+      '--mqtt-port',
+      String(mqttPort),
+    ],
     {
       ARMTWIN_USERS: USERS_FILE,
-      ARMTWIN_TLS_CERT: ca.certFile,
+      ARMTWIN_TLS_CERT: chain,
       ARMTWIN_TLS_KEY: ca.keyFile,
       API_TOKEN: TOKEN,
       INFLUX_URL: influx().url,
       INFLUX_BUCKET: influx().bucket,
       SPOOL_DIR: `${ca.dir}/spool`,
+      CAMERA_DIR: `${ca.dir}/cameras`,
+      CAMERA_SEGMENT_S: '1',
     },
   );
   await waitFor(up, 'armtwin is running');
@@ -147,6 +166,27 @@ describe('armtwin up with ARMTWIN_USERS and TLS', () => {
       role: 'device',
       arm: 'arm1',
     });
+  });
+
+  test("the demo camera over WSS is recorded by the in-process middleware, trusting the up's own certificate", async () => {
+    const viewer = `Basic ${Buffer.from(`viewer:${password('viewer')}`).toString('base64')}`;
+    const list = () =>
+      getJson('/api/arms/arm1/cameras/demo/segments', viewer) as Promise<{
+        segments?: { name: string }[];
+      }>;
+    const deadline = Date.now() + 30_000;
+    let segments: { name: string }[] = [];
+    while (segments.length < 2 && Date.now() < deadline) {
+      segments = (await list()).segments ?? [];
+      if (segments.length < 2) await new Promise((r) => setTimeout(r, 250));
+    }
+    expect(segments.map((x) => path.extname(x.name))).toEqual(segments.map(() => '.mp4'));
+    const said = up
+      .output()
+      .split('\n')
+      .filter((l) => l.includes('camera recording'));
+    expect(segments.length, said.join('\n')).toBeGreaterThanOrEqual(2);
+    expect(up.output()).not.toContain('certificate');
   });
 
   // Last in this file: it locks 127.0.0.1 out for the `middleware` user for 5 minutes.

@@ -71,6 +71,11 @@ export interface MiddlewareDeps {
    * camera server takes); MQTT_USERNAME/MQTT_PASSWORD, where set, are sent instead.
    */
   cameraAuthorization?: string;
+  /**
+   * A certificate (PEM) the camera recording trusts besides the usual roots: `armtwin up` with
+   * ARMTWIN_TLS_CERT passes its own, so its in-process middleware records its own camera server.
+   */
+  cameraCa?: Buffer;
 }
 
 export interface Middleware {
@@ -159,7 +164,7 @@ export async function startMiddleware(
   // Every announced camera recorded beside the history (docs/cameras-recording.md).
   const recordings =
     config.cameraRecord && !config.mqttShareGroup && !config.natsUrl
-      ? startRecordings(config, log, now, deps.cameraAuthorization)
+      ? startRecordings(config, log, now, deps.cameraAuthorization, deps.cameraCa)
       : null;
   metrics.cameras = recordings?.counters ?? null;
 

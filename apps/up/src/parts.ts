@@ -59,6 +59,8 @@ export interface MiddlewareLink {
   modelDirs: readonly string[];
   /** What its camera recording sends the up's camera server (`Bearer <this run's token>`). */
   cameraAuthorization: string;
+  /** The up's own certificate (ARMTWIN_TLS_CERT), which its camera recording trusts; null = plain. */
+  cameraCa: Buffer | null;
 }
 
 export interface StartedMiddleware {
@@ -124,6 +126,7 @@ export async function startMiddlewarePart(
       connect: link.connect,
       modelDirs: link.modelDirs,
       cameraAuthorization: link.cameraAuthorization,
+      ...(link.cameraCa ? { cameraCa: link.cameraCa } : {}),
     });
     const storage = config.influxUrl
       ? `InfluxDB at ${config.influxUrl}${influx ? ` (local influxd, data in ${path.relative(REPO_ROOT, dataDir)})` : ''}`

@@ -304,6 +304,8 @@ export async function startUp(o: UpOptions): Promise<Up> {
             broker.connectInProcess({ name: 'middleware', role: 'middleware' }, opts),
           modelDirs,
           cameraAuthorization: `Bearer ${recorderToken}`,
+          // its camera server's https/wss URLs carry the up's own (maybe self-signed) certificate
+          cameraCa: o.tls?.cert ?? null,
         },
         o.influxUrl,
         o.env,

@@ -7,6 +7,7 @@
  * `MAX_STAMP_SKEW_MS` of the clock (`@armtwin/camera`'s `wallClockStamp`), else the time it
  * arrived (other cameras' stamps, ustreamer's monotonic seconds for one, are no epoch ms).
  */
+import tls from 'node:tls';
 import { WebSocket } from 'ws';
 import {
   createMultipartParser,
@@ -30,9 +31,20 @@ export interface Feed {
   close(): void;
 }
 
-export function openH264Feed(url: string, authorization: string, h: FeedHandlers): Feed {
+/**
+ * `ca`: a certificate trusted besides Node's roots (`armtwin up`'s own, perhaps self-signed, for
+ * its own camera server). The MJPEG feed has no such option: Node 20's fetch takes no CA of its
+ * own (that needs undici's Agent), and `armtwin up`'s camera is recorded through its H.264 stream.
+ */
+export function openH264Feed(
+  url: string,
+  authorization: string,
+  h: FeedHandlers,
+  ca?: Buffer,
+): Feed {
   const headers = authorization ? { authorization } : undefined;
-  const ws = new WebSocket(url, { headers, perMessageDeflate: false });
+  const trust = ca ? { ca: [...tls.rootCertificates, ca.toString()] } : {};
+  const ws = new WebSocket(url, { headers, perMessageDeflate: false, ...trust });
   ws.binaryType = 'nodebuffer';
   ws.on('open', () => h.open());
   ws.on('message', (data: Buffer, binary) => {

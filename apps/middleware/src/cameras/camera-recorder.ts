@@ -23,6 +23,8 @@ export interface CameraRecorderOptions {
   url: string;
   /** `Authorization` header for the camera server ('' = none). */
   authorization: string;
+  /** A certificate trusted besides the usual roots (`h264` feeds only: ./camera-feeds.ts). */
+  ca?: Buffer;
   /** Its folder (`<dir>/<arm>/<cam>`). */
   dir: string;
   ffmpeg: string;
@@ -97,7 +99,7 @@ export class CameraRecorder {
     feed =
       this.o.kind === 'mjpeg'
         ? openMjpegFeed(this.o.url, this.o.authorization, h, this.o.now)
-        : openH264Feed(this.o.url, this.o.authorization, h);
+        : openH264Feed(this.o.url, this.o.authorization, h, this.o.ca);
     this.feed = feed;
   }
 

@@ -33,6 +33,7 @@ export function startRecordings(
   log: Logger,
   now: () => number,
   fallback = '',
+  ca?: Buffer,
 ) {
   const authorization = config.mqttUsername
     ? `Basic ${Buffer.from(`${config.mqttUsername}:${config.mqttPassword}`).toString('base64')}`
@@ -44,6 +45,7 @@ export function startRecordings(
     maxAgeMs: config.cameraRetentionHours * 3_600_000,
     maxBytes: config.cameraRetentionBytes,
     authorization,
+    ...(ca ? { ca } : {}),
     now,
     onFirst: (kind, message) =>
       log.warn({ kind }, `camera recording: ${message} (logged once per kind)`),

@@ -31,6 +31,8 @@ export interface RecordingsOptions extends RetentionOptions {
   maxBacklogBytes: number;
   /** `Authorization` header sent to the camera servers ('' = none). */
   authorization: string;
+  /** A certificate trusted besides the usual roots for `wss://` cameras (up's own; see ./camera-feeds.ts). */
+  ca?: Buffer;
   backoff: Backoff;
   /** How often retention runs besides after each segment, ms. */
   retentionCheckMs: number;
@@ -96,6 +98,7 @@ export class Recordings {
       kind: stream.kind === 'h264-ws' ? 'h264' : 'mjpeg',
       url,
       authorization: this.o.authorization,
+      ...(this.o.ca ? { ca: this.o.ca } : {}),
       dir,
       ffmpeg: this.o.ffmpeg,
       segmentS: this.o.segmentS,

@@ -2,7 +2,8 @@
  * The replay's cameras: every camera of the arm plays its recorded video (the middleware's MP4
  * segments, docs/cameras-recording.md) on the replay's time axis, beside the amber arm. For the
  * replay's instant t, each camera's <video> shows the segment covering t at media time
- * t − segment start (core/replay/videoAt.ts), kept in step with the replay clock on every
+ * t − segment start (core/replay/videoAt.ts; the next segment is fetched while one plays,
+ * core/replay/segmentsAhead.ts), kept in step with the replay clock on every
  * animation frame: played and paused with it, at its speed, moved when it is scrubbed; a gap in
  * the recording shows "no recording"; a video the browser cannot decode (its codec) says so in
  * its place (`undecodableWords`). An MJPEG camera's `.mjpeg` segments are shown frame by
@@ -15,6 +16,7 @@ import { useSampled } from '../../hud/useSampled.ts';
 import type { ReplayPlayer } from '../../../core/replay/ReplayPlayer.ts';
 import { needsSeek, videoAt, type RecordedSegment } from '../../../core/replay/videoAt.ts';
 import { isJpegSegment } from '../../../core/replay/jpegFrames.ts';
+import { SegmentsAhead } from '../../../core/replay/segmentsAhead.ts';
 import { JpegReplay } from './ReplayJpegs.ts';
 import { fetchSegment, listSegments } from './cameraSegmentsApi.ts';
 import type { Loaded } from './loaded.ts';
@@ -31,7 +33,7 @@ export function CameraReplay(props: {
   camId: string;
   label: string;
   segments: readonly RecordedSegment[];
-  /** One segment's MP4 (fetched whole: see ./cameraSegmentsApi.ts). */
+  /** One segment's MP4 (fetched whole, the next one ahead: core/replay/segmentsAhead.ts). */
   load: (name: string) => Promise<Blob>;
   /** The video's codec where it is known (a dataset's info.json), named if it cannot be decoded. */
   codec?: string | null;
@@ -47,13 +49,16 @@ export function CameraReplay(props: {
     let raf = 0;
     let shownGap: boolean | null = null;
     let shownJpeg = false;
-    const jpegs = new JpegReplay(load, setFailed);
+    // the segment played and the next one, fetched while this one plays: no pause at the boundary
+    const ahead = new SegmentsAhead(load);
+    const get = (name: string) => ahead.get(segments, name);
+    const jpegs = new JpegReplay(get, setFailed);
     /** The segment asked for, and the blob: URL of the one in the <video>. */
     let wanted = '';
     let objectUrl = '';
     const show = (name: string, startMs: number) => {
       wanted = name;
-      load(name).then(
+      get(name).then(
         (blob) => {
           if (wanted !== name || !video.current) return;
           if (objectUrl) URL.revokeObjectURL(objectUrl);

@@ -52,8 +52,10 @@ export async function listSegments(
 }
 
 /**
- * One segment's MP4 as a Blob, for a `blob:` URL: the <video> can then seek anywhere in it (the
- * API sends whole files, no byte ranges, and a <video> cannot send a login's headers).
+ * One segment's bytes as a Blob, for a `blob:` URL: the <video> can then seek anywhere in it. The
+ * API serves byte ranges too, but a <video> pointed at its URL cannot send the login's header, so
+ * the page fetches each segment whole, the next one while the current one plays
+ * (core/replay/segmentsAhead.ts).
  */
 export async function fetchSegment(
   o: { base: string; headers?: Record<string, string>; fetch?: Fetch },
