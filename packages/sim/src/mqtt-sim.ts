@@ -18,6 +18,7 @@
  */
 import type { IClientOptions, MqttClient } from 'mqtt';
 import {
+  ARM_SUBSCRIBE_QOS,
   armTopics,
   holderTopic,
   OPERATOR_LEASE_MS,
@@ -26,6 +27,7 @@ import {
   type Clock,
 } from '@armtwin/protocol';
 import { MotionRequests, type ControlArbiter } from '@armtwin/controller';
+import { joinedStream } from '@armtwin/link';
 import {
   armSummary,
   type ArmSummaryOut,
@@ -89,12 +91,17 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
   const published: Record<PayloadKind, number> = { state: 0, health: 0, reply: 0 };
   const publishedSamples: Record<PayloadKind, number> = { state: 0, health: 0, reply: 0 };
   const summary = armSummary(client, options.armId, clock);
+  // QoS 1: one report message unacknowledged at a time, the rest joined (link/joined-stream.ts).
+  const joined =
+    options.statusQos === 1
+      ? joinedStream((p, settled) => client.publish(topics.status, p, { qos: 1 }, settled))
+      : undefined;
   const runner = new SimRunner(
     {
       send(payload, kind, samples) {
         summary.note(payload);
-        if (options.statusQos === 1) {
-          client.publish(topics.status, payload, { qos: 1 }); // queued while offline
+        if (joined) {
+          joined.send(payload); // queued while offline
           published[kind]++;
           publishedSamples[kind] += samples;
           return;
@@ -144,7 +151,7 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
     client.publish(topics.online, '1', { qos: 1, retain: true });
     client.subscribe(
       [topics.control, topics.sim, topics.operator, ...control.filters],
-      { qos: 1 },
+      { qos: ARM_SUBSCRIBE_QOS },
       (err) => {
         if (err) onFirst('subscribe', err.message);
       },
