@@ -33,12 +33,15 @@ export interface JoinedStream {
   send(payload: Buffer): void;
   /** Payloads waiting to go, joined into this many messages (0 while none waits). */
   readonly waiting: number;
+  /** Messages handed to the client so far. */
+  readonly sent: number;
 }
 
 export function joinedStream(sendOne: SendOne, maxBytes = JOINED_MAX_BYTES): JoinedStream {
   /** Messages waiting, each a list of payloads whose total is ≤ maxBytes. */
   const queue: { parts: Buffer[]; bytes: number }[] = [];
   let inFlight = false;
+  let sent = 0;
 
   const next = () => {
     const m = queue.shift();
@@ -47,6 +50,7 @@ export function joinedStream(sendOne: SendOne, maxBytes = JOINED_MAX_BYTES): Joi
       return;
     }
     inFlight = true;
+    sent++;
     sendOne(m.parts.length === 1 ? m.parts[0]! : Buffer.concat(m.parts, m.bytes), next);
   };
 
@@ -61,6 +65,9 @@ export function joinedStream(sendOne: SendOne, maxBytes = JOINED_MAX_BYTES): Joi
     },
     get waiting() {
       return queue.length;
+    },
+    get sent() {
+      return sent;
     },
   };
 }

@@ -40,6 +40,7 @@ describe('joinedStream: one QoS 1 message unacknowledged, the rest joined', () =
     c.ack();
     expect(c.sent.join('')).toBe('$TIM:1!a$TIM:2!b$TIM:3!c$TIM:4!d$TIM:5!e');
     expect(s.waiting).toBe(0);
+    expect(s.sent).toBe(3);
   });
 
   test('a joined message never exceeds the limit: the next one starts', () => {

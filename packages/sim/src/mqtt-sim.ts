@@ -64,6 +64,8 @@ export interface MqttSim {
   published: Record<PayloadKind, number>;
   /** The `$TIM` samples in those payloads, by kind (what a store should hold of this arm). */
   publishedSamples: Record<PayloadKind, number>;
+  /** Status messages handed to the client: the payloads, or fewer when joined (QoS 1). */
+  readonly statusMessages: number;
   /** The arm's summary on `arm/{id}/summary` (docs/protocol.md § Fleets). */
   summary: ArmSummaryOut;
   /** Publishes online `0` (retained), stops the loops, ends the client. */
@@ -202,6 +204,9 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
     control,
     published,
     publishedSamples,
+    get statusMessages() {
+      return joined ? joined.sent : published.state + published.health + published.reply;
+    },
     summary,
     async stop() {
       operator.reset();
