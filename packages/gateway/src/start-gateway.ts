@@ -7,7 +7,13 @@
  */
 import type { IClientOptions, MqttClient } from 'mqtt';
 import type { Logger } from 'pino';
-import { connectBrokers, joinedStream, type BrokerClient, type JoinedStream } from '@armtwin/link';
+import {
+  clientJoinedStream,
+  connectBrokers,
+  flushJoined,
+  type BrokerClient,
+  type JoinedStream,
+} from '@armtwin/link';
 import {
   numericKms,
   zonesKeepOut,
@@ -129,8 +135,7 @@ export function gatewayPublish(
   const joined = new Map<string, JoinedStream>();
   const stream = (t: string) => {
     let s = joined.get(t);
-    if (!s)
-      joined.set(t, (s = joinedStream((p, settled) => client.publish(t, p, { qos: 1 }, settled))));
+    if (!s) joined.set(t, (s = clientJoinedStream(client, t)));
     return s;
   };
   return (t, payload, opts) => {
@@ -205,6 +210,7 @@ export function wireGatewayMqtt(
  * then the client closed. Errors are ignored: the broker may be gone already (the will says 0).
  */
 export async function leaveGatewayMqtt(client: MqttClient, armId: string): Promise<void> {
+  flushJoined(client); // the reports still waiting go before the client ends
   if (client.connected) {
     await client
       .publishAsync(topic(armId, 'online'), '0', { qos: 1, retain: true })

@@ -17,7 +17,10 @@
  * full, the next one starts (a long loss of the broker fills several, sent one after another).
  * Payloads are joined in order, and a message is handed on only after the one before it was
  * settled (acknowledged, or given up by the client, which then reports its own error).
+ * Before a client ends, `flushJoined` hands it every waiting message at once (as before joining:
+ * an ending mqtt.js client still sends what it holds, and refuses new publishes).
  */
+import type { MqttClient } from 'mqtt';
 
 /**
  * A joined message's largest size: 16 KiB, about 200 six-servo reports (4 s at 50 Hz), well
@@ -35,6 +38,8 @@ export interface JoinedStream {
   readonly waiting: number;
   /** Messages handed to the client so far. */
   readonly sent: number;
+  /** Hands every waiting message to the client now, without waiting for acknowledgements. */
+  flush(): void;
 }
 
 export function joinedStream(sendOne: SendOne, maxBytes = JOINED_MAX_BYTES): JoinedStream {
@@ -69,5 +74,25 @@ export function joinedStream(sendOne: SendOne, maxBytes = JOINED_MAX_BYTES): Joi
     get sent() {
       return sent;
     },
+    flush() {
+      for (let m = queue.shift(); m; m = queue.shift()) {
+        sent++;
+        sendOne(Buffer.concat(m.parts, m.bytes), () => {});
+      }
+    },
   };
+}
+
+const ofClient = new WeakMap<MqttClient, JoinedStream[]>();
+
+/** A joined QoS 1 stream of `client` on `topic`, flushed by `flushJoined(client)`. */
+export function clientJoinedStream(client: MqttClient, topic: string): JoinedStream {
+  const s = joinedStream((p, settled) => client.publish(topic, p, { qos: 1 }, () => settled()));
+  ofClient.set(client, [...(ofClient.get(client) ?? []), s]);
+  return s;
+}
+
+/** Hands every waiting message of `client`'s joined streams to it: call it before ending it. */
+export function flushJoined(client: MqttClient): void {
+  for (const s of ofClient.get(client) ?? []) s.flush();
 }

@@ -43,6 +43,15 @@ describe('joinedStream: one QoS 1 message unacknowledged, the rest joined', () =
     expect(s.sent).toBe(3);
   });
 
+  test('flush hands every waiting message over at once, before the client ends', () => {
+    const c = slowClient();
+    const s = joinedStream(c.sendOne, 20);
+    for (let i = 0; i <= 5; i++) s.send(b(`$TIM:${i}!xx`));
+    s.flush();
+    expect(c.sent.join('')).toBe('$TIM:0!xx$TIM:1!xx$TIM:2!xx$TIM:3!xx$TIM:4!xx$TIM:5!xx');
+    expect(s.waiting).toBe(0);
+  });
+
   test('a joined message never exceeds the limit: the next one starts', () => {
     const c = slowClient();
     const s = joinedStream(c.sendOne, 20);

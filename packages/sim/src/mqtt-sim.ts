@@ -27,7 +27,7 @@ import {
   type Clock,
 } from '@armtwin/protocol';
 import { MotionRequests, type ControlArbiter } from '@armtwin/controller';
-import { joinedStream } from '@armtwin/link';
+import { clientJoinedStream, flushJoined } from '@armtwin/link';
 import {
   armSummary,
   type ArmSummaryOut,
@@ -94,10 +94,7 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
   const publishedSamples: Record<PayloadKind, number> = { state: 0, health: 0, reply: 0 };
   const summary = armSummary(client, options.armId, clock);
   // QoS 1: one report message unacknowledged at a time, the rest joined (link/joined-stream.ts).
-  const joined =
-    options.statusQos === 1
-      ? joinedStream((p, settled) => client.publish(topics.status, p, { qos: 1 }, settled))
-      : undefined;
+  const joined = options.statusQos === 1 ? clientJoinedStream(client, topics.status) : undefined;
   const runner = new SimRunner(
     {
       send(payload, kind, samples) {
@@ -216,6 +213,7 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
       client.removeListener('message', onMessage);
       client.removeListener('connect', onConnect);
       await summary.stop();
+      flushJoined(client); // the reports still waiting go before the client ends
       if (client.connected) {
         await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
         await client.publishAsync(topics.simFaults, '', { qos: 1, retain: true }).catch(() => {});
