@@ -2,7 +2,8 @@
  * Which arms hear their control topic (bench sections on a cluster): a client on a broker list
  * sends `$PNG:<n>!` to each arm's `arm/{id}/control` and watches `arm/+/status` for the echo,
  * asking again every `retryMs` until every arm has answered. It also counts the status messages
- * of each arm it sees (QoS 0: what a live subscriber gets).
+ * of each arm it sees (QoS 0: what a live subscriber gets), and the reports in them (`$TIM`
+ * stamps: a message may join several, packages/link/src/joined-stream.ts).
  */
 import { connectBrokers, parseBrokerList, type BrokerClient } from '@armtwin/link';
 import { linkOptions } from '@armtwin/protocol';
@@ -12,6 +13,8 @@ export interface ArmPinger {
   client: BrokerClient;
   /** Status messages seen per arm id. */
   seen: Map<string, number>;
+  /** `$TIM`-stamped reports seen per arm id. */
+  reports: Map<string, number>;
   /**
    * Pings every arm of `ids` until each has echoed a ping sent in this call, or `timeoutMs`
    * passes; resolves with the arms that never answered.
@@ -24,18 +27,22 @@ export function armPinger(brokers: string, clientId: string): ArmPinger {
   const client = connectBrokers(parseBrokerList(brokers), { clientId, ...linkOptions() });
   client.on('error', () => {});
   const seen = new Map<string, number>();
+  const reports = new Map<string, number>();
   const echoed = new Set<string>();
   let round = 0;
   client.on('message', (topic, payload) => {
     const arm = topic.split('/')[1]!;
     seen.set(arm, (seen.get(arm) ?? 0) + 1);
-    const ping = /\$PNG:(\d+)!/.exec(payload.toString());
+    const text = payload.toString();
+    reports.set(arm, (reports.get(arm) ?? 0) + text.split('$TIM:').length - 1);
+    const ping = /\$PNG:(\d+)!/.exec(text);
     if (ping) echoed.add(`${arm}:${ping[1]}`);
   });
   client.on('connect', () => void client.subscribe('arm/+/status', { qos: 0 }));
   return {
     client,
     seen,
+    reports,
     async untilAllAnswer(ids, timeoutMs, retryMs = 2000) {
       const tag = ++round;
       const deadline = Date.now() + timeoutMs;

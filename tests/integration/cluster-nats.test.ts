@@ -396,8 +396,8 @@ test(
       probes +
       simLog
         .filter((l) => l.includes('"sim stopped"'))
-        .map((l) => (JSON.parse(l) as { published: Record<string, number> }).published)
-        .reduce((n, p) => n + p.state! + p.health! + p.reply!, 0);
+        .map((l) => (JSON.parse(l) as { statusMessages: number }).statusMessages)
+        .reduce((n, m) => n + m, 0);
     const read = taken[0]! + taken[1]!;
     expect(read, `read ${read} of ${sent} sent`).toBeGreaterThanOrEqual(sent);
     expect(read, `read ${read} of ${sent} sent`).toBeLessThan(sent * 1.1);

@@ -22,6 +22,7 @@
 import type { MqttClient } from 'mqtt';
 
 import {
+  ARM_SUBSCRIBE_QOS,
   armTopics,
   auditTopic,
   encodeControllerError,
@@ -114,7 +115,7 @@ export function startMotionService(
 
   const onConnect = () => {
     if (announcement) client.publish(topics.profile, announcement(), { qos: 1, retain: true });
-    client.subscribe([topics.request, `${topics.request}/+`], { qos: 1 }, (err) => {
+    client.subscribe([topics.request, `${topics.request}/+`], { qos: ARM_SUBSCRIBE_QOS }, (err) => {
       if (err) onFirst('subscribe', err.message);
     });
   };

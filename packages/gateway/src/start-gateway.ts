@@ -7,7 +7,13 @@
  */
 import type { IClientOptions, MqttClient } from 'mqtt';
 import type { Logger } from 'pino';
-import { connectBrokers, type BrokerClient } from '@armtwin/link';
+import {
+  clientJoinedStream,
+  connectBrokers,
+  flushJoined,
+  type BrokerClient,
+  type JoinedStream,
+} from '@armtwin/link';
 import {
   numericKms,
   zonesKeepOut,
@@ -17,6 +23,7 @@ import {
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { armSummary, mqttArbiter, type ArmSummaryOut } from '@armtwin/controller/mqtt';
 import {
+  ARM_SUBSCRIBE_QOS,
   armTopics,
   holderTopic,
   linkOptions,
@@ -124,11 +131,18 @@ export function gatewayPublish(
   summary?: Pick<ArmSummaryOut, 'note'>,
 ): (topic: string, payload: Buffer | string, opts: { qos: 0 | 1; retain: boolean }) => void {
   const several = (client.brokers?.urls.length ?? 1) > 1;
+  // QoS 1: one report message unacknowledged at a time, the rest joined (link/joined-stream.ts).
+  const joined = new Map<string, JoinedStream>();
+  const stream = (t: string) => {
+    let s = joined.get(t);
+    if (!s) joined.set(t, (s = clientJoinedStream(client, t)));
+    return s;
+  };
   return (t, payload, opts) => {
     // The arm's summary reads every status payload (docs/protocol.md § Fleets).
     if (summary && t.endsWith('/status')) summary.note(payload);
     if (several && !opts.retain && t.endsWith('/status'))
-      client.publish(t, payload, { ...opts, qos: 1 });
+      stream(t).send(typeof payload === 'string' ? Buffer.from(payload) : payload);
     else if (client.connected) client.publish(t, payload, opts);
   };
 }
@@ -177,7 +191,7 @@ export function wireGatewayMqtt(
     core.brokerConnected(true);
     client.subscribe(
       [topics.control, ...control.filters, ...Object.keys(handlers)],
-      { qos: 1 },
+      { qos: ARM_SUBSCRIBE_QOS },
       (err) => err && o.onFirst('subscribe', err.message),
     );
     control.announce();
@@ -196,6 +210,7 @@ export function wireGatewayMqtt(
  * then the client closed. Errors are ignored: the broker may be gone already (the will says 0).
  */
 export async function leaveGatewayMqtt(client: MqttClient, armId: string): Promise<void> {
+  flushJoined(client); // the reports still waiting go before the client ends
   if (client.connected) {
     await client
       .publishAsync(topic(armId, 'online'), '0', { qos: 1, retain: true })

@@ -1,3 +1,4 @@
 export * from './brokers.ts';
 export * from './connectBrokers.ts';
+export * from './joined-stream.ts';
 export * from './probe.ts';

@@ -18,6 +18,7 @@
  */
 import type { IClientOptions, MqttClient } from 'mqtt';
 import {
+  ARM_SUBSCRIBE_QOS,
   armTopics,
   holderTopic,
   OPERATOR_LEASE_MS,
@@ -26,6 +27,7 @@ import {
   type Clock,
 } from '@armtwin/protocol';
 import { MotionRequests, type ControlArbiter } from '@armtwin/controller';
+import { clientJoinedStream, flushJoined } from '@armtwin/link';
 import {
   armSummary,
   type ArmSummaryOut,
@@ -62,6 +64,8 @@ export interface MqttSim {
   published: Record<PayloadKind, number>;
   /** The `$TIM` samples in those payloads, by kind (what a store should hold of this arm). */
   publishedSamples: Record<PayloadKind, number>;
+  /** Status messages handed to the client: the payloads, or fewer when joined (QoS 1). */
+  readonly statusMessages: number;
   /** The arm's summary on `arm/{id}/summary` (docs/protocol.md § Fleets). */
   summary: ArmSummaryOut;
   /** Publishes online `0` (retained), stops the loops, ends the client. */
@@ -89,12 +93,14 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
   const published: Record<PayloadKind, number> = { state: 0, health: 0, reply: 0 };
   const publishedSamples: Record<PayloadKind, number> = { state: 0, health: 0, reply: 0 };
   const summary = armSummary(client, options.armId, clock);
+  // QoS 1: one report message unacknowledged at a time, the rest joined (link/joined-stream.ts).
+  const joined = options.statusQos === 1 ? clientJoinedStream(client, topics.status) : undefined;
   const runner = new SimRunner(
     {
       send(payload, kind, samples) {
         summary.note(payload);
-        if (options.statusQos === 1) {
-          client.publish(topics.status, payload, { qos: 1 }); // queued while offline
+        if (joined) {
+          joined.send(payload); // queued while offline
           published[kind]++;
           publishedSamples[kind] += samples;
           return;
@@ -144,7 +150,7 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
     client.publish(topics.online, '1', { qos: 1, retain: true });
     client.subscribe(
       [topics.control, topics.sim, topics.operator, ...control.filters],
-      { qos: 1 },
+      { qos: ARM_SUBSCRIBE_QOS },
       (err) => {
         if (err) onFirst('subscribe', err.message);
       },
@@ -195,6 +201,9 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
     control,
     published,
     publishedSamples,
+    get statusMessages() {
+      return joined ? joined.sent : published.state + published.health + published.reply;
+    },
     summary,
     async stop() {
       operator.reset();
@@ -204,6 +213,7 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
       client.removeListener('message', onMessage);
       client.removeListener('connect', onConnect);
       await summary.stop();
+      flushJoined(client); // the reports still waiting go before the client ends
       if (client.connected) {
         await client.publishAsync(topics.online, '0', { qos: 1, retain: true }).catch(() => {});
         await client.publishAsync(topics.simFaults, '', { qos: 1, retain: true }).catch(() => {});

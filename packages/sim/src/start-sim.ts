@@ -229,6 +229,7 @@ export async function startSim(
           counters: sim.runner.counters,
           model: sim.runner.model.counters,
           published: sim.published,
+          statusMessages: sim.statusMessages,
           brokerMoves: client.brokers.moves,
         },
         'sim stopped',
