@@ -83,6 +83,38 @@ function positionPwm(text: string): number {
   return digits(text, 5, n - 1);
 }
 
+/**
+ * The two shapes of nearly every status message, `$TIM:ms!` and `#IIIPpppp!`, read in place from
+ * `s`'s characters [from, to) (`!` included): no slice, no regular expression, no result object.
+ * null for anything else, and for these shapes out of range, which decodeFrame then reports;
+ * what it returns is exactly what decodeFrame returns for that text.
+ */
+export function decodeCommonFrame(s: string, from: number, to: number): Frame | null {
+  const n = to - from;
+  if (s.charCodeAt(to - 1) !== 33 /* ! */) return null;
+  const c = s.charCodeAt(from);
+  if (c === 35 /* # */) {
+    if (n < 7 || n > 11 || s.charCodeAt(from + 4) !== 80 /* P */) return null;
+    const id = digits(s, from + 1, from + 4);
+    const pwm = digits(s, from + 5, to - 1);
+    if (id < 0 || id > SERVO_ID_ALL - 1 || pwm < PWM_MIN || pwm > PWM_MAX) return null;
+    return { type: 'position', id, pwm };
+  }
+  // `$TIM:` and up to 15 digits (exact as integers; FRAME_PATTERNS.time takes 16: the slow path)
+  if (
+    c !== 36 /* $ */ ||
+    n < 7 ||
+    n > 21 ||
+    s.charCodeAt(from + 1) !== 84 /* T */ ||
+    s.charCodeAt(from + 2) !== 73 /* I */ ||
+    s.charCodeAt(from + 3) !== 77 /* M */ ||
+    s.charCodeAt(from + 4) !== 58 /* : */
+  )
+    return null;
+  const ms = digits(s, from + 5, to - 1);
+  return ms < 0 ? null : { type: 'time', ms };
+}
+
 function decodeServoFrame(text: string): DecodeResult {
   let m: RegExpExecArray | null;
   const fastPwm = positionPwm(text);
@@ -92,7 +124,10 @@ function decodeServoFrame(text: string): DecodeResult {
     const pwm = fastId >= 0 ? fastPwm : Number(m![2]);
     return (
       rangeError(text, 'id', id, 0, SERVO_ID_ALL - 1) ??
-      rangeError(text, 'pwm', pwm, PWM_MIN, PWM_MAX) ?? { ok: true, frame: { type: 'position', id, pwm } }
+      rangeError(text, 'pwm', pwm, PWM_MIN, PWM_MAX) ?? {
+        ok: true,
+        frame: { type: 'position', id, pwm },
+      }
     );
   }
   if ((m = FRAME_PATTERNS.move.exec(text))) {
@@ -102,7 +137,10 @@ function decodeServoFrame(text: string): DecodeResult {
     return (
       rangeError(text, 'id', id, 0, SERVO_ID_ALL) ??
       rangeError(text, 'pwm', pwm, PWM_MIN, PWM_MAX) ??
-      rangeError(text, 'ms', ms, 0, MOVE_MS_MAX) ?? { ok: true, frame: { type: 'move', id, pwm, ms } }
+      rangeError(text, 'ms', ms, 0, MOVE_MS_MAX) ?? {
+        ok: true,
+        frame: { type: 'move', id, pwm, ms },
+      }
     );
   }
   if ((m = FRAME_PATTERNS.angle.exec(text))) {
@@ -123,7 +161,10 @@ function decodeServoFrame(text: string): DecodeResult {
     return (
       rangeError(text, 'id', id, 0, SERVO_ID_ALL) ??
       rangeError(text, 'angle', deg, -ANGLE_DEG_MAX, ANGLE_DEG_MAX) ??
-      rangeError(text, 'ms', ms, 0, MOVE_MS_MAX) ?? { ok: true, frame: { type: 'angleMove', id, deg: deg + 0, ms } }
+      rangeError(text, 'ms', ms, 0, MOVE_MS_MAX) ?? {
+        ok: true,
+        frame: { type: 'angleMove', id, deg: deg + 0, ms },
+      }
     );
   }
   if ((m = FRAME_PATTERNS.health.exec(text))) {
@@ -133,7 +174,10 @@ function decodeServoFrame(text: string): DecodeResult {
     return (
       rangeError(text, 'id', id, 0, SERVO_ID_ALL - 1) ??
       rangeError(text, 'temperature', temp, 0, TEMP_MAX) ??
-      rangeError(text, 'voltage', mv, 0, MV_MAX) ?? { ok: true, frame: { type: 'health', id, temp, mv } }
+      rangeError(text, 'voltage', mv, 0, MV_MAX) ?? {
+        ok: true,
+        frame: { type: 'health', id, temp, mv },
+      }
     );
   }
   for (const type of ['readPosition', 'readHealth', 'stop'] as const) {
@@ -152,11 +196,21 @@ function decodeDollarFrame(text: string): DecodeResult {
   }
   if ((m = FRAME_PATTERNS.ping.exec(text))) {
     const seq = Number(m[1]);
-    return rangeError(text, 'ping sequence', seq, 0, PING_SEQ_MAX) ?? { ok: true, frame: { type: 'ping', seq } };
+    return (
+      rangeError(text, 'ping sequence', seq, 0, PING_SEQ_MAX) ?? {
+        ok: true,
+        frame: { type: 'ping', seq },
+      }
+    );
   }
   if ((m = FRAME_PATTERNS.kmsResult.exec(text))) {
     const code = Number(m[1]);
-    return rangeError(text, 'IK code', code, 0, KMS_CODE_MAX) ?? { ok: true, frame: { type: 'kmsResult', code } };
+    return (
+      rangeError(text, 'IK code', code, 0, KMS_CODE_MAX) ?? {
+        ok: true,
+        frame: { type: 'kmsResult', code },
+      }
+    );
   }
   if ((m = FRAME_PATTERNS.kms.exec(text))) {
     const [x, y, z] = [Number(m[1]), Number(m[2]), Number(m[3])];
@@ -169,7 +223,12 @@ function decodeDollarFrame(text: string): DecodeResult {
     if (err) return err;
     if (m[4] === undefined) return { ok: true, frame: { type: 'kms', x, y, z, ms } };
     const alpha = Number(m[4]);
-    return rangeError(text, 'alpha', alpha, -180, 180) ?? { ok: true, frame: { type: 'kms', x, y, z, alpha, ms } };
+    return (
+      rangeError(text, 'alpha', alpha, -180, 180) ?? {
+        ok: true,
+        frame: { type: 'kms', x, y, z, alpha, ms },
+      }
+    );
   }
   if ((m = FRAME_PATTERNS.controllerError.exec(text))) {
     return { ok: true, frame: { type: 'controllerError', text: m[1] ?? '' } };

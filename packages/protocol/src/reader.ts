@@ -1,6 +1,6 @@
 import type { Frame, Group } from './frames.ts';
 import type { ReaderError, ReaderErrorKind } from './errors.ts';
-import { decodeFrame } from './decode.ts';
+import { decodeCommonFrame, decodeFrame } from './decode.ts';
 import { MAX_FRAME_LENGTH } from './limits.ts';
 
 export interface ReaderOptions {
@@ -93,13 +93,17 @@ export function createReader(options: ReaderOptions = {}): Reader {
     emitGroup();
   }
 
-  function handleFrame(text: string) {
-    const result = decodeFrame(text);
-    if (!result.ok) {
-      report(result.error.kind, result.error.message, result.error.text);
-      return;
+  /** The frame `s`[from, to): the common shapes read in place, the rest through decodeFrame. */
+  function handleFrame(s: string, from: number, to: number) {
+    let frame = decodeCommonFrame(s, from, to);
+    if (!frame) {
+      const result = decodeFrame(s.slice(from, to));
+      if (!result.ok) {
+        report(result.error.kind, result.error.message, result.error.text);
+        return;
+      }
+      frame = result.frame;
     }
-    const frame = result.frame;
     if (frame.type === 'time') {
       stamp = frame.ms;
       opts.onFrame?.(frame);
@@ -141,8 +145,9 @@ export function createReader(options: ReaderOptions = {}): Reader {
           return;
         }
         if (d === BANG) {
-          if (j + 1 - i > maxLen) report('too-long', `frame longer than ${maxLen} bytes`, s.slice(i, j + 1));
-          else handleFrame(s.slice(i, j + 1));
+          if (j + 1 - i > maxLen)
+            report('too-long', `frame longer than ${maxLen} bytes`, s.slice(i, j + 1));
+          else handleFrame(s, i, j + 1);
           i = j + 1;
         } else {
           if (j - i >= maxLen) report('too-long', `no "!" within ${maxLen} bytes`, s.slice(i, j));
