@@ -6,7 +6,7 @@
  * control at log-in and shows the arm live. The page's node is killed (SIGKILL): the node that
  * leads MQTT's session stream (and not its message stream: the arm's reports go on), so every
  * CONNECT waits for its new leader (docs/cluster.md § What differs from Mosquitto). The page
- * says it moved ("Broker 2 of 3"), the arm is live there again. Control is as documented
+ * says it moved ("Broker 2 of 3" or "3 of 3"), the arm is live there again. Control is as documented
  * (docs/protocol.md § Several brokers, "The deadman holds"): the move took longer than the
  * holder's lease, so the arm let go of the page's user, the page says nobody controls the arm
  * and did not take it again by itself (nor by its log-in's automatic take); the operator takes
@@ -68,9 +68,10 @@ test('the page on a cluster node that dies moves to another node, the arm live t
     // The node dies.
     const killedAt = Date.now();
     await cluster.nodes[victim]!.process.kill();
-    await expect(inUse).toContainText(`Broker 2 of 3: ${cluster.nodes[armNode]!.wsUrl}`, {
-      timeout: 60_000,
-    });
+    // Another node of the list, whichever answers first: a CONNECT to the next one may time out
+    // while the session stream elects its leader, and the page then goes on to the one after it
+    // (seen: "Broker 3 of 3").
+    await expect(inUse).toContainText(/Broker [23] of 3: ws:/, { timeout: 60_000 });
     const movedMs = Date.now() - killedAt;
     await expect(page.getByTestId('freshness')).toHaveText('Data is live.', { timeout: 30_000 });
     await expect(page.getByTestId('arm-online')).toHaveText('online');
@@ -86,7 +87,13 @@ test('the page on a cluster node that dies moves to another node, the arm live t
         watch!.messages.some((m) => m.topic === `arm/${arm}/audit` && /"kind":"lost"/.test(m.text)),
       20_000,
       "the arm's audit: alice lost control",
-    );
+    ).catch((e: unknown) => {
+      const said = watch!.messages.filter((m) => !m.topic.endsWith('/status'));
+      throw new Error(
+        `${String(e)}; killed at ${killedAt}, moved after ${movedMs} ms; the arm's node carried: ` +
+          said.map((m) => `${m.at} ${m.topic} ${m.text.slice(0, 160)}`).join('\n'),
+      );
+    });
     // The page learns the holder from the arm's summary (QoS 0) until the retained record comes
     // through its QoS 1 subscription: a JetStream consumer the node makes, slowly while the
     // cluster recovers (the record alone took 50 s and more in 3 runs of 4).
@@ -126,7 +133,7 @@ test('the page on a cluster node that dies moves to another node, the arm live t
       contentType: 'image/png',
     });
     console.log(
-      `cluster-hud: node ${leader} killed; the page on another node after ${movedMs} ms, ` +
+      `cluster-hud: node ${leader} killed; the page on another node (${await inUse.textContent()}) after ${movedMs} ms, ` +
         `the holder known there after ${holderKnownMs} ms`,
     );
     expect(await cspViolations(page), 'Content-Security-Policy violations').toEqual([]);
