@@ -1,6 +1,5 @@
 export * from './client.ts';
 export * from './byte-buffer.ts';
-export * from './jpeg-splitter.ts';
 export * from './smjpeg-parser.ts';
 export * from './capture-time.ts';
 export * from './flv-parser.ts';
