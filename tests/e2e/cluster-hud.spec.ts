@@ -65,6 +65,15 @@ test('the page on a cluster node that dies moves to another node, the arm live t
     const take = page.getByRole('button', { name: 'Take control' });
     await expect(holder).toHaveText(`You control ${arm} as alice.`, { timeout: 30_000 });
 
+    // The holder's lease runs once she has beaten (docs/protocol.md § Control: a holder that never
+    // beats is never timed out): the kill waits for the page's first beat to reach the arm's node
+    // (a fresh clone killed 234 ms after the take, before any beat, and alice kept the arm).
+    await until(
+      () => watch!.messages.some((m) => m.topic === `arm/${arm}/claim/alice` && m.text === 'beat'),
+      10_000,
+      "alice's first beat on the arm's node",
+    );
+
     // The node dies.
     const killedAt = Date.now();
     await cluster.nodes[victim]!.process.kill();
