@@ -15,14 +15,23 @@
  */
 import fs from 'node:fs';
 import mqtt, { type MqttClient } from 'mqtt';
-import pino from 'pino';
 import { afterAll, expect, test } from 'vitest';
 import { connectBrokers, parseBrokerList, type BrokerClient } from '@armtwin/link';
-import { linkOptions, parseSummary } from '@armtwin/protocol';
-import { startSim, type Sim } from '@armtwin/sim';
+import { linkOptions } from '@armtwin/protocol';
+import type { Sim } from '@armtwin/sim';
+import { armEchoes } from '../helpers/arm-echoes.ts';
+import { claimUntilHeld } from '../helpers/holder-claims.ts';
+import {
+  keptSimLog,
+  startLoggedSims,
+  statusMessagesSent,
+  stopAndCount,
+} from '../helpers/logged-sims.ts';
+import { probeUntilTaken, statusTaken } from '../helpers/shared-consumer.ts';
+import { until as poll } from '../helpers/until.ts';
 import { useInflux, useNatsCluster } from '../helpers/use-services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
-import { reportGaps, storedReports, storedTwice } from './stored-reports.ts';
+import { reportGaps, storedCounts, storedReports, storedTwice } from './stored-reports.ts';
 import { ReportedPose } from './reported-pose.ts';
 import { holdersOn } from './holders.ts';
 import type { MiddlewareProcess } from '../../apps/middleware/test/support/harness.ts';
@@ -35,7 +44,6 @@ const mws = useMiddlewares('mw-cluster', () => ({
 }));
 // Six arms by default (a shared 2-core machine); CLUSTER_ARMS=50 runs the issue's fifty.
 const ARMS = Array.from({ length: Number(process.env.CLUSTER_ARMS ?? 6) }, (_, i) => `cl${i + 1}`);
-const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
 const sims = new Map<string, Sim>();
 const clients: MqttClient[] = [];
 
@@ -44,13 +52,9 @@ afterAll(async () => {
   await Promise.all(clients.map((c) => c.endAsync(true).catch(() => {})));
 });
 
-async function until(fn: () => boolean | Promise<boolean>, ms: number, what: string) {
-  const deadline = Date.now() + ms;
-  while (!(await fn())) {
-    if (Date.now() > deadline) throw new Error(`timed out waiting for ${what}`);
-    await sleep(200);
-  }
-}
+/** Polls `fn` every 200 ms until it holds; fails naming `what` after `ms`. */
+const until = (fn: () => boolean | Promise<boolean>, ms: number, what: string) =>
+  poll(fn, ms, what, 200);
 
 test(
   'a node killed mid-stream: arms and the page move, the holder stays, every report is stored once, the node rejoins',
@@ -87,39 +91,12 @@ test(
       clientId: 'probe',
     });
     clients.push(probe);
-    const statusTaken = async () => {
-      const m = await Promise.all(mw.map((x) => x.metrics().catch(() => ({}))));
-      return m.map((x: Record<string, number>) => x['messages_total{topic="status"}'] ?? 0);
-    };
-    let probes = 0;
-    await until(
-      async () => {
-        await probe.publishAsync('arm/probe/status', `$TIM:${Date.now()}!#000P1500!`, { qos: 1 });
-        probes++;
-        return (await statusTaken()).some((n) => n > 0);
-      },
-      60_000,
-      'the shared consumer taking messages',
-    );
+    const probes = await probeUntilTaken(probe, mw, 60_000);
 
     // The arms, a third preferring each node.
     // Each sim's last log line says how many status payloads it handed to its client.
-    const simLog: string[] = [];
-    const log = pino({ level: 'info' }, { write: (line: string) => void simLog.push(line) });
-    for (const [i, arm] of ARMS.entries())
-      sims.set(
-        arm,
-        await startSim({
-          mqttUrl: c.mqttUrls((victim + i) % 3),
-          armId: arm,
-          rate: 50,
-          // Health at 10 Hz: every health report shares its ms with a state report, as a
-          // re-sent pair taken by two middlewares needs to show a report stored twice.
-          healthRate: 10,
-          log,
-          onFirst: (kind, message) => log.warn({ arm, kind }, message),
-        }),
-      );
+    const simLog = keptSimLog();
+    await startLoggedSims(ARMS, (i) => c.mqttUrls((victim + i) % 3), simLog, sims);
 
     // The page, on the victim over WebSockets, following cl1 (whose arm is on the victim too).
     let pageReports = 0;
@@ -170,31 +147,8 @@ test(
       );
       jogs.push(sent);
     };
-    // A claim sent before an arm's claim subscription is made (a busy cluster makes one JetStream
-    // consumer per QoS 1 subscription) reaches nobody: alice asks again while the arm's live
-    // summary (2 Hz), sent well after her last ask, still names nobody. Never once it names her:
-    // a second `take` from the holder is a beat, and 2.5 s without one would lose her the arm
-    // (docs/protocol.md § Control).
-    const held = new Map<string, { holder: string | null; at: number }>();
-    alice.on('message', (t, p) => {
-      const s = parseSummary(p);
-      if (s.ok) held.set(t.split('/')[1]!, { holder: s.summary.holder, at: Date.now() });
-    });
-    alice.subscribe(['arm/cl1/summary', 'arm/cl2/summary'], { qos: 0 }); // again at each connect
-    const asked = new Map<string, number>();
-    await until(
-      async () => {
-        for (const arm of ['cl1', 'cl2']) {
-          const h = held.get(arm);
-          if (h?.holder === 'alice' || (h?.at ?? 0) < (asked.get(arm) ?? 0) + 1500) continue;
-          asked.set(arm, Date.now());
-          await alice.publishAsync(`arm/${arm}/claim/alice`, 'take', { qos: 1 });
-        }
-        return ['cl1', 'cl2'].every((arm) => held.get(arm)?.holder === 'alice');
-      },
-      60_000,
-      'alice holding cl1 and cl2',
-    );
+    // She asks again until each arm's live summary names her (./holder-claims.ts).
+    await claimUntilHeld(alice, 'alice', ['cl1', 'cl2'], 60_000);
     await until(
       async () => (await Promise.all(ARMS.map(stored))).every((n) => n > 50),
       60_000,
@@ -223,46 +177,17 @@ test(
     const newLeaderMs = Date.now() - killedAt;
     // Every arm hears its control topic where it is now (its subscriptions were asked for while
     // the cluster recovered: @armtwin/link asks again for any refused): a ping is echoed.
-    const echoes = connectBrokers(parseBrokerList(c.mqttUrls((victim + 1) % 3)), {
-      clientId: 'pinger',
-      ...linkOptions(),
-    });
-    clients.push(echoes);
-    const echoed = new Set<string>();
-    const lastReport = new Map<string, number>();
-    const summaryHolder = new Map<string, string | null>();
-    echoes.on('message', (t, p, packet) => {
-      if (t.endsWith('/summary')) {
-        const s = parseSummary(p);
-        if (s.ok && !packet.retain) summaryHolder.set(t.split('/')[1]!, s.summary.holder);
-        return;
-      }
-      lastReport.set(t, Date.now());
-      const ping = /\$PNG:(\d+)!/.exec(p.toString());
-      if (ping) echoed.add(`${t.split('/')[1]}:${ping[1]}`);
-    });
-    echoes.on(
-      'connect',
-      () => void echoes.subscribe(['arm/+/status', 'arm/+/summary'], { qos: 0 }),
-    );
+    const echoes = armEchoes(c.mqttUrls((victim + 1) % 3), 'pinger');
+    clients.push(echoes.client);
+    const summaryHolder = echoes.summaryHolder;
     for (const [i, arm] of ARMS.entries())
-      await until(
-        async () => {
-          if (echoes.connected)
-            await echoes.publishAsync(`arm/${arm}/control`, `$PNG:${i}!`, { qos: 1 });
-          await sleep(800);
-          return echoed.has(`${arm}:${i}`);
-        },
+      await echoes.untilEchoed(
+        arm,
+        i,
         60_000,
         `${arm} echoing a ping after the kill`,
-      ).catch((err: Error) => {
-        const seen = lastReport.get(`arm/${arm}/status`);
-        const said = simLog.filter((l) => l.includes(`"${arm}"`) || l.includes('subscribe'));
-        throw new Error(
-          `${err.message}; its last report ${seen ? `${Date.now() - seen} ms ago` : 'never seen'}; ` +
-            `its log:\n${said.join('')}`,
-        );
-      });
+        simLog.lines,
+      );
     await until(
       async () => (await Promise.all(ARMS.map(stored))).every((n, i) => n > before[i]! + 50),
       60_000,
@@ -325,45 +250,14 @@ test(
     );
 
     // Every state report each arm made is one point: nothing lost, nothing stored twice.
-    const published = new Map<string, number>();
-    const healthSent = new Map<string, number>();
-    for (const arm of ARMS) {
-      const sim = sims.get(arm)!;
-      await sim.stop();
-      sims.delete(arm);
-      published.set(arm, sim.runner!.counters.stateSamples);
-      healthSent.set(arm, sim.runner!.counters.healthPayloads);
-    }
-    const settled = () =>
-      Promise.all(
-        ARMS.map(
-          async (a) =>
-            (await stored(a)) === published.get(a) &&
-            (await storedReports(inf, a, 'temp')) === healthSent.get(a),
-        ),
-      );
-    await until(async () => (await settled()).every(Boolean), 60_000, 'every report stored').catch(
-      () => {},
-    );
-    const counts = Object.fromEntries(
-      await Promise.all(
-        ARMS.map(async (a) => [
-          a,
-          {
-            published: published.get(a),
-            stored: await stored(a),
-            health: healthSent.get(a),
-            healthStored: await storedReports(inf, a, 'temp'),
-          },
-        ]),
-      ),
-    );
+    const { published, healthSent } = await stopAndCount(ARMS, sims);
+    const counts = await storedCounts(inf, ARMS, published, healthSent, 60_000);
     // No report stored twice: no servo has two points a few µs apart with a value in common (a
     // copy of a report delivered again, moved off its first copy's time: points.ts SeriesClock).
     const twice = (await Promise.all(ARMS.map((a) => storedTwice(inf, a)))).flat();
     expect.soft(twice, `stored twice: ${JSON.stringify(twice.slice(0, 10))}`).toEqual([]);
     // On a failure, say where reports are missing: the stored times not 20 ms after the one before.
-    if (ARMS.some((arm) => counts[arm].stored !== published.get(arm)))
+    if (ARMS.some((arm) => counts[arm]!.stored !== published.get(arm)))
       for (const k of [1, 2])
         console.log(
           fs
@@ -373,31 +267,26 @@ test(
             .join('\n'),
         );
     for (const arm of ARMS)
-      if (counts[arm].stored !== published.get(arm))
+      if (counts[arm]!.stored !== published.get(arm))
         expect
           .soft(
-            counts[arm].stored,
+            counts[arm]!.stored,
             `${arm}: ${JSON.stringify(await reportGaps(inf, arm))}; killed at ${new Date(killedAt).toISOString()}`,
           )
           .toBe(published.get(arm));
     for (const arm of ARMS) {
-      expect(counts[arm].stored, JSON.stringify(counts)).toBe(published.get(arm));
-      expect(counts[arm].healthStored, JSON.stringify(counts)).toBe(healthSent.get(arm));
+      expect(counts[arm]!.stored, JSON.stringify(counts)).toBe(published.get(arm));
+      expect(counts[arm]!.healthStored, JSON.stringify(counts)).toBe(healthSent.get(arm));
     }
     // Both middlewares took part of the stream; together they read every status message, and
     // none twice but the few delivered again around the kill (an acknowledgement lost with the
     // node, or a publish the node stored but never acknowledged, sent again by the arm).
-    const taken = await statusTaken();
+    const taken = await statusTaken(mw);
     expect(
       taken.every((n) => n > 0),
       JSON.stringify(taken),
     ).toBe(true);
-    const sent =
-      probes +
-      simLog
-        .filter((l) => l.includes('"sim stopped"'))
-        .map((l) => (JSON.parse(l) as { statusMessages: number }).statusMessages)
-        .reduce((n, m) => n + m, 0);
+    const sent = probes + statusMessagesSent(simLog.lines);
     const read = taken[0]! + taken[1]!;
     expect(read, `read ${read} of ${sent} sent`).toBeGreaterThanOrEqual(sent);
     expect(read, `read ${read} of ${sent} sent`).toBeLessThan(sent * 1.1);

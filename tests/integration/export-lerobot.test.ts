@@ -15,19 +15,26 @@
  * timestamp within one frame. Bad requests and flags are refused with a clear error.
  */
 import type { EpisodeMark } from '@armtwin/api';
-import { execFile, execFileSync } from 'node:child_process';
+import { execFile } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { promisify } from 'node:util';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { readTimeStripe, serveCamera, timeStripeLayout, type ServedCameras } from '@armtwin/camera';
+import type { ServedCameras } from '@armtwin/camera';
+import { encodeAngleMove, encodeGroup } from '@armtwin/protocol';
 import { loadRecordingRobot } from '@armtwin/middleware/export';
-import { select, waitForValue } from '../../apps/middleware/test/support/harness.ts';
+import type { MiddlewareProcess } from '../../apps/middleware/test/support/harness.ts';
 import { REPO_ROOT } from '../helpers/files.ts';
 import { influxCliEnv } from '../helpers/influx.ts';
-import { readMjpegSegment } from '../helpers/mjpeg-segment.ts';
-import { runLerobotScript } from '../helpers/lerobot-python.ts';
+import { BAND, H, recordedFrames, stripeOf, W } from '../helpers/recorded-frames.ts';
+import { heldAt, servoTracks } from '../helpers/servo-tracks.ts';
+import { checkLerobotDataset, type DatasetCheck } from '../helpers/lerobot-dataset-check.ts';
+import {
+  RECORDED_CAMS,
+  startRecordedCameras,
+  waitEpisodeWhole,
+} from '../helpers/episode-recording.ts';
 import { useInflux, useMosquitto } from '../helpers/use-services.ts';
 import { useMiddlewares } from '../helpers/use-middlewares.ts';
 import { ARMTWIN, StatusWatcher, armtwin, type Child } from './sim-helpers.ts';
@@ -51,89 +58,10 @@ const gripperPct = (deg: number) => ((deg + 10) / 110) * 100;
 const lerobotUnits = (goal: number[]) => goal.map((d, i) => (i === 5 ? gripperPct(d) : d));
 
 const group = (goal: number[], ms: number) =>
-  `{${goal.map((d, i) => `#00${i + 1}A${d < 0 ? '-' : '+'}${Math.abs(d).toFixed(2).padStart(6, '0')}T${String(ms).padStart(4, '0')}!`).join('')}}`;
+  encodeGroup(goal.map((d, i) => encodeAngleMove(i + 1, d, ms)));
 
-interface Checked {
-  num_episodes: number;
-  num_frames: number;
-  fps: number;
-  features: Record<string, { dtype: string; shape: number[]; names: string[] | null }>;
-  robot_type: string;
-  camera_keys: string[];
-  video_info: Record<string, Record<string, unknown>>;
-  stats_camera_mean: Record<string, number[][][]>;
-  episode_lengths: number[];
-  frames: {
-    index: number;
-    frame_index: number;
-    episode_index: number;
-    timestamp: number;
-    task: string;
-    state: number[];
-    action: number[];
-    images: Record<string, { shape: number[]; band: string }>;
-  }[];
-}
-
-const CAMS = ['front', 'side'] as const;
+const CAMS = RECORDED_CAMS;
 const KEYS = CAMS.map((c) => `observation.images.${c}`);
-const [W, H] = [640, 480];
-const BAND = timeStripeLayout(W, H).blockH;
-/** The epoch ms of the time stripe in a decoded frame's bottom rows. */
-function stripeOf(band: Uint8Array | string): number | null {
-  const luma = new Uint8Array(W * H);
-  luma.set(typeof band === 'string' ? Buffer.from(band, 'base64') : band, (H - BAND) * W);
-  return readTimeStripe(luma, W, H);
-}
-
-/** Epoch ms of each frame of a segment: of an MP4 its name + each packet's time, of an MJPEG one its parts' stamps. */
-function segmentTimes(file: string, from: number): number[] {
-  if (file.endsWith('.mjpeg')) return readMjpegSegment(file).times;
-  return execFileSync('ffprobe', [
-    ...['-v', 'error', '-select_streams', 'v', '-show_entries', 'packet=pts_time'],
-    ...['-of', 'csv=p=0', file],
-  ])
-    .toString()
-    .trim()
-    .split('\n')
-    .map((t) => from + Number(t) * 1000);
-}
-
-/**
- * Every frame the middleware recorded of a camera around the episode: its time and its clock
- * (the time stripe, decoded by ffmpeg from the segment itself).
- */
-function recordedFrames(cam: string): { atMs: number; clock: number }[] {
-  const folder = path.join(cameraDir, ARM, cam);
-  const out: { atMs: number; clock: number }[] = [];
-  for (const name of fs.readdirSync(folder).sort()) {
-    const [from, to] = name
-      .replace(/\.\w+$/, '')
-      .split('-')
-      .map(Number) as [number, number];
-    if (to < startMs - 1000 || from > stopMs + 1000) continue;
-    const file = path.join(folder, name);
-    const times = segmentTimes(file, from);
-    const mjpeg = name.endsWith('.mjpeg');
-    const input = mjpeg ? ['-f', 'jpeg_pipe', '-i', '-'] : ['-i', file];
-    const bands = execFileSync(
-      'ffmpeg',
-      [
-        ...['-v', 'error', ...input, '-fps_mode', 'passthrough'],
-        ...['-vf', `crop=${W}:${BAND}:0:${H - BAND}`, '-f', 'rawvideo', '-pix_fmt', 'gray', '-'],
-      ],
-      { maxBuffer: 256 * 1024 * 1024, input: mjpeg ? readMjpegSegment(file).jpegs : undefined },
-    );
-    expect(bands.length).toBe(times.length * W * BAND);
-    times.forEach((atMs, k) => {
-      const clock = stripeOf(bands.subarray(k * W * BAND, (k + 1) * W * BAND));
-      expect(clock, `${name} frame ${k}`).not.toBeNull();
-      out.push({ atMs, clock: clock! });
-    });
-  }
-  return out;
-}
-
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'armtwin-export-lerobot-'));
 const env = () => influxCliEnv(influx());
 const exportTo = (out: string, ...extra: string[]) =>
@@ -154,28 +82,18 @@ let startMs = 0;
 let stopMs = 0;
 let frames = 0;
 let api = '';
-let checked: Checked;
+let checked: DatasetCheck;
 let stderr = '';
 
-/** InfluxQL rows [µs, angle] per servo id of `measurement`, in time order. */
-async function stored(measurement: string): Promise<Map<number, [number, number][]>> {
-  const from = (startMs - 10_000) * 1000;
-  const rows = await select(
+/** InfluxQL rows [µs, angle] per servo id of `measurement` around the episode, in time order. */
+const stored = (measurement: string) =>
+  servoTracks(
     { url: influx().url, db: influx().db },
-    `SELECT "angle", "id" FROM "${measurement}" WHERE "arm" = '${ARM}' AND time >= ${from}u AND time < ${stopMs * 1000}u AND "angle" > -1000`,
+    measurement,
+    ARM,
+    (startMs - 10_000) * 1000,
+    stopMs * 1000,
   );
-  const out = new Map<number, [number, number][]>();
-  for (const [t, angle, id] of rows as [number, number, string][]) {
-    const list = out.get(Number(id)) ?? [];
-    list.push([t, angle]);
-    out.set(Number(id), list);
-  }
-  return out;
-}
-
-/** The value in force at µs `t`: the last of `track` at or before it. */
-const heldAt = (track: [number, number][] | undefined, t: number) =>
-  track?.filter(([at]) => at <= t).at(-1)?.[1];
 
 /** POST an episode action; the status and answer. */
 async function mark(body: unknown): Promise<{ status: number; answer: Record<string, unknown> }> {
@@ -196,24 +114,14 @@ let cliRefusal = '';
 const cameraDir = path.join(dir, 'cameras');
 
 beforeAll(async () => {
-  const mw = await mws.spawn({
-    env: { FLUSH_INTERVAL_MS: '200', CAMERA_DIR: cameraDir, CAMERA_SEGMENT_S: '2' },
-  });
-  api = `http://127.0.0.1:${mw.port}/api/arms/${ARM}`;
-  camera = await serveCamera({
-    cameras: [
-      { armId: ARM, camId: 'front', label: 'Front', source: 'testsrc', kinds: ['h264-ws'] },
-      { armId: ARM, camId: 'side', label: 'Side', source: 'testsrc', kinds: ['mjpeg'] },
-    ],
-    port: 0,
+  let mw: MiddlewareProcess;
+  ({ mw, camera } = await startRecordedCameras({
+    mws,
     mqttUrl: broker().url,
-  });
-  await camera.announced;
-  await waitForValue(
-    async () => ((await mw.metrics())['camera_frames_recorded_total'] ?? 0) > 0,
-    true,
-    30_000,
-  );
+    arm: ARM,
+    cameraDir,
+  }));
+  api = `http://127.0.0.1:${mw.port}/api/arms/${ARM}`;
   sim = armtwin([
     'sim',
     ...['--mqtt', broker().url, '--arm', ARM, '--profile', 'so101', '--report', 'angle'],
@@ -268,26 +176,7 @@ beforeAll(async () => {
   );
   refusals.push(await mark({ action: 'start' }), await mark({ action: 'jump' }));
   listed = ((await (await fetch(`${api}/episodes`)).json()) as { episodes: Mark[] }).episodes;
-  // the whole episode stored: a report after its end is in influxd
-  const q = `SELECT count("angle") FROM "servo" WHERE "arm" = '${ARM}' AND time >= ${stopMs * 1000}u`;
-  await waitForValue(
-    async () => Number((await select({ url: influx().url, db: influx().db }, q))[0]?.[1] ?? 0) > 0,
-    true,
-    20_000,
-  );
-  // the whole episode recorded: a finished segment reaches past its end
-  const segments = async (cam: string) =>
-    (
-      (await (await fetch(`${api}/cameras/${cam}/segments`)).json()) as {
-        segments: { endMs: number }[];
-      }
-    ).segments;
-  for (const cam of CAMS)
-    await waitForValue(
-      async () => (await segments(cam)).some((s) => s.endMs >= stopMs),
-      true,
-      30_000,
-    );
+  await waitEpisodeWhole({ influx: { url: influx().url, db: influx().db }, api, arm: ARM, stopMs });
   await camera.stop();
   const out = path.join(dir, 'ds');
   ({ stderr } = await exportTo(
@@ -301,12 +190,7 @@ beforeAll(async () => {
     '--cameras',
     cameraDir,
   ));
-  checked = runLerobotScript<Checked>('dataset_check.py', {
-    root: out,
-    repo_id: 'armtwin/so101ds',
-    frames: Array.from({ length: frames }, (_, k) => k),
-    band: BAND,
-  });
+  checked = checkLerobotDataset({ root: out, repo_id: 'armtwin/so101ds', frames, band: BAND });
 }, 180_000);
 
 afterAll(async () => {
@@ -410,7 +294,7 @@ describe("armtwin export --format lerobot, loaded by LeRobot's own LeRobotDatase
     "each decoded video frame of %s is the recorded one at its row's time: the test source's clock says so",
     (cam) => {
       const key = `observation.images.${cam}`;
-      const recorded = recordedFrames(cam);
+      const recorded = recordedFrames(path.join(cameraDir, ARM, cam), startMs, stopMs);
       // ffmpeg's fps filter (round=near): a slot shows the last frame before its midpoint with the
       // next slot, which is the nearest frame when they come at the camera's rate. A frame that
       // came within 1 ms before that midpoint may fall on either side of it once its time is

@@ -2,9 +2,11 @@
  * What an arm's state reports became in InfluxDB 1.8, for the tests that count them against the
  * sim's own counter (brokers-failover, cluster-nats): one `servo` point with `pwm` per report
  * (servo 000), and, when a count is off, where: the stored times that are not one report period
- * after the one before (a hole, or a report stored twice a few µs after its first copy).
+ * after the one before (a hole, or a report stored twice a few µs after its first copy); and the
+ * counts per arm once all is stored.
  */
 import { select, type InfluxTarget } from '../../apps/middleware/test/support/harness.ts';
+import { until } from '../helpers/until.ts';
 
 /**
  * The state reports of `arm` stored (0 while the database is not there yet); with `field` =
@@ -77,4 +79,49 @@ export async function storedTwice(
     if (field) twice.push({ id, at: new Date(Number(prev[0]) / 1000).toISOString(), us, field });
   }
   return twice;
+}
+
+/** What an arm's sim made and what of it is stored: state reports, and health reports. */
+export interface StoredCount {
+  published: number | undefined;
+  stored: number;
+  health: number | undefined;
+  healthStored: number;
+}
+
+/**
+ * Per arm, the reports its sim made (`published`, `healthSent`) and those stored, read once
+ * every arm's are all stored, or once `ms` has passed (then the counts say what is missing).
+ */
+export async function storedCounts(
+  influx: InfluxTarget,
+  arms: readonly string[],
+  published: ReadonlyMap<string, number>,
+  healthSent: ReadonlyMap<string, number>,
+  ms: number,
+): Promise<Record<string, StoredCount>> {
+  const settled = () =>
+    Promise.all(
+      arms.map(
+        async (a) =>
+          (await storedReports(influx, a)) === published.get(a) &&
+          (await storedReports(influx, a, 'temp')) === healthSent.get(a),
+      ),
+    );
+  await until(async () => (await settled()).every(Boolean), ms, 'every report stored', 200).catch(
+    () => {},
+  );
+  return Object.fromEntries(
+    await Promise.all(
+      arms.map(async (a) => [
+        a,
+        {
+          published: published.get(a),
+          stored: await storedReports(influx, a),
+          health: healthSent.get(a),
+          healthStored: await storedReports(influx, a, 'temp'),
+        },
+      ]),
+    ),
+  ) as Record<string, StoredCount>;
 }

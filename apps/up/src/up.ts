@@ -14,125 +14,26 @@
  * the API's one log-in step, on the broker's log-ins and throttle.
  */
 import { randomBytes } from 'node:crypto';
-import fs from 'node:fs';
-import http from 'node:http';
-import https from 'node:https';
-import path from 'node:path';
-import type { Users } from '@armtwin/auth';
-import { startBroker, type Broker, type BrokerTls } from '@armtwin/broker';
+import { startBroker } from '@armtwin/broker';
 import { createApi } from '@armtwin/http-api';
-import { isModelArmId, linkOptions, MODEL_ARM_SUFFIX } from '@armtwin/protocol';
-import {
-  DEFAULT_PROFILE,
-  loadSimProfile,
-  MODELS_DIR,
-  simWill,
-  startMqttSim,
-  followZones,
-  type MqttSim,
-} from '@armtwin/sim';
+import { MODELS_DIR } from '@armtwin/sim';
 import type { ArmtwinFoxglove } from '@armtwin/foxglove';
 import { createCameraPart } from './camera-part.ts';
 import { startFoxglovePart } from './foxglove-part.ts';
+import { createFront, listenFront } from './http-front.ts';
 import { ensureWebBuild, startMiddlewarePart, WEB_DIST, type StartedMiddleware } from './parts.ts';
-import type { ModelCopies } from './model-copies.ts';
 import { createModelPart } from './model-part.ts';
-import { SO101_ARM, startSo101Part, type So101Part } from './so101-part.ts';
+import { armSpecsOf, loadArmProfiles, profileDir, startSimArms } from './sim-arms.ts';
+import { SO101_ARM, startSo101Part } from './so101-part.ts';
 import { staticFiles } from './static-files.ts';
-import { DEFAULT_HUD_HEADERS_OPTIONS, securityHeaders } from './security-headers.ts';
+import type { Up, UpOptions } from './up-options.ts';
 
-export interface UpOptions {
-  /** The HTTP port: HUD, /mqtt, /api. 0 = any free port. */
-  httpPort: number;
-  /** The broker's MQTT/TCP port. */
-  mqttPort: number;
-  /** Fall back to a free MQTT port when `mqttPort` is taken (when it was not asked for explicitly). */
-  mqttPortFallback: boolean;
-  host: string;
-  /** The simulated arm's id and state rate. */
-  armId: string;
-  rate: number;
-  /**
-   * The simulated arms and their profiles (`--arms arm1:armtwin5,arm2:track6`), all on this
-   * broker; `sim` is the first. Unset or empty: one arm, `armId`, with the default profile.
-   */
-  arms?: { id: string; profile: string }[];
-  /**
-   * The second arm, a simulated SO-101 on an emulated Feetech bus behind the real bus gateway
-   * (./so101-part.ts), on this arm id; unset: none. `armtwin up` starts it as `so101` unless
-   * `--no-so101`. If it cannot start (no socat), `up` says why and runs without it.
-   */
-  so101?: string;
-  /** INFLUX_URL ('' = local influxd if possible). */
-  influxUrl: string;
-  /** Build the HUD if it is missing. */
-  buildWeb: boolean;
-  /** Start the middleware. */
-  middleware: boolean;
-  /** The environment handed to the middleware's own config loader. */
-  env: Record<string, string | undefined>;
-  /** Users and roles (null = the anonymous local demo, loopback only). */
-  users: Users | null;
-  /** HTTPS/WSS and MQTTS with this certificate (null = plain). */
-  tls: BrokerTls | null;
-  /** API_TOKEN: a bearer token that reads /api's history and metrics ('' = none). */
-  apiToken: string;
-  /**
-   * An extra folder of robot profiles (`--models DIR`): served at /models/ before
-   * public/models, and searched first for the arms' profiles.
-   */
-  modelsDir?: string;
-  /** The live Foxglove WebSocket server's port (`--foxglove [PORT]`; unset: none; 0: any free). */
-  foxglovePort?: number;
-  /** A demo camera of the first arm (`--camera testsrc`, a device, a URL; '' = none). */
-  camera?: string;
-  /**
-   * Sources beyond this origin the HUD may connect to and show pictures from (other brokers,
-   * camera servers), added to its Content-Security-Policy (./security-headers.ts).
-   */
-  cspSources?: string[];
-  /**
-   * A model copy (`/api/arms/{id}/model`, ./model-copies.ts) stops after this long with nothing
-   * received on its topics, ms (unset: `DEFAULT_MODEL_COPIES_OPTIONS`, 10 minutes).
-   */
-  modelIdleMs?: number;
-  /** Progress lines for the operator. */
-  say: (msg: string) => void;
-  onFirst: (kind: string, message: string) => void;
-}
-
-export interface Up {
-  /** The URL to open. */
-  url: string;
-  broker: Broker;
-  sim: MqttSim;
-  /** Every simulated arm, in `arms` order. */
-  sims: MqttSim[];
-  /** The SO-101 on its emulated bus (`so101`), null when not asked for or when it failed to start. */
-  so101: So101Part | null;
-  /** The arms' model copies, started on demand (docs/protocol.md § Modes). */
-  copies: ModelCopies;
-  /** The live Foxglove server (`foxglovePort`), or null. */
-  foxglove: ArmtwinFoxglove | null;
-  /** Resolves when the middleware (if any) is up or has failed to start. */
-  middlewareReady: Promise<StartedMiddleware | null>;
-  stop(): Promise<void>;
-}
+export type { Up, UpOptions } from './up-options.ts';
 
 export async function startUp(o: UpOptions): Promise<Up> {
-  const armSpecs = o.arms?.length ? o.arms : [{ id: o.armId, profile: DEFAULT_PROFILE }];
-  if (o.so101 && armSpecs.some((a) => a.id === o.so101))
-    throw new Error(
-      `arm id "${o.so101}" is the SO-101 on the emulated bus: give the simulated arm another id, or leave the SO-101 out (--no-so101)`,
-    );
-  for (const a of armSpecs)
-    if (isModelArmId(a.id))
-      throw new Error(
-        `arm id "${a.id}": ids ending in ${MODEL_ARM_SUFFIX} are reserved for model copies (docs/protocol.md § Modes)`,
-      );
+  const armSpecs = armSpecsOf(o);
   const modelDirs = o.modelsDir ? [o.modelsDir, MODELS_DIR] : [MODELS_DIR];
-  // a bad profile fails here, before anything starts
-  const profiles = armSpecs.map((a) => loadSimProfile(a.profile, profileDir(modelDirs, a.profile)));
+  const profiles = loadArmProfiles(armSpecs, modelDirs);
   const hasWeb = o.buildWeb ? ensureWebBuild(o.say) : false;
   const broker = await startBroker({
     host: o.host,
@@ -187,43 +88,22 @@ export async function startUp(o: UpOptions): Promise<Up> {
         onFirst: o.onFirst,
       })
     : null;
-  const headers = Object.entries(
-    securityHeaders({ ...DEFAULT_HUD_HEADERS_OPTIONS, extraSources: o.cspSources ?? [] }),
-  );
-  const onRequest = (req: http.IncomingMessage, res: http.ServerResponse) => {
-    for (const [name, value] of headers) res.setHeader(name, value);
-    if (camera?.handleRequest(req, res)) return;
-    if (req.url === '/api' || req.url?.startsWith('/api/')) {
-      if (!api.handle(req, res))
-        res
-          .writeHead(404, { 'content-type': 'application/json', 'cache-control': 'no-store' })
-          .end(JSON.stringify({ error: 'not found' }));
-      return;
-    }
-    // The robot folders (`/models/…`) are the API's too; everything else is the HUD's.
-    if (req.url?.startsWith('/models/') && api.handle(req, res)) return;
-    files(req, res);
-  };
-  const server = o.tls
-    ? https.createServer({ ...o.tls, minVersion: 'TLSv1.2' }, onRequest)
-    : http.createServer(onRequest);
-  broker.attach(server, camera ? [camera.handleUpgrade] : []);
+  const server = createFront({
+    broker,
+    api,
+    camera,
+    files,
+    tls: o.tls,
+    cspSources: o.cspSources ?? [],
+  });
+  let url: string;
   try {
-    await new Promise<void>((resolve, reject) => {
-      server.once('error', reject);
-      server.listen(o.httpPort, o.host, () => resolve());
-    });
+    url = await listenFront(server, o.httpPort, o.host, o.tls !== null);
   } catch (err) {
     await camera?.stop();
     await broker.close();
-    throw (err as NodeJS.ErrnoException).code === 'EADDRINUSE'
-      ? new Error(`HTTP port ${o.httpPort} is taken: set ARMTWIN_PORT to another port`)
-      : err;
+    throw err;
   }
-  const address = server.address();
-  const httpPort = typeof address === 'object' && address ? address.port : o.httpPort;
-  const shownHost = o.host === '0.0.0.0' || o.host === '::' ? 'localhost' : o.host;
-  const url = `${o.tls ? 'https' : 'http'}://${shownHost}:${httpPort}/`;
   camera?.announce(url.slice(0, -1));
   let foxglove: ArmtwinFoxglove | null = null;
   if (o.foxglovePort !== undefined) {
@@ -245,41 +125,7 @@ export async function startUp(o: UpOptions): Promise<Up> {
     }
   }
 
-  const sims = armSpecs.map(({ id }, k) => {
-    const client = broker.connectInProcess(
-      { name: `sim-${id}`, role: 'device', arm: id },
-      {
-        clientId: `armtwin-sim-${id}`,
-        will: simWill(id),
-        ...linkOptions(),
-        queueQoSZero: false,
-      },
-    );
-    const profile = profiles[k]!;
-    const started = startMqttSim(client, {
-      armId: id,
-      rate: o.rate,
-      onFirst: o.onFirst,
-      model: profile.model,
-      profile,
-    });
-    // Zones edited in the HUD (PUT …/keep-out) reach this sim through the profile file.
-    const name = armSpecs[k]!.profile;
-    const zones = followZones({
-      client,
-      armId: id,
-      name,
-      modelsDir: profileDir(modelDirs, name),
-      sim: profile,
-      runner: started.runner,
-      onFirst: o.onFirst,
-    });
-    const stop = () => {
-      zones.stop();
-      return started.stop();
-    };
-    return { ...started, stop };
-  });
+  const sims = startSimArms(broker, armSpecs, profiles, { ...o, modelDirs });
   const sim = sims[0]!;
   const so101 = o.so101
     ? await startSo101Part({
@@ -347,9 +193,4 @@ export async function startUp(o: UpOptions): Promise<Up> {
     })());
 
   return { url, broker, sim, sims, so101, copies: model.copies, foxglove, middlewareReady, stop };
-}
-
-/** The first of `dirs` that holds `<name>/profile.json` (the last one otherwise, for its error). */
-function profileDir(dirs: readonly string[], name: string): string {
-  return dirs.find((d) => fs.existsSync(path.join(d, name, 'profile.json'))) ?? dirs.at(-1)!;
 }
