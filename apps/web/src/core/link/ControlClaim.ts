@@ -50,6 +50,8 @@ export class ControlClaim {
     private readonly armId: string,
     readonly who: ControlIdentity,
     private readonly send: (topic: string, payload: string) => boolean,
+    /** This page beats its claims (it holds the deadman; for a model copy, in Model mode). */
+    private readonly beats: () => boolean = () => false,
   ) {}
 
   /** This page's user holds the arm. */
@@ -140,11 +142,19 @@ export class ControlClaim {
     if (aboutMe) this.notice = e;
   }
 
-  /** Takes the arm: free, or (an administrator) from whoever holds it. */
+  /**
+   * Takes the arm: free, or (an administrator) from whoever holds it. A page that beats sends
+   * its first `beat` right behind the take, so the holder's lease runs at once: a page whose
+   * connection dies just after taking control loses the arm after the lease, where a holder
+   * that has not beaten yet would keep it (docs/protocol.md § Control).
+   */
   take(): boolean {
-    if (this.heldBy && this.who.admin)
-      return this.send(userTopic(this.armId, 'override', this.who.name), 'take');
-    return this.claim('take');
+    const sent =
+      this.heldBy && this.who.admin
+        ? this.send(userTopic(this.armId, 'override', this.who.name), 'take')
+        : this.claim('take');
+    if (sent && this.beats()) this.claim('beat');
+    return sent;
   }
 
   ask(): boolean {
