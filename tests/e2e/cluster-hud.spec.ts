@@ -105,9 +105,9 @@ test('the page on a cluster node that dies moves to another node, the arm live t
           said.map((m) => `${m.at} ${m.topic} ${m.text.slice(0, 160)}`).join('\n'),
       );
     });
-    // The page learns the holder from the arm's summary (QoS 0) until the retained record comes
-    // through its QoS 1 subscription: a JetStream consumer the node makes, slowly while the
-    // cluster recovers (the record alone took 50 s and more in 3 runs of 4).
+    // The page learns the holder from the arm's summary until the retained record comes (when it
+    // read the record through a QoS 1 subscription, a JetStream consumer the node makes slowly
+    // while the cluster recovers, that took 50 s and more in 3 runs of 4; now QoS 0).
     await expect(holder).toHaveText(`Nobody controls ${arm}.`, { timeout: 20_000 });
     const holderKnownMs = Date.now() - killedAt;
     expect(claims(killedAt).map((m) => m.text)).not.toContain('take');

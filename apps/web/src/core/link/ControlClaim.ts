@@ -121,9 +121,10 @@ export class ControlClaim {
   /**
    * The arm's summary (`arm/{id}/summary`, 2 Hz, docs/protocol.md § Fleets) names its holder:
    * until the retained holder record has come (after a connect or a move), it stands in for it,
-   * with no requests. On a NATS cluster recovering from a lost node the record, read through a
-   * QoS 1 subscription, took up to a minute (docs/cluster.md); the summary is QoS 0. It never
-   * makes the log-in's automatic take: that waits for the record.
+   * with no requests. On a NATS cluster recovering from a lost node the record, when the page
+   * read it through a QoS 1 subscription, took up to a minute (docs/cluster.md); both are QoS 0
+   * now, and the summary still covers a record that comes late. It never makes the log-in's
+   * automatic take: that waits for the record.
    */
   onSummary(payload: Uint8Array): void {
     if (this.recordCame) return;
