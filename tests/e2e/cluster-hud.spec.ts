@@ -66,8 +66,10 @@ test('the page on a cluster node that dies moves to another node, the arm live t
     await expect(holder).toHaveText(`You control ${arm} as alice.`, { timeout: 30_000 });
 
     // The holder's lease runs once she has beaten (docs/protocol.md § Control: a holder that never
-    // beats is never timed out): the kill waits for the page's first beat to reach the arm's node
-    // (a fresh clone killed 234 ms after the take, before any beat, and alice kept the arm).
+    // beats is never timed out): the kill waits for the page's first beat to reach the arm's node.
+    // The page sends it right behind the take, but a NATS node stores a QoS 1 message before it
+    // reads the next from the same connection: killed the moment the take reached the arm's node,
+    // the beat never came, and alice kept the arm until mqtt.js sent both again after the move.
     await until(
       () => watch!.messages.some((m) => m.topic === `arm/${arm}/claim/alice` && m.text === 'beat'),
       10_000,
@@ -103,9 +105,9 @@ test('the page on a cluster node that dies moves to another node, the arm live t
           said.map((m) => `${m.at} ${m.topic} ${m.text.slice(0, 160)}`).join('\n'),
       );
     });
-    // The page learns the holder from the arm's summary (QoS 0) until the retained record comes
-    // through its QoS 1 subscription: a JetStream consumer the node makes, slowly while the
-    // cluster recovers (the record alone took 50 s and more in 3 runs of 4).
+    // The page learns the holder from the arm's summary until the retained record comes (when it
+    // read the record through a QoS 1 subscription, a JetStream consumer the node makes slowly
+    // while the cluster recovers, that took 50 s and more in 3 runs of 4; now QoS 0).
     await expect(holder).toHaveText(`Nobody controls ${arm}.`, { timeout: 20_000 });
     const holderKnownMs = Date.now() - killedAt;
     expect(claims(killedAt).map((m) => m.text)).not.toContain('take');

@@ -4,7 +4,8 @@
  * users file (the embedded broker vouches for each name): alice logs in and takes control;
  * bob's page says "Controlled by alice", its move controls are off (the stop is not), and it
  * asks; alice refuses, then grants; the arm follows bob's jog and not alice's page any more;
- * bob's page goes away and alice takes control again.
+ * bob's page goes away and alice takes control again; she lets go, takes it once more and her
+ * page crashes at once: the arm lets go of her after the holder's lease.
  */
 import type { Browser, Page } from '@playwright/test';
 import { expect, shot, test, type HudWindow } from './fixtures.ts';
@@ -118,6 +119,27 @@ test('two pages: one controls, one watches and asks; refuse, grant, and take bac
     await expect(holderLine(alice)).toHaveText('You control arm1 as alice.');
     await expect(base(alice)).toBeEnabled();
     await shot(alice, testInfo, 'control-taken-back');
+
+    // alice lets go, takes control again, and her page crashes at once (its connection dies with
+    // it). Her lease runs from her first beat (a holder that never beats is never timed out), and
+    // the page sends that beat with the take: the arm lets go of her after the lease.
+    const said: string[] = [];
+    watcher.client.on('message', (t, payload) => {
+      if (t === 'arm/arm1/audit') said.push(payload.toString());
+    });
+    await watcher.client.subscribeAsync('arm/arm1/audit', { qos: 0 });
+    await alice.getByRole('button', { name: 'Release control' }).click();
+    await expect(holderLine(alice)).toHaveText('Nobody controls arm1.');
+    const cdp = await alice.context().newCDPSession(alice);
+    await alice.getByRole('button', { name: 'Take control' }).click();
+    void cdp.send('Page.crash').catch(() => {}); // never answers: the page is gone
+    await until(
+      () => said.some((e) => /"kind":"lost"/.test(e) && /"by":"alice"/.test(e)),
+      10_000,
+      'the arm letting go of alice',
+    ).catch((e: unknown) => {
+      throw new Error(`${String(e)}; the arm's audit said: ${said.join(' | ')}`);
+    });
   } finally {
     await alice.context().close();
     await watcher.close();

@@ -1,6 +1,7 @@
 import { afterEach, beforeEach, describe, expect, it, vi } from 'vitest';
 import { ArmStore } from '../src/core/store/ArmStore.ts';
 import { ArmLink, UNCHECKED_PERMISSIONS } from '../src/core/link/ArmLink.ts';
+import type { LinkPermissions } from '../src/core/link/permissions.ts';
 import { FakeMqttClient as FakeClient } from './support/FakeMqttClient.ts';
 import { defaultSettings } from '../src/core/config/settings.ts';
 import { ControlClaim, type ControlIdentity } from '../src/core/link/ControlClaim.ts';
@@ -22,14 +23,14 @@ const summaryOf = (t: number, holder: string | null) =>
     }),
   );
 
-function setup(who: ControlIdentity) {
+function setup(who: ControlIdentity, permissions: LinkPermissions = UNCHECKED_PERMISSIONS) {
   const client = new FakeClient();
   const link = new ArmLink(
     new ArmStore(),
     defaultSettings({ protocol: 'http:', host: 'h' }),
     () => client,
   );
-  link.start(UNCHECKED_PERMISSIONS, {}, who);
+  link.start(permissions, {}, who);
   client.emit('connect');
   const holder = (json: object) =>
     client.emit('message', 'arm/arm1/holder', enc(JSON.stringify(json)));
@@ -56,6 +57,32 @@ describe('ControlClaim in the page (docs/protocol.md § Control)', () => {
     expect(sent().at(-1)).toEqual({ topic: 'arm/arm1/control/alice', payload: '#255PDST!' });
     link.control.grant('bob');
     expect(sent().at(-1)).toEqual({ topic: 'arm/arm1/claim/alice', payload: 'grant bob' });
+  });
+
+  // The holder's lease runs from her first beat (a holder that never beats is never timed out):
+  // a page whose connection died between its take and its first timed beat kept the arm.
+  it('a page that beats sends its first beat right behind its take, so its lease runs at once', () => {
+    const beating = { ...UNCHECKED_PERMISSIONS, deadman: true };
+    const alice = setup({ name: 'alice', enforced: true, admin: false }, beating);
+    alice.holder({ user: null, requests: [] }); // the log-in's take
+    const claims = (s: typeof alice) => s.sent().filter((p) => !p.topic.endsWith('/operator'));
+    expect(claims(alice)).toEqual([
+      { topic: 'arm/arm1/claim/alice', payload: 'take' },
+      { topic: 'arm/arm1/claim/alice', payload: 'beat' },
+    ]);
+    const root = setup({ name: 'root', enforced: true, admin: true }, beating);
+    root.holder({ user: 'alice', role: 'operator', since: 1, requests: [] });
+    root.link.control.take();
+    expect(claims(root)).toEqual([
+      { topic: 'arm/arm1/override/root', payload: 'take' },
+      { topic: 'arm/arm1/claim/root', payload: 'beat' },
+    ]);
+    root.link.setMode('model', new ArmStore()); // the copy's claim beats in Model mode
+    root.link.control.take();
+    expect(claims(root).slice(2)).toEqual([
+      { topic: 'arm/arm1-model/claim/root', payload: 'take' },
+      { topic: 'arm/arm1-model/claim/root', payload: 'beat' },
+    ]);
   });
 
   it('someone else holds the arm: moves are not sent, the stop is, and the page can ask', () => {

@@ -22,7 +22,7 @@
 import type { MqttClient } from 'mqtt';
 
 import {
-  ARM_SUBSCRIBE_QOS,
+  CLEAN_SESSION_SUBSCRIBE_QOS,
   armTopics,
   auditTopic,
   encodeControllerError,
@@ -115,7 +115,7 @@ export function startMotionService(
 
   const onConnect = () => {
     if (announcement) client.publish(topics.profile, announcement(), { qos: 1, retain: true });
-    client.subscribe([topics.request, `${topics.request}/+`], { qos: ARM_SUBSCRIBE_QOS }, (err) => {
+    client.subscribe([topics.request, `${topics.request}/+`], { qos: CLEAN_SESSION_SUBSCRIBE_QOS }, (err) => {
       if (err) onFirst('subscribe', err.message);
     });
   };

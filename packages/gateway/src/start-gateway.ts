@@ -23,7 +23,7 @@ import {
 import { MODELS_DIR, readRobotFolder } from '@armtwin/motion/robot-folder';
 import { armSummary, mqttArbiter, type ArmSummaryOut } from '@armtwin/controller/mqtt';
 import {
-  ARM_SUBSCRIBE_QOS,
+  CLEAN_SESSION_SUBSCRIBE_QOS,
   armTopics,
   holderTopic,
   linkOptions,
@@ -191,7 +191,7 @@ export function wireGatewayMqtt(
     core.brokerConnected(true);
     client.subscribe(
       [topics.control, ...control.filters, ...Object.keys(handlers)],
-      { qos: ARM_SUBSCRIBE_QOS },
+      { qos: CLEAN_SESSION_SUBSCRIBE_QOS },
       (err) => err && o.onFirst('subscribe', err.message),
     );
     control.announce();

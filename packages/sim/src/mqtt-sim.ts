@@ -18,7 +18,7 @@
  */
 import type { IClientOptions, MqttClient } from 'mqtt';
 import {
-  ARM_SUBSCRIBE_QOS,
+  CLEAN_SESSION_SUBSCRIBE_QOS,
   armTopics,
   holderTopic,
   OPERATOR_LEASE_MS,
@@ -150,7 +150,7 @@ export function startMqttSim(client: MqttClient, options: MqttSimOptions): MqttS
     client.publish(topics.online, '1', { qos: 1, retain: true });
     client.subscribe(
       [topics.control, topics.sim, topics.operator, ...control.filters],
-      { qos: ARM_SUBSCRIBE_QOS },
+      { qos: CLEAN_SESSION_SUBSCRIBE_QOS },
       (err) => {
         if (err) onFirst('subscribe', err.message);
       },

@@ -85,12 +85,7 @@ export class ArmConnection {
     this.armClaim = this.controlFor(guest);
     const copyId = modelArmId(settings.armId);
     const onError = (message: string) => (this.store.connectionError = message);
-    this.copy = new ModelCopySide(
-      settings.armId,
-      this.controlFor(guest, copyId ?? settings.armId),
-      onError,
-      now,
-    );
+    this.copy = new ModelCopySide(settings.armId, this.controlFor(guest, copyId), onError, now);
     this.inbox = new LinkInbox(
       settings.armId,
       this.topics,
@@ -131,7 +126,7 @@ export class ArmConnection {
     this.permissions = permissions;
     if (who) {
       this.armClaim = this.controlFor(who);
-      this.copy.claim = this.controlFor(who, this.copy.id ?? s.armId);
+      this.copy.claim = this.controlFor(who, this.copy.id);
     }
     this.events = events;
     this.store.connection = 'connecting';
@@ -202,13 +197,21 @@ export class ArmConnection {
     this.beatTimer = undefined;
   }
 
-  private controlFor(who: ControlIdentity, armId = this.settings.armId): ControlClaim {
-    return new ControlClaim(armId, who, (topic, payload) => {
+  /**
+   * This page's claims on the arm, or (`copyId`) on its model copy. They beat with the
+   * deadman's timer: the arm's whenever the page holds the deadman, the copy's in Model mode.
+   */
+  private controlFor(who: ControlIdentity, copyId?: string | null): ControlClaim {
+    const send = (topic: string, payload: string) => {
       const client = this.client;
       if (!client || !this.permissions.command) return false;
       client.publish(topic, payload, { qos: 1 }, this.onPublished);
       return true;
-    });
+    };
+    if (copyId === undefined)
+      return new ControlClaim(this.settings.armId, who, send, () => this.permissions.deadman);
+    const beats = () => this.permissions.deadman && this.armMode === 'model';
+    return new ControlClaim(copyId ?? this.settings.armId, who, send, beats);
   }
 
   /** The connection dropped: a gap starts (once), and the health charts get a break. */

@@ -50,6 +50,8 @@ export class ControlClaim {
     private readonly armId: string,
     readonly who: ControlIdentity,
     private readonly send: (topic: string, payload: string) => boolean,
+    /** This page beats its claims (it holds the deadman; for a model copy, in Model mode). */
+    private readonly beats: () => boolean = () => false,
   ) {}
 
   /** This page's user holds the arm. */
@@ -119,9 +121,10 @@ export class ControlClaim {
   /**
    * The arm's summary (`arm/{id}/summary`, 2 Hz, docs/protocol.md § Fleets) names its holder:
    * until the retained holder record has come (after a connect or a move), it stands in for it,
-   * with no requests. On a NATS cluster recovering from a lost node the record, read through a
-   * QoS 1 subscription, took up to a minute (docs/cluster.md); the summary is QoS 0. It never
-   * makes the log-in's automatic take: that waits for the record.
+   * with no requests. On a NATS cluster recovering from a lost node the record, when the page
+   * read it through a QoS 1 subscription, took up to a minute (docs/cluster.md); both are QoS 0
+   * now, and the summary still covers a record that comes late. It never makes the log-in's
+   * automatic take: that waits for the record.
    */
   onSummary(payload: Uint8Array): void {
     if (this.recordCame) return;
@@ -140,11 +143,19 @@ export class ControlClaim {
     if (aboutMe) this.notice = e;
   }
 
-  /** Takes the arm: free, or (an administrator) from whoever holds it. */
+  /**
+   * Takes the arm: free, or (an administrator) from whoever holds it. A page that beats sends
+   * its first `beat` right behind the take, so the holder's lease runs at once: a page whose
+   * connection dies just after taking control loses the arm after the lease, where a holder
+   * that has not beaten yet would keep it (docs/protocol.md § Control).
+   */
   take(): boolean {
-    if (this.heldBy && this.who.admin)
-      return this.send(userTopic(this.armId, 'override', this.who.name), 'take');
-    return this.claim('take');
+    const sent =
+      this.heldBy && this.who.admin
+        ? this.send(userTopic(this.armId, 'override', this.who.name), 'take')
+        : this.claim('take');
+    if (sent && this.beats()) this.claim('beat');
+    return sent;
   }
 
   ask(): boolean {

@@ -4,7 +4,13 @@
  * holder and audit into the page's claim on the arm, the model copy's topics to its side, the
  * arm's online flag, and the rest to the link's taps. A plain object ArmLink (./ArmLink.ts) owns.
  */
-import { auditTopic, holderTopic, topic, type ArmTopics } from '@armtwin/protocol';
+import {
+  auditTopic,
+  CLEAN_SESSION_SUBSCRIBE_QOS as QOS,
+  holderTopic,
+  topic,
+  type ArmTopics,
+} from '@armtwin/protocol';
 import type { ArmStore } from '../store/ArmStore.ts';
 import type { ControlClaim } from './ControlClaim.ts';
 import type { ModelCopySide } from './ModelCopySide.ts';
@@ -49,20 +55,26 @@ export class LinkInbox {
 
   /**
    * At every connect: the arm's topics and the taps'; the copy's in Model mode (`inModel`,
-   * holding its deadman with `deadman`); everyone's commands last.
+   * holding its deadman with `deadman`); everyone's commands last. All at QoS 0: the page's
+   * session is clean (`CLEAN_SESSION_SUBSCRIBE_QOS`, docs/protocol.md § Several brokers).
    */
   subscribe(client: MqttLike, inModel: boolean, deadman: boolean): void {
     // The summary names the holder until the holder record comes (ControlClaim.onSummary).
     client.subscribe(
-      [this.topics.status, this.topics.online, this.summaryTopic],
-      { qos: 0 },
+      [
+        this.topics.status,
+        this.topics.online,
+        this.summaryTopic,
+        this.holderTopic,
+        this.auditTopic,
+      ],
+      { qos: QOS },
       this.onSubscribed,
     );
-    client.subscribe([this.holderTopic, this.auditTopic], { qos: 1 }, this.onSubscribed);
     this.subscribeTaps(client);
     if (inModel) this.copy.enter(client, deadman);
     // Everyone's commands, for the predictive twin; a broker may refuse a role this (ACL).
-    client.subscribe([`${this.topics.control}/#`], { qos: 0 }, () => {});
+    client.subscribe([`${this.topics.control}/#`], { qos: QOS }, () => {});
   }
 
   /** Adds a reader; `client` (when connected) subscribes its filter now, else at connect. */
@@ -75,7 +87,7 @@ export class LinkInbox {
     if (taps.length === 0) return;
     client.subscribe(
       taps.map((t) => t.filter),
-      { qos: 1 },
+      { qos: QOS },
       this.onSubscribed,
     );
   }

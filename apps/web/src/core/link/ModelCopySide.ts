@@ -4,7 +4,7 @@
  * holder and audit (into the copy's control claim), and holds the copy's deadman as it holds the
  * arm's. A plain object ArmLink (./ArmLink.ts) owns; it publishes through the link's client.
  */
-import { armTopics, auditTopic, holderTopic } from '@armtwin/protocol';
+import { armTopics, auditTopic, CLEAN_SESSION_SUBSCRIBE_QOS, holderTopic } from '@armtwin/protocol';
 import type { ArmStore } from '../store/ArmStore.ts';
 import { modelArmId } from './modes.ts';
 import type { ControlClaim } from './ControlClaim.ts';
@@ -38,7 +38,7 @@ export class ModelCopySide {
 
   /** Into Model mode (or connected in it): read the copy, hold its deadman. */
   enter(client: MqttLike, deadman: boolean): void {
-    client.subscribe(this.topics, { qos: 1 }, (err) => {
+    client.subscribe(this.topics, { qos: CLEAN_SESSION_SUBSCRIBE_QOS }, (err) => {
       if (err) this.onError(`subscribe failed: ${err.message}`);
     });
     if (deadman) this.holdOperator(client, '1');

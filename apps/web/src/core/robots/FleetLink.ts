@@ -10,6 +10,7 @@
 import {
   allArmsTopic,
   armTopics,
+  CLEAN_SESSION_SUBSCRIBE_QOS as QOS,
   isValidArmId,
   parseSummary,
   parseTopic,
@@ -96,14 +97,14 @@ export class FleetLink {
       const topics = [
         allArmsTopic('online'),
         allArmsTopic('profile'),
+        allArmsTopic('summary'),
         allArmsTopic('alert'),
         armTopics(this.selected).feedback,
       ];
-      const failed = (err: Error | null) => {
+      // QoS 0: the page's session is clean (docs/protocol.md § Several brokers).
+      client.subscribe(topics, { qos: QOS }, (err) => {
         if (err) this.lastError = `fleet subscribe failed: ${err.message}`;
-      };
-      client.subscribe(topics, { qos: 1 }, failed);
-      client.subscribe([allArmsTopic('summary')], { qos: 0 }, failed);
+      });
     });
     client.on('close', () => (this.connected = false));
     client.on('error', (err) => (this.lastError = err.message));
@@ -124,7 +125,7 @@ export class FleetLink {
     const c = this.client;
     if (!c) return;
     c.unsubscribe([armTopics(old).feedback]);
-    c.subscribe([armTopics(armId).feedback], { qos: 1 });
+    c.subscribe([armTopics(armId).feedback], { qos: QOS });
   }
 
   /**
