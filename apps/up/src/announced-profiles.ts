@@ -5,7 +5,7 @@
  * unreadable announcement forgets the arm.
  */
 import type { MqttClient } from 'mqtt';
-import { allArmsTopic, parseTopic } from '@armtwin/protocol';
+import { allArmsTopic, CLEAN_SESSION_SUBSCRIBE_QOS, parseTopic } from '@armtwin/protocol';
 import { PROFILE_NAME } from '@armtwin/sim';
 
 export interface AnnouncedProfiles {
@@ -38,7 +38,7 @@ export function watchAnnouncedProfiles(
     else names.delete(t.armId);
   });
   const subscribe = () =>
-    client.subscribe(allArmsTopic('profile'), { qos: 1 }, (err) => {
+    client.subscribe(allArmsTopic('profile'), { qos: CLEAN_SESSION_SUBSCRIBE_QOS }, (err) => {
       if (err) onFirst('model:subscribe', `arm profiles not followed: ${err.message}`);
     });
   client.on('connect', subscribe);

@@ -12,6 +12,7 @@ import type { FoxgloveServer } from '@foxglove/ws-protocol';
 import { PROFILE_NAME, readRobotFolder, type RobotFolder } from '@armtwin/motion/robot-folder';
 import {
   allArmsTopic,
+  CLEAN_SESSION_SUBSCRIBE_QOS,
   holderTopic,
   isValidArmId,
   parseHolder,
@@ -79,9 +80,13 @@ export class ArmRegistry {
     if (o.control && o.control !== o.mqtt)
       o.control.on('message', (t, payload) => this.onMessage(t, payload));
     const subscribe = () =>
-      o.mqtt.subscribe([allArmsTopic('profile'), 'arm/+/holder'], { qos: 1 }, (err) => {
-        if (err) o.onFirst('subscribe', `arm profiles not followed: ${err.message}`);
-      });
+      o.mqtt.subscribe(
+        [allArmsTopic('profile'), 'arm/+/holder'],
+        { qos: CLEAN_SESSION_SUBSCRIBE_QOS },
+        (err) => {
+          if (err) o.onFirst('subscribe', `arm profiles not followed: ${err.message}`);
+        },
+      );
     o.mqtt.on('connect', subscribe);
     if (o.mqtt.connected) subscribe();
   }

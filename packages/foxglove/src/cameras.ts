@@ -11,6 +11,7 @@ import type { MqttClient } from 'mqtt';
 import type { WebSocket } from 'ws';
 import { StatusLevel } from '@foxglove/ws-protocol';
 import { CompressedImage } from '@foxglove/schemas/jsonschema';
+import { CLEAN_SESSION_SUBSCRIBE_QOS } from '@armtwin/protocol';
 import { cameraStreams, parseCameraMessage, parseCameraTopic } from '@armtwin/camera/announcement';
 import type { FoxgloveServer } from './ws-protocol.ts';
 import { cameraChannelTopic } from './topics.ts';
@@ -58,7 +59,7 @@ export class CameraChannels {
     mqtt.on('message', (t, payload) => {
       if (parseCameraTopic(t)) this.onAnnouncement(t, payload);
     });
-    const subscribe = () => mqtt.subscribe('arm/+/camera/+', { qos: 1 });
+    const subscribe = () => mqtt.subscribe('arm/+/camera/+', { qos: CLEAN_SESSION_SUBSCRIBE_QOS });
     mqtt.on('connect', subscribe);
     if (mqtt.connected) subscribe();
   }

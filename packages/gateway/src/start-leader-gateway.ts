@@ -8,7 +8,7 @@
  */
 import { connectBrokers, parseBrokerList } from '@armtwin/link';
 import { readRobotFolder } from '@armtwin/motion/robot-folder';
-import { linkOptions, SYSTEM_CLOCK } from '@armtwin/protocol';
+import { CLEAN_SESSION_SUBSCRIBE_QOS, linkOptions, SYSTEM_CLOCK } from '@armtwin/protocol';
 import type { BusProtocol } from '@armtwin/servo-bus';
 import { BusLine } from './bus-line.ts';
 import { busJoints } from './bus-servos.ts';
@@ -97,7 +97,7 @@ export function startLeaderGateway(
   };
   client.on('connect', () => {
     (client.stream as { setNoDelay?: (on: boolean) => void } | undefined)?.setNoDelay?.(true);
-    client.subscribe(Object.keys(handlers), { qos: 1 }, (err) => {
+    client.subscribe(Object.keys(handlers), { qos: CLEAN_SESSION_SUBSCRIBE_QOS }, (err) => {
       if (err) o.onFirst('subscribe', err.message);
       else teleop.connected();
     });

@@ -16,6 +16,7 @@ import path from 'node:path';
 import { connectBrokers, type BrokerClient } from '@armtwin/link';
 import { readRobotFolder, MODELS_DIR } from '@armtwin/motion/robot-folder';
 import {
+  CLEAN_SESSION_SUBSCRIBE_QOS,
   encodeStop,
   linkOptions,
   parseHolder,
@@ -132,7 +133,7 @@ export async function startArmInRos(options: Partial<ArmInRosOptions> = {}): Pro
   });
   mqtt.on('error', (err) => o.onFirst(`mqtt:${err.message}`, `mqtt: ${err.message}`));
   mqtt.on('connect', () => {
-    mqtt.subscribe([status, holder], { qos: 1 });
+    mqtt.subscribe([status, holder], { qos: CLEAN_SESSION_SUBSCRIBE_QOS });
   });
 
   const onTrajectory = (traj: JointTrajectoryMsg) => {
