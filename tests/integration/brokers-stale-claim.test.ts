@@ -13,6 +13,7 @@ import { EMERGENCY_STOP, userTopic } from '@armtwin/protocol';
 import { NOT_CONNECTED, type BrokerClient } from '@armtwin/link';
 import { brokerConnect } from '../../apps/web/src/core/link/brokerConnect.ts';
 import { connectOptions } from '../../apps/web/src/core/link/connectOptions.ts';
+import { until } from '../helpers/until.ts';
 import { useMosquitto } from '../helpers/use-services.ts';
 
 const first = useMosquitto();
@@ -26,13 +27,6 @@ afterAll(async () => {
 });
 
 const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
-async function until(fn: () => boolean, ms: number, what: string) {
-  const deadline = Date.now() + ms;
-  while (!fn()) {
-    if (Date.now() > deadline) throw new Error(`timed out waiting for ${what}`);
-    await sleep(20);
-  }
-}
 
 test('a take and a move unacknowledged when the broker dies are not sent to the next; the e-stop is', async () => {
   // The arm, on the second broker: what reaches it on its claim and control topics.

@@ -14,20 +14,14 @@
  * again, knowingly. Other messages (an e-stop, the status stream) keep mqtt.js's behaviour.
  * Bookkeeping from mqtt.js's `packetsend` and `packetreceive` events (their message ids).
  */
-import type { IClientPublishOptions, MqttClient, PacketCallback } from 'mqtt';
+import type { MqttClient } from 'mqtt';
+import type { Publish } from './republish.ts';
 
 /** Says whether a message perishes with its connection. */
 export type Perishable = (topic: string, payload: string | Uint8Array) => boolean;
 
 /** The error a perishable publish made while disconnected gets. */
 export const NOT_CONNECTED = 'not sent: not connected (a claim or a move is never sent late)';
-
-type Publish = (
-  topic: string,
-  message: string | Buffer,
-  opts?: IClientPublishOptions | PacketCallback,
-  callback?: PacketCallback,
-) => MqttClient;
 
 /** Perishable publishes sent on the current connection and not acknowledged: id → topic. */
 export class PerishableInFlight {

@@ -26,7 +26,8 @@ import type { Perishable } from './perishable.ts';
 /** The error mqtt.js gives a publish it dropped from its queue when a connection closed. */
 const DROPPED = 'Connection closed';
 
-type Publish = (
+/** mqtt.js's `publish`, as a wrapper replaces it. */
+export type Publish = (
   topic: string,
   message: string | Buffer,
   opts?: IClientPublishOptions | PacketCallback,
