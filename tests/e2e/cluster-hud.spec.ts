@@ -69,7 +69,7 @@ test('the page on a cluster node that dies moves to another node, the arm live t
     // beats is never timed out): the kill waits for the page's first beat to reach the arm's node.
     // The page sends it right behind the take, but a NATS node stores a QoS 1 message before it
     // reads the next from the same connection: killed the moment the take reached the arm's node,
-    // the beat never came, and alice kept the arm until mqtt.js sent both again after the move.
+    // the beat never came, and alice kept the arm (a holder that never beats is never timed out).
     await until(
       () => watch!.messages.some((m) => m.topic === `arm/${arm}/claim/alice` && m.text === 'beat'),
       10_000,

@@ -41,6 +41,8 @@ export interface MosquittoService extends ServiceLifecycle {
   wsPort: number;
   /** `ws://127.0.0.1:<wsPort>` */
   wsUrl: string;
+  /** The process id while running (a test may SIGSTOP it: a broker that hangs). */
+  readonly pid: number | undefined;
   // The temp dir holds config, persistence file and log; a clean stop() saves persistence, so
   // persistent sessions and their queued messages survive restart().
 }
@@ -176,6 +178,9 @@ export async function startMosquitto(opts: MosquittoOptions = {}): Promise<Mosqu
     logFile: proc.logFile,
     get running() {
       return proc.running;
+    },
+    get pid() {
+      return proc.pid;
     },
     start: () => proc.start(),
     stop: () => proc.stop(),

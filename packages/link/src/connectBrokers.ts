@@ -3,7 +3,7 @@
  * same in Node and in the page. It is ONE MqttClient: its handlers, its subscriptions and its
  * offline queue (QoS 1 messages published while disconnected, those not yet acknowledged, and
  * those mqtt.js would drop when a connection closes while it re-sends them: `./republish.ts`)
- * survive a move, because only the stream under it changes: at every (re)connect mqtt.js asks
+ * survive a move (except those that perish with their connection: `./perishable.ts`), because only the stream under it changes: at every (re)connect mqtt.js asks
  * the stream builder for a stream, and the builder asks the policy (`BrokerFailover`,
  * `./brokers.ts`) which broker that is. Each broker's own builder is mqtt.js's, made by
  * `connect(url, { manualConnect: true })`, so every scheme mqtt.js knows (mqtt, mqtts, ws, wss)
@@ -23,6 +23,7 @@ import {
   type BrokerMove,
 } from './brokers.ts';
 import { probeBroker, type ConnectFn, type ProbeConnected } from './probe.ts';
+import { dropPerishableOnClose, type Perishable } from './perishable.ts';
 import { republishDroppedPublishes } from './republish.ts';
 import { retryRefusedSubscriptions } from './resubscribe.ts';
 
@@ -38,6 +39,11 @@ export interface BrokerLinkOptions extends BrokerListOptions {
   probeOptions: Partial<IClientOptions>;
   /** Runs on a probe's connection before it ends (a part may register its session there). */
   onProbeConnected?: ProbeConnected;
+  /**
+   * The QoS 1 messages sent on the connection they were made on or never (`./perishable.ts`):
+   * not queued while disconnected, dropped if unacknowledged when it closes (default: none).
+   */
+  perishable?: Perishable;
 }
 
 export const DEFAULT_BROKER_LINK_OPTIONS: Omit<BrokerLinkOptions, 'probeOptions'> = {
@@ -69,7 +75,8 @@ export function connectBrokers(
   ) as BrokerClient;
   client.brokers = failover;
   // mqtt.js drops QoS 1 publishes made while it re-sends its store, if the connection closes then.
-  republishDroppedPublishes(client);
+  republishDroppedPublishes(client, undefined, o.perishable);
+  if (o.perishable) dropPerishableOnClose(client, o.perishable);
   if (several) {
     const builders = urls.map((url, i) =>
       i === 0

@@ -17,14 +17,17 @@
  * Here every such message is published again, in order, once the close is over. The client is
  * then disconnected, so mqtt.js puts it in its outgoing store, and it is sent after the next
  * connect, as any publish made while offline. The caller's callback is told only the final
- * outcome. A client that is ending (`end()`) does not publish again.
+ * outcome. A client that is ending (`end()`) does not publish again, nor is a message that
+ * perishes with its connection (`./perishable.ts`: a claim, a move).
  */
 import type { IClientPublishOptions, MqttClient, PacketCallback } from 'mqtt';
+import type { Perishable } from './perishable.ts';
 
 /** The error mqtt.js gives a publish it dropped from its queue when a connection closed. */
 const DROPPED = 'Connection closed';
 
-type Publish = (
+/** mqtt.js's `publish`, as a wrapper replaces it. */
+export type Publish = (
   topic: string,
   message: string | Buffer,
   opts?: IClientPublishOptions | PacketCallback,
@@ -34,13 +37,19 @@ type Publish = (
 export function republishDroppedPublishes(
   client: MqttClient,
   onRepublish: (topic: string) => void = () => {},
+  perishable: Perishable = () => false,
 ): void {
   const publish = client.publish.bind(client) as Publish;
   const wrapped: Publish = (topic, message, opts, callback) => {
     if (typeof opts === 'function') return publish(topic, message, opts);
     if (!opts?.qos) return publish(topic, message, opts, callback);
     const settle: PacketCallback = (err, packet) => {
-      if (err?.message === DROPPED && !client.disconnecting && !client.disconnected) {
+      if (
+        err?.message === DROPPED &&
+        !client.disconnecting &&
+        !client.disconnected &&
+        !perishable(topic, message)
+      ) {
         // After the close: mqtt.js flushes the queue while its own close handling is under way.
         queueMicrotask(() => {
           onRepublish(topic);

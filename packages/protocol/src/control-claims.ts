@@ -5,7 +5,7 @@
  * user write only the topics that end in their own name, so a message on
  * `arm/arm1/control/alice` can only have come from alice. Pure: no I/O.
  */
-import { assertArmId, isValidArmId } from './topics.ts';
+import { assertArmId, isValidArmId, parseTopic } from './topics.ts';
 
 /** The per-user topic kinds under `arm/{id}/`: `…/{kind}/{user}` (`request`: motion requests). */
 export const USER_TOPIC_KINDS = ['control', 'claim', 'override', 'request'] as const;
@@ -51,10 +51,12 @@ export type Claim =
   | { op: 'refuse'; to: string };
 
 const decoder = new TextDecoder();
+const asText = (payload: string | Uint8Array) =>
+  typeof payload === 'string' ? payload : decoder.decode(payload);
 
 /** The claim in a payload, or an error message saying what was wrong with it. */
 export function parseClaim(payload: Uint8Array | string): Claim | { error: string } {
-  const text = (typeof payload === 'string' ? payload : decoder.decode(payload)).trim();
+  const text = asText(payload).trim();
   const [word, to, ...rest] = text.split(/\s+/);
   if (rest.length === 0) {
     if (to === undefined && (word === 'take' || word === 'beat' || word === 'ask'))
@@ -110,7 +112,7 @@ export interface AuditEvent {
 
 /** A holder record or audit event read back (the HUD); null when the JSON is not one. */
 export function parseHolder(payload: Uint8Array | string): HolderRecord | null {
-  const text = typeof payload === 'string' ? payload : decoder.decode(payload);
+  const text = asText(payload);
   if (text.trim() === '') return { user: null, requests: [] };
   try {
     const v = JSON.parse(text) as Partial<HolderRecord>;
@@ -131,7 +133,7 @@ export function parseHolder(payload: Uint8Array | string): HolderRecord | null {
 }
 
 export function parseAudit(payload: Uint8Array | string): AuditEvent | null {
-  const text = typeof payload === 'string' ? payload : decoder.decode(payload);
+  const text = asText(payload);
   try {
     const v = JSON.parse(text) as Partial<AuditEvent>;
     if (typeof v.at !== 'number' || typeof v.by !== 'string' || typeof v.detail !== 'string')
@@ -141,4 +143,21 @@ export function parseAudit(payload: Uint8Array | string): AuditEvent | null {
   } catch {
     return null;
   }
+}
+
+/** A payload of stops only (`#IIIPDST!`…, the e-stop `#255PDST!` among them). */
+export const STOPS_ONLY = /^(#\d{3}PDST!)+$/;
+
+/**
+ * Whether a message perishes with the connection it was published on: sent on that connection
+ * or never, not re-sent on the next one (docs/protocol.md § Several brokers). Claims and
+ * overrides (`…/claim/{user}`, `…/override/{user}`: a late `take` would take control without a
+ * click) and commands and motion requests (`…/control[/{user}]`, `…/request[/{user}]`: a late
+ * move runs when nobody expects it), except a payload of stops only: the stop wins, late or not.
+ */
+export function perishesWithConnection(topic: string, payload: string | Uint8Array): boolean {
+  const kind = parseUserTopic(topic)?.kind ?? parseTopic(topic)?.kind;
+  if (kind === 'claim' || kind === 'override') return true;
+  if (kind === 'control' || kind === 'request') return !STOPS_ONLY.test(asText(payload));
+  return false;
 }

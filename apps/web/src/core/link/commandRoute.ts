@@ -4,11 +4,9 @@
  * and only while nobody else holds the driven arm, unless it is stops only. Pure: ArmLink
  * (./ArmLink.ts) publishes what this allows and says why it did not.
  */
+import { STOPS_ONLY } from '@armtwin/protocol';
 import { commandTopic, type ArmMode } from './modes.ts';
 import type { ControlClaim } from './ControlClaim.ts';
-
-/** A payload of stops only: sent whoever holds the arm (the e-stop wins over everything). */
-const STOPS_ONLY = /^(#\d{3}PDST!)+$/;
 
 /** The user of a claim's per-user topics, null for the plain topic (ControlClaim's rule). */
 export function claimUser(claim: ControlClaim): string | null {
@@ -31,6 +29,7 @@ export function routeCommand(
 ): CommandRoute {
   const to = commandTopic(armId, mode, claimUser(claim));
   if (to === null) return { to, refused: 'not sent: Shadow mode sends no commands' };
+  // A payload of stops only is sent whoever holds the arm (the e-stop wins over everything).
   if (isCommand && !claim.mayMove && !STOPS_ONLY.test(payload))
     return { to: null, refused: `not sent: ${claim.heldBy} controls the arm` };
   return { to };
