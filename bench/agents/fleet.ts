@@ -6,8 +6,9 @@
  * - on SIGUSR2, `{"atMs":…,"samples":{arm: n},"payloads":{arm: n},"messages":n}`: the state
  *   samples and state payloads each arm published so far, and the status messages of every kind
  *   all of them did, in this process's clock;
- * - on SIGTERM, after stopping every arm (each says offline),
- *   `{"published":{arm:{"state","health","servos"}}}`, then exits.
+ * - on SIGTERM, after stopping every arm (each says offline; an arm whose stop still waits on
+ *   the broker after 20 s is left), `{"published":{arm:{"state","health","servos"}}}`, then
+ *   exits.
  * `<mqtt url>` may hold several broker lists separated by `;` (a cluster's nodes, each list
  * starting at another node): arm k takes list (k − 1) mod their count. With `<counts file>`,
  * the state samples each arm's runner made are also written there as JSON (`{"<id>": n, …}`)
@@ -59,8 +60,18 @@ process.on('SIGUSR2', () => {
   }
   say({ atMs: performance.now(), samples, payloads, messages });
 });
+// A stop waits on the broker (the offline messages are QoS 1): one that is far behind would
+// hold the step for minutes, so each arm gets this long, and what it had published still counts.
+const STOP_WAIT_MS = 20_000;
 process.once('SIGTERM', () => {
-  void Promise.all(sims.map(({ sim }) => sim.stop())).then(() => {
+  let unstopped = 0;
+  const stop = (sim: Sim) =>
+    Promise.race([
+      sim.stop().then(() => true),
+      new Promise<boolean>((r) => setTimeout(() => r(false), STOP_WAIT_MS).unref()),
+    ]).then((done) => void (done || unstopped++));
+  void Promise.all(sims.map(({ sim }) => stop(sim))).then(() => {
+    if (unstopped) log.warn({ unstopped }, `arms not stopped within ${STOP_WAIT_MS} ms`);
     const published: Record<string, { state: number; health: number; servos: number }> = {};
     for (const { arm, sim } of sims)
       published[arm] = {
