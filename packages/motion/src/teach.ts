@@ -19,6 +19,7 @@
  */
 import { servoFromPwm } from '@armtwin/robot';
 import { tipPose, type MotionRobot } from './robot.ts';
+import { topSpeed } from './joint-plan.ts';
 
 export interface TeachOptions {
   /** Largest error allowed for a revolute servo at any recorded sample, degrees. */
@@ -150,6 +151,14 @@ class Metric {
     return Math.max(worst, this.tipMm(a, b) / this.o.tipMm);
   }
 
+  /** The least time the servos need from one pose to the other at their top speed, ms. */
+  travelMs(a: readonly number[], b: readonly number[]): number {
+    let ms = 0;
+    for (let i = 0; i < a.length; i++)
+      ms = Math.max(ms, Math.abs(a[i]! - b[i]!) / topSpeed(this.robot, i, 1));
+    return ms;
+  }
+
   /** Whether every servo is within the `still` limits of the other pose. */
   still(a: readonly number[], b: readonly number[]): boolean {
     for (let i = 0; i < a.length; i++) {
@@ -196,7 +205,10 @@ function findStops(c: Clean, m: Metric, o: TeachOptions): Key[] {
 /**
  * When the arm reached (or left) a stop between two samples: the last moving samples (a, then
  * b further out) extrapolated at their speed to the stop's pose, along the fastest servo.
- * Returns the time, within [t(a), t(edge)] (the stop's first or last sample).
+ * Returns the time, within [t(a), t(edge)] (the stop's first or last sample), and never closer
+ * to t(a) than the servos at their top speed need between the stop's pose and sample a's: the
+ * taught plan runs each segment in its time only if the servos can (the planner stretches a
+ * segment that is too short, and the rest of the plan then runs late).
  */
 function crossing(c: Clean, m: Metric, stop: Key, a: number, b: number, edge: number): number {
   const ta = c.t[a]!;
@@ -214,8 +226,8 @@ function crossing(c: Clean, m: Metric, stop: Key, a: number, b: number, edge: nu
   // The fastest servo is there already, but the sample as a whole is not within tolerance of
   // the stop (another servo, or the tip): the arm reached it between the two samples, not at
   // sample a (a waypoint at a and the stop at the same instant would be a jump in no time).
-  if (tau <= 0 && m.ratio(qa, stop.pwm) > 1) return (ta + te) / 2;
-  const dt = Math.min(span, Math.max(0, tau));
+  const guess = tau <= 0 && m.ratio(qa, stop.pwm) > 1 ? span / 2 : Math.max(0, tau);
+  const dt = Math.min(span, Math.max(guess, m.travelMs(qa, stop.pwm)));
   return te > ta ? ta + dt : ta - dt;
 }
 
