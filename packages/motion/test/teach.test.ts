@@ -217,7 +217,7 @@ describe.each(Object.entries(robots))('teaching on %s', (name, robot) => {
       {
         numRuns: 60,
         // A failure is reported as found, not shrunk: shrinking runs the whole teach and plan
-        // per try, and a fresh clone's unit stage spent 19 minutes on it.
+        // per try, and a fresh clone's unit stage had spent 17 minutes on it when stopped.
         endOnFailure: true,
         // Found by a CI run: the last moving sample before a stop was out of tolerance of it, and
         // the stop's arrival was put at that sample's own time (a jump in no time, 1e-9 mm over).
